@@ -1,0 +1,47 @@
+# riser — see README.md. `make demo` and `make test` install what they need.
+SHELL := /bin/bash
+CARGO ?= cargo
+VENV := .venv
+PY := $(VENV)/bin/python
+BIN := target/release/riser
+DEMO_DIR := out/demo
+
+.PHONY: all build demo test rust-test lint venv clean doc
+
+all: build
+
+build:
+	$(CARGO) build --release
+
+$(VENV)/.installed: requirements.txt
+	python3 -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -r requirements.txt
+	touch $@
+
+venv: $(VENV)/.installed
+
+# The main job on the built-in default scene: static equilibrium of `catenary`,
+# printed, written as CSV and plotted as PNG in out/demo/.
+demo: build venv
+	mkdir -p $(DEMO_DIR)
+	$(BIN) statics catenary --out $(DEMO_DIR)
+	$(PY) scripts/plot_statics.py $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
+	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png"
+
+lint:
+	$(CARGO) fmt --check
+	$(CARGO) clippy --release --all-targets -- -D warnings
+
+rust-test:
+	$(CARGO) test --release
+
+doc:
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
+
+# Every test: formatting, lints, docs, Rust tests (release: the physics needs speed).
+test: lint doc rust-test
+
+clean:
+	$(CARGO) clean
+	rm -rf out $(VENV)

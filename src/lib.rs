@@ -1,0 +1,12 @@
+//! riser: nonlinear dynamics of marine risers, umbilicals and cables, after
+//! dos Santos & Rochinha, "Dynamics of marine pipelines — a nonlinear analysis"
+//! (Cosserat director rod, energy–momentum conserving time stepping, Morison
+//! drag), packaged as an FMI 2.0 Co-Simulation unit.
+//!
+//! Layout: [`rod`] (kinematics, element, strains, internal force and tangent),
+//! [`hydro`] (loads from the water), [`scene`] (scene files and built-in
+//! scenes), [`statics`] (static equilibrium), [`linsolve`] (global sparse LU).
+
+pub mod hydro;
+pub mod linsolve;
+pub mod rod;

@@ -1,0 +1,296 @@
+//! The rod element: strains, stored energy, internal force and consistent
+//! tangent (docs/theory.md §2–§3; paper eqs. 3, 4, 12).
+//!
+//! Strains are the quadratic measures of Betsch & Steinmann, which equal the
+//! paper's for orthonormal directors:
+//!   Γ_i = d_i·r' − δ_i3                       (shear Γ1, Γ2; extension Γ3)
+//!   K_i = ½ (d_k·d_j' − d_j·d_k'),  (i,j,k) cyclic   (bending K1, K2; twist K3)
+//! and W = ½ Σ C_i (Γ_i − Γ_i⁰)² + ½ Σ D_i (K_i − K_i⁰)²  with C = (EA, EA, EA)
+//! (the paper's penalty ½R|r' − d3|², R = EA) and D = (EI1, EI2, GJ).
+//!
+//! Element unknowns, in the order of the global vector (so that element e owns
+//! the contiguous global rows 12e .. 12e+21):
+//!   [r_a (3), r'_a (3), θ_a (3), θ_mid (3), r_b (3), r'_b (3), θ_b (3)]
+//! where θ is the spatial rotation increment of a director node, δd_i = θ × d_i.
+
+use super::kinematics::{M3, RodConfig, V3, skew};
+use super::shape::{GAUSS4, hermite_ds, lagrange, lagrange_ds};
+use nalgebra::{SMatrix, SVector};
+
+/// Unknowns per element (reduced: rotations instead of director components).
+pub const NDOF_EL: usize = 21;
+/// Gauss points per element.
+pub const NGP: usize = 4;
+/// Global stride between consecutive elements.
+pub const STRIDE: usize = 12;
+
+pub type ElVec = SVector<f64, NDOF_EL>;
+pub type ElMat = SMatrix<f64, NDOF_EL, NDOF_EL>;
+/// Strain vector (Γ1, Γ2, Γ3, K1, K2, K3).
+pub type Strain = [f64; 6];
+
+/// Local offsets of the Hermite dofs [r_a, r'_a, r_b, r'_b].
+pub const C_OFF: [usize; 4] = [0, 3, 12, 15];
+/// Local offsets of the director-node rotations [θ_a, θ_mid, θ_b].
+pub const T_OFF: [usize; 3] = [6, 9, 18];
+
+/// Cyclic index triples (i, j, k).
+const CYC: [(usize, usize, usize); 3] = [(0, 1, 2), (1, 2, 0), (2, 0, 1)];
+
+/// The element's nodal values gathered from a configuration.
+#[derive(Debug, Clone, Copy)]
+pub struct ElemDofs {
+    /// Hermite dofs [r_a, r'_a, r_b, r'_b].
+    pub c: [V3; 4],
+    /// Director frames at [start, mid, end].
+    pub d: [M3; 3],
+}
+
+impl ElemDofs {
+    pub fn gather(cfg: &RodConfig, e: usize) -> Self {
+        ElemDofs {
+            c: [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]],
+            d: [cfg.d[2 * e], cfg.d[2 * e + 1], cfg.d[2 * e + 2]],
+        }
+    }
+
+    /// Component-wise average ½(a + b): the midpoint configuration q_{n+½}.
+    pub fn average(a: &Self, b: &Self) -> Self {
+        let mut m = *a;
+        for k in 0..4 {
+            m.c[k] = 0.5 * (a.c[k] + b.c[k]);
+        }
+        for k in 0..3 {
+            m.d[k] = 0.5 * (a.d[k] + b.d[k]);
+        }
+        m
+    }
+}
+
+/// Interpolated fields at one Gauss point.
+struct GpKin {
+    /// r'
+    p: V3,
+    /// d_i
+    di: [V3; 3],
+    /// d_i'
+    dpi: [V3; 3],
+    /// Hermite N'_k
+    nds: [f64; 4],
+    /// Lagrange L_A and L'_A
+    l: [f64; 3],
+    dl: [f64; 3],
+}
+
+#[inline]
+fn kin(e: &ElemDofs, xi: f64, h: f64) -> GpKin {
+    let nds = hermite_ds(xi, h);
+    let l = lagrange(xi);
+    let dl = lagrange_ds(xi, h);
+    let p = e.c[0] * nds[0] + e.c[1] * nds[1] + e.c[2] * nds[2] + e.c[3] * nds[3];
+    let mut di = [V3::zeros(); 3];
+    let mut dpi = [V3::zeros(); 3];
+    for i in 0..3 {
+        for a in 0..3 {
+            let col = e.d[a].column(i);
+            di[i] += col * l[a];
+            dpi[i] += col * dl[a];
+        }
+    }
+    GpKin { p, di, dpi, nds, l, dl }
+}
+
+#[inline]
+fn strains_of(k: &GpKin) -> Strain {
+    let mut s = [0.0; 6];
+    for i in 0..3 {
+        s[i] = k.di[i].dot(&k.p);
+    }
+    s[2] -= 1.0;
+    for &(i, j, kk) in &CYC {
+        s[3 + i] = 0.5 * (k.di[kk].dot(&k.dpi[j]) - k.di[j].dot(&k.dpi[kk]));
+    }
+    s
+}
+
+/// Strains at the Gauss point ξ of an element of reference length h.
+pub fn strains_at(e: &ElemDofs, xi: f64, h: f64) -> Strain {
+    strains_of(&kin(e, xi, h))
+}
+
+/// Strains at the element's Gauss points.
+pub fn gauss_strains(e: &ElemDofs, h: f64) -> [Strain; NGP] {
+    let mut out = [[0.0; 6]; NGP];
+    for (g, o) in out.iter_mut().enumerate() {
+        *o = strains_at(e, GAUSS4.xi[g], h);
+    }
+    out
+}
+
+/// Stored energy of the element, ∫ W dS (J), for strains `eps` at the Gauss points.
+pub fn energy(eps: &[Strain; NGP], eps0: &[Strain; NGP], stiff: &[f64; 6], h: f64) -> f64 {
+    let mut w = 0.0;
+    for g in 0..NGP {
+        let mut wg = 0.0;
+        for c in 0..6 {
+            let de = eps[g][c] - eps0[g][c];
+            wg += 0.5 * stiff[c] * de * de;
+        }
+        w += GAUSS4.w[g] * h * wg;
+    }
+    w
+}
+
+/// Reduced strain operator B̃ = Dε · G (6 × 21) at a Gauss point:
+/// rows ∂ε/∂(r_a, r'_a, θ_A, ...), with δd_i = θ × d_i at the director nodes.
+fn b_matrix(e: &ElemDofs, k: &GpKin) -> SMatrix<f64, 6, NDOF_EL> {
+    let mut b = SMatrix::<f64, 6, NDOF_EL>::zeros();
+    for i in 0..3 {
+        // ∂Γ_i/∂c_k = N'_k d_i
+        for (kk, &off) in C_OFF.iter().enumerate() {
+            let v = k.di[i] * k.nds[kk];
+            b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
+        }
+        // ∂Γ_i/∂θ_A = L_A (d_iA × r')
+        for (a, &off) in T_OFF.iter().enumerate() {
+            let v = e.d[a].column(i).cross(&k.p) * k.l[a];
+            b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
+        }
+    }
+    for &(i, j, kk) in &CYC {
+        // ∂K_i/∂θ_A = ½[L_A d_kA×d_j' + L'_A d_jA×d_k − L_A d_jA×d_k' − L'_A d_kA×d_j]
+        for (a, &off) in T_OFF.iter().enumerate() {
+            let dja: V3 = e.d[a].column(j).into();
+            let dka: V3 = e.d[a].column(kk).into();
+            let v = 0.5
+                * (k.l[a] * (dka.cross(&k.dpi[j]) - dja.cross(&k.dpi[kk]))
+                    + k.dl[a] * (dja.cross(&k.di[kk]) - dka.cross(&k.di[j])));
+            b.fixed_view_mut::<1, 3>(3 + i, off).copy_from(&v.transpose());
+        }
+    }
+    b
+}
+
+/// How the internal force depends on the unknowns (docs/theory.md §3.2).
+///
+/// The internal force is f = G(d_B)ᵀ Dε(q_B)ᵀ s with the stress s evaluated at
+/// strains of q_E. In statics q_B = q_E = q and all factors are 1. In the
+/// midpoint scheme q_B = q_{n+½}, s = C(½(ε_n + ε_{n+1}) − ε⁰), the unknown is
+/// q_{n+1} = q_E and all factors are ½.
+#[derive(Debug, Clone, Copy)]
+pub struct Factors {
+    /// d q_B / d q_E (derivative of the strain operator and of the test frames).
+    pub config: f64,
+    /// d s / d (C ε(q_E)).
+    pub stress: f64,
+}
+
+impl Factors {
+    pub const STATIC: Factors = Factors { config: 1.0, stress: 1.0 };
+    pub const MIDPOINT: Factors = Factors { config: 0.5, stress: 0.5 };
+}
+
+/// Adds the element's reduced internal force to `r` and, if asked, its
+/// derivative with respect to the increments (Δr, Δr', θ) of q_E to `kt`.
+///
+/// `eb` is q_B (strain operator and test frames), `ee` is q_E (trial
+/// frames), `stress` the stress resultants C(ε̄ − ε⁰) at the Gauss points
+/// (N for Γ rows, N m for K rows).
+#[allow(clippy::too_many_arguments)]
+pub fn internal_force(
+    eb: &ElemDofs,
+    ee: &ElemDofs,
+    stress: &[Strain; NGP],
+    stiff: &[f64; 6],
+    fac: Factors,
+    h: f64,
+    r: &mut ElVec,
+    kt: Option<&mut ElMat>,
+) {
+    let want_k = kt.is_some();
+    let mut k_acc = ElMat::zeros();
+    // unreduced director gradient ∂W/∂d_iA of q_B, for the frame-rotation term
+    let mut fdir = [[V3::zeros(); 3]; 3];
+    for g in 0..NGP {
+        let xi = GAUSS4.xi[g];
+        let wg = GAUSS4.w[g] * h;
+        let s = &stress[g];
+        let kb = kin(eb, xi, h);
+        let bb = b_matrix(eb, &kb);
+        let sv = SVector::<f64, 6>::from_column_slice(s);
+        *r += bb.transpose() * sv * wg;
+        if !want_k {
+            continue;
+        }
+        // unreduced director gradient of W at q_B
+        for i in 0..3 {
+            for a in 0..3 {
+                fdir[a][i] += kb.p * (s[i] * kb.l[a] * wg);
+            }
+        }
+        for &(i, j, kk) in &CYC {
+            let m = s[3 + i] * 0.5 * wg;
+            for a in 0..3 {
+                fdir[a][kk] += (kb.dpi[j] * kb.l[a] - kb.di[j] * kb.dl[a]) * m;
+                fdir[a][j] += (kb.di[kk] * kb.dl[a] - kb.dpi[kk] * kb.l[a]) * m;
+            }
+        }
+        // material part: γ B̃_Bᵀ C B̃_E
+        let ke = kin(ee, xi, h);
+        let be = b_matrix(ee, &ke);
+        let mut cbe = be;
+        for row in 0..6 {
+            let c = stiff[row] * fac.stress * wg;
+            for col in 0..NDOF_EL {
+                cbe[(row, col)] *= c;
+            }
+        }
+        k_acc += bb.transpose() * cbe;
+        // stress part α Σ s_k ∇²ε_k[G_B ·, G_E ·]
+        let alpha = fac.config * wg;
+        for a in 0..3 {
+            let nb: V3 = eb.d[a] * V3::new(s[0], s[1], s[2]);
+            let ne: V3 = ee.d[a] * V3::new(s[0], s[1], s[2]);
+            let snb = skew(&nb);
+            let sne = skew(&ne);
+            for (kk, &coff) in C_OFF.iter().enumerate() {
+                let f = alpha * kb.l[a] * kb.nds[kk];
+                let mut blk = k_acc.fixed_view_mut::<3, 3>(T_OFF[a], coff);
+                blk += snb * f;
+                let mut blk = k_acc.fixed_view_mut::<3, 3>(coff, T_OFF[a]);
+                blk -= sne * f;
+            }
+        }
+        for a in 0..3 {
+            for bnode in 0..3 {
+                if a == bnode {
+                    continue;
+                }
+                let coef = 0.5 * alpha * (kb.dl[a] * kb.l[bnode] - kb.l[a] * kb.dl[bnode]);
+                let mut m = M3::zeros();
+                for &(i, j, kk) in &CYC {
+                    let dka: V3 = eb.d[a].column(kk).into();
+                    let dja: V3 = eb.d[a].column(j).into();
+                    let djb: V3 = ee.d[bnode].column(j).into();
+                    let dkb: V3 = ee.d[bnode].column(kk).into();
+                    m += (skew(&dka) * skew(&djb) - skew(&dja) * skew(&dkb)) * s[3 + i];
+                }
+                let mut blk = k_acc.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[bnode]);
+                blk += m * coef;
+            }
+        }
+    }
+    if let Some(kt) = kt {
+        // rotation of the test frames: β Σ_i (d^E_iA f_iAᵀ − (d^E_iA·f_iA) I)
+        for a in 0..3 {
+            let mut m = M3::zeros();
+            for i in 0..3 {
+                let de: V3 = ee.d[a].column(i).into();
+                m += de * fdir[a][i].transpose() - M3::identity() * de.dot(&fdir[a][i]);
+            }
+            let mut blk = k_acc.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[a]);
+            blk += m * fac.config;
+        }
+        *kt += k_acc;
+    }
+}
