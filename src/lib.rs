@@ -10,3 +10,4 @@
 pub mod hydro;
 pub mod linsolve;
 pub mod rod;
+pub mod statics;
