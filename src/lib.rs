@@ -5,9 +5,14 @@
 //!
 //! Layout: [`rod`] (kinematics, element, strains, internal force and tangent),
 //! [`hydro`] (loads from the water), [`scene`] (scene files and built-in
-//! scenes), [`statics`] (static equilibrium), [`linsolve`] (global sparse LU).
+//! scenes), [`statics`] (static equilibrium), [`linsolve`] (global sparse LU),
+//! [`error`] (the typed errors).
 
+pub use error::RiserError;
+
+pub mod error;
 pub mod hydro;
 pub mod linsolve;
 pub mod rod;
+pub mod scene;
 pub mod statics;

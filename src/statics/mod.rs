@@ -4,6 +4,7 @@
 //! when the full problem does not converge from the start.
 
 pub mod catenary;
+pub mod report;
 
 use crate::hydro::current::Current;
 use crate::hydro::morison::{DragCoefficients, drag};

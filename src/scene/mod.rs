@@ -1,0 +1,402 @@
+//! Scene files (TOML, serde): the line, its ends, the environment, the current,
+//! buoyancy modules and the analysis settings, all in SI units. Built-in
+//! scenes ship in `scenes/` and are compiled in. Parameters can be overridden
+//! by the names of DESIGN.md (the same names the FMU uses).
+
+mod overrides;
+mod validate;
+
+pub use overrides::PARAMETER_NAMES;
+pub use validate::FieldError;
+
+use crate::hydro::current::{Current, CurrentProfile};
+use crate::hydro::morison::DragCoefficients;
+use crate::hydro::weight::{BuoyancySection, VerticalLoad};
+use crate::rod::kinematics::V3;
+use crate::rod::model::{EndBc, Rod, Stiffness};
+use serde::{Deserialize, Serialize};
+
+/// Built-in scenes: (name, TOML text).
+pub const BUILTIN: [(&str, &str); 2] = [
+    ("catenary", include_str!("../../scenes/catenary.toml")),
+    ("lazy_wave", include_str!("../../scenes/lazy_wave.toml")),
+];
+
+/// The default scene.
+pub const DEFAULT_SCENE: &str = "catenary";
+
+/// Line properties (paper Table 1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Line {
+    /// Unstretched length, m.
+    pub length: f64,
+    /// Mass per unit length in air, kg/m.
+    pub mass_per_length: f64,
+    /// Outer diameter for buoyancy and drag, m.
+    pub outer_diameter: f64,
+    /// EA, N (also the paper's shear penalty R).
+    pub axial_stiffness: f64,
+    /// EI, N m².
+    pub bending_stiffness: f64,
+    /// GJ, N m².
+    pub torsional_stiffness: f64,
+    /// Normal drag coefficient (reference length D).
+    #[serde(default)]
+    pub cd_normal: f64,
+    /// Tangential drag coefficient (reference length D).
+    #[serde(default)]
+    pub cd_tangential: f64,
+    /// Normal added-mass coefficient.
+    #[serde(default)]
+    pub ca_normal: f64,
+    /// Rotary inertia per length ρI11 = ρI22, kg m; default m D²/8 (thin-walled tube).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary_inertia: Option<f64>,
+}
+
+/// Anchor position, m (the hang-off is at the origin).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Anchor {
+    pub x: f64,
+    #[serde(default)]
+    pub y: f64,
+    pub z: f64,
+}
+
+/// Water and gravity.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Environment {
+    /// kg/m³.
+    #[serde(default = "default_water_density")]
+    pub water_density: f64,
+    /// m/s².
+    #[serde(default = "default_gravity")]
+    pub gravity: f64,
+    /// Height of the free surface, m.
+    #[serde(default = "default_surface")]
+    pub water_surface_z: f64,
+}
+
+fn default_water_density() -> f64 {
+    1025.0
+}
+fn default_gravity() -> f64 {
+    9.81
+}
+fn default_surface() -> f64 {
+    10.0
+}
+
+impl Default for Environment {
+    fn default() -> Self {
+        Environment {
+            water_density: default_water_density(),
+            gravity: default_gravity(),
+            water_surface_z: default_surface(),
+        }
+    }
+}
+
+/// Kind of current profile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProfileKind {
+    None,
+    /// `speed` everywhere.
+    Uniform,
+    /// Linear in S from `top` (S = 0) to `bottom` (S = L).
+    LinearS,
+    /// Linear in depth from `top` (surface) to `bottom` (at `depth` m), constant below.
+    LinearDepth,
+    /// Piecewise linear in depth: `table` rows [depth m, speed m/s].
+    Table,
+}
+
+/// Current profile as written in a scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CurrentSpec {
+    pub profile: ProfileKind,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub top: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bottom: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<Vec<[f64; 2]>>,
+    /// Horizontal flow direction (x, y); default +x.
+    #[serde(default = "default_direction")]
+    pub direction: [f64; 2],
+}
+
+fn default_direction() -> [f64; 2] {
+    [1.0, 0.0]
+}
+
+impl Default for CurrentSpec {
+    fn default() -> Self {
+        CurrentSpec {
+            profile: ProfileKind::None,
+            speed: None,
+            top: None,
+            bottom: None,
+            depth: None,
+            table: None,
+            direction: default_direction(),
+        }
+    }
+}
+
+/// Buoyancy modules: `load` N/m upward on S ∈ [start, end] m.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Buoyancy {
+    pub start: f64,
+    pub end: f64,
+    pub load: f64,
+}
+
+/// Which line model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// Full Cosserat director rod.
+    Rod,
+    /// Cable without bending and torsion (cheaper).
+    Cable,
+}
+
+/// Analysis settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Analysis {
+    #[serde(default = "default_model")]
+    pub model: Model,
+    #[serde(default = "default_elements")]
+    pub n_elements: usize,
+    /// Internal time step, s.
+    #[serde(default = "default_time_step")]
+    pub time_step: f64,
+    /// Relative residual tolerance of Newton.
+    #[serde(default = "default_tolerance")]
+    pub newton_tolerance: f64,
+    /// Include the current in the initial static equilibrium.
+    #[serde(default)]
+    pub static_current: bool,
+}
+
+fn default_model() -> Model {
+    Model::Rod
+}
+fn default_elements() -> usize {
+    60
+}
+fn default_time_step() -> f64 {
+    0.05
+}
+fn default_tolerance() -> f64 {
+    1e-8
+}
+
+impl Default for Analysis {
+    fn default() -> Self {
+        Analysis {
+            model: default_model(),
+            n_elements: default_elements(),
+            time_step: default_time_step(),
+            newton_tolerance: default_tolerance(),
+            static_current: false,
+        }
+    }
+}
+
+/// A scene: everything needed to set up a line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    pub line: Line,
+    pub anchor: Anchor,
+    #[serde(default)]
+    pub environment: Environment,
+    #[serde(default)]
+    pub current: CurrentSpec,
+    #[serde(default)]
+    pub buoyancy: Vec<Buoyancy>,
+    #[serde(default)]
+    pub analysis: Analysis,
+}
+
+/// Why a scene could not be used.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneError {
+    /// Neither a built-in name nor a readable file.
+    NotFound { name: String, reason: String },
+    /// The file is not valid TOML for a scene.
+    Parse { source: String, message: String },
+    /// Values out of their allowed ranges.
+    Invalid(Vec<FieldError>),
+    /// An override that names no parameter or has an unusable value.
+    Override { name: String, message: String },
+}
+
+impl std::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SceneError::NotFound { name, reason } => write!(
+                f,
+                "scene '{name}' is not a built-in scene ({}) and cannot be read as a file: {reason}",
+                BUILTIN.iter().map(|b| b.0).collect::<Vec<_>>().join(", ")
+            ),
+            SceneError::Parse { source, message } => write!(f, "scene {source}: {message}"),
+            SceneError::Invalid(errs) => {
+                write!(f, "invalid scene:")?;
+                for e in errs {
+                    write!(f, "\n  {e}")?;
+                }
+                Ok(())
+            }
+            SceneError::Override { name, message } => write!(f, "--set {name}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+impl Scene {
+    /// Parses and validates scene TOML text; `source` names it in messages.
+    pub fn from_toml(text: &str, source: &str) -> Result<Scene, SceneError> {
+        let scene: Scene =
+            toml::from_str(text).map_err(|e| SceneError::Parse { source: source.to_string(), message: e.to_string() })?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// A built-in scene by name.
+    pub fn builtin(name: &str) -> Option<Scene> {
+        BUILTIN.iter().find(|b| b.0 == name).map(|b| Scene::from_toml(b.1, name).expect("built-in scenes are valid"))
+    }
+
+    /// A built-in scene name or the path of a scene file.
+    pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
+        if let Some(s) = Scene::builtin(name_or_path) {
+            return Ok(s);
+        }
+        let text = std::fs::read_to_string(name_or_path)
+            .map_err(|e| SceneError::NotFound { name: name_or_path.to_string(), reason: e.to_string() })?;
+        Scene::from_toml(&text, name_or_path)
+    }
+
+    /// Checks every value; lists all problems with the allowed ranges.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        let errs = validate::check(self);
+        if errs.is_empty() { Ok(()) } else { Err(SceneError::Invalid(errs)) }
+    }
+
+    /// Applies `name=value` overrides (DESIGN.md parameter names), then validates.
+    pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<Scene, SceneError> {
+        for s in sets {
+            let s = s.as_ref();
+            let (name, value) = s.split_once('=').ok_or_else(|| SceneError::Override {
+                name: s.to_string(),
+                message: "expected name=value".to_string(),
+            })?;
+            self.set(name.trim(), value.trim())?;
+        }
+        self.validate()?;
+        Ok(self)
+    }
+
+    /// Sets one parameter by its DESIGN.md name (no validation of the whole scene).
+    pub fn set(&mut self, name: &str, value: &str) -> Result<(), SceneError> {
+        overrides::set(self, name, value)
+    }
+
+    /// Anchor position, m.
+    pub fn anchor(&self) -> V3 {
+        V3::new(self.anchor.x, self.anchor.y, self.anchor.z)
+    }
+
+    /// Hang-off position, m (the origin).
+    pub fn hang_off(&self) -> V3 {
+        V3::zeros()
+    }
+
+    /// Section stiffness (the paper's: shear penalty = EA).
+    pub fn stiffness(&self) -> Stiffness {
+        Stiffness::paper(self.line.axial_stiffness, self.line.bending_stiffness, self.line.torsional_stiffness)
+    }
+
+    /// The discrete rod: pinned hang-off, pinned anchor with its twist held.
+    pub fn rod(&self) -> Rod {
+        Rod::new(self.analysis.n_elements, self.line.length, self.stiffness(), [EndBc::PINNED, EndBc::PINNED_NO_TWIST])
+    }
+
+    /// Weight, buoyancy and buoyancy modules.
+    pub fn vertical_load(&self) -> VerticalLoad {
+        let mut v = VerticalLoad::new(
+            self.line.mass_per_length,
+            self.line.outer_diameter,
+            self.environment.water_density,
+            self.environment.gravity,
+        );
+        v.sections = self.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
+        v
+    }
+
+    /// Morison drag coefficients ½ ρw D C_D.
+    pub fn drag_coefficients(&self) -> DragCoefficients {
+        DragCoefficients::new(
+            self.environment.water_density,
+            self.line.outer_diameter,
+            self.line.cd_normal,
+            self.line.cd_tangential,
+        )
+    }
+
+    /// The current profile.
+    pub fn current(&self) -> Current {
+        let c = &self.current;
+        let dir = V3::new(c.direction[0], c.direction[1], 0.0);
+        let direction = if dir.norm() > 0.0 { dir.normalize() } else { V3::x() };
+        let surface_z = self.environment.water_surface_z;
+        let profile = match c.profile {
+            ProfileKind::None => CurrentProfile::None,
+            ProfileKind::Uniform => CurrentProfile::Uniform { speed: c.speed.unwrap_or(0.0) },
+            ProfileKind::LinearS => CurrentProfile::LinearInS {
+                top: c.top.unwrap_or(0.0),
+                bottom: c.bottom.unwrap_or(0.0),
+                length: self.line.length,
+            },
+            ProfileKind::LinearDepth => CurrentProfile::LinearInDepth {
+                top: c.top.unwrap_or(0.0),
+                bottom: c.bottom.unwrap_or(0.0),
+                depth: c.depth.unwrap_or(1.0),
+                surface_z,
+            },
+            ProfileKind::Table => CurrentProfile::Table {
+                rows: c.table.clone().unwrap_or_default().iter().map(|r| (r[0], r[1])).collect(),
+                surface_z,
+            },
+        };
+        Current { profile, direction }
+    }
+
+    /// Rotary inertia per length, kg m (default m D²/8, DESIGN.md).
+    pub fn rotary_inertia(&self) -> f64 {
+        self.line.rotary_inertia.unwrap_or(self.line.mass_per_length * self.line.outer_diameter.powi(2) / 8.0)
+    }
+
+    /// TOML text of the scene (after overrides).
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("scene serialises")
+    }
+}

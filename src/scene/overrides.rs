@@ -1,0 +1,163 @@
+//! Overrides by the parameter names of DESIGN.md (`--set name=value` on the
+//! command line, parameters of the FMU).
+
+use super::{Buoyancy, Model, ProfileKind, Scene, SceneError};
+
+/// Every parameter name that can be set, with its unit.
+pub const PARAMETER_NAMES: [(&str, &str); 27] = [
+    ("model", "rod | cable"),
+    ("n_elements", "-"),
+    ("time_step", "s"),
+    ("newton_tolerance", "-"),
+    ("static_current", "true | false"),
+    ("length", "m"),
+    ("mass_per_length", "kg/m"),
+    ("outer_diameter", "m"),
+    ("axial_stiffness", "N"),
+    ("bending_stiffness", "N m^2"),
+    ("torsional_stiffness", "N m^2"),
+    ("cd_normal", "-"),
+    ("cd_tangential", "-"),
+    ("ca_normal", "-"),
+    ("rotary_inertia", "kg m"),
+    ("water_density", "kg/m^3"),
+    ("water_surface_z", "m"),
+    ("gravity", "m/s^2"),
+    ("anchor_x", "m"),
+    ("anchor_y", "m"),
+    ("anchor_z", "m"),
+    ("current_top", "m/s"),
+    ("current_bottom", "m/s"),
+    ("current_direction", "deg from +x"),
+    ("buoyancy_load", "N/m"),
+    ("buoyancy_start", "m"),
+    ("buoyancy_end", "m"),
+];
+
+fn number(name: &str, value: &str) -> Result<f64, SceneError> {
+    value.parse::<f64>().map_err(|_| SceneError::Override {
+        name: name.to_string(),
+        message: format!("'{value}' is not a number"),
+    })
+}
+
+/// The single buoyancy section the `buoyancy_*` parameters act on (created
+/// spanning the whole line with zero load if the scene has none).
+fn buoyancy_section<'a>(s: &'a mut Scene, name: &str) -> Result<&'a mut Buoyancy, SceneError> {
+    if s.buoyancy.len() > 1 {
+        return Err(SceneError::Override {
+            name: name.to_string(),
+            message: format!(
+                "the scene has {} buoyancy sections; buoyancy_* parameters need at most one",
+                s.buoyancy.len()
+            ),
+        });
+    }
+    if s.buoyancy.is_empty() {
+        s.buoyancy.push(Buoyancy { start: 0.0, end: s.line.length, load: 0.0 });
+    }
+    Ok(&mut s.buoyancy[0])
+}
+
+/// A uniform profile becomes linear in S when one end is set; a table cannot
+/// take `current_top`/`current_bottom`.
+fn current_end(s: &mut Scene, name: &str, v: f64, top: bool) -> Result<(), SceneError> {
+    let c = &mut s.current;
+    match c.profile {
+        ProfileKind::None | ProfileKind::Uniform => {
+            let u = c.speed.unwrap_or(0.0);
+            c.profile = ProfileKind::LinearS;
+            c.top = Some(u);
+            c.bottom = Some(u);
+            c.speed = None;
+        }
+        ProfileKind::LinearS | ProfileKind::LinearDepth => {}
+        ProfileKind::Table => {
+            return Err(SceneError::Override {
+                name: name.to_string(),
+                message: "the scene's current is a table; current_top/current_bottom apply to uniform or linear \
+                          profiles"
+                    .to_string(),
+            });
+        }
+    }
+    if top {
+        c.top = Some(v);
+    } else {
+        c.bottom = Some(v);
+    }
+    Ok(())
+}
+
+pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneError> {
+    let num = || number(name, value);
+    match name {
+        "model" => {
+            s.analysis.model = match value {
+                "rod" => Model::Rod,
+                "cable" => Model::Cable,
+                _ => {
+                    return Err(SceneError::Override {
+                        name: name.into(),
+                        message: format!("'{value}' is not a model: rod or cable"),
+                    });
+                }
+            }
+        }
+        "n_elements" => {
+            s.analysis.n_elements = value.parse::<usize>().map_err(|_| SceneError::Override {
+                name: name.into(),
+                message: format!("'{value}' is not a whole number of elements >= 2"),
+            })?
+        }
+        "time_step" => s.analysis.time_step = num()?,
+        "newton_tolerance" => s.analysis.newton_tolerance = num()?,
+        "static_current" => {
+            s.analysis.static_current = match value {
+                "true" | "1" => true,
+                "false" | "0" => false,
+                _ => {
+                    return Err(SceneError::Override {
+                        name: name.into(),
+                        message: format!("'{value}' is not a boolean: true or false"),
+                    });
+                }
+            }
+        }
+        "length" => s.line.length = num()?,
+        "mass_per_length" => s.line.mass_per_length = num()?,
+        "outer_diameter" => s.line.outer_diameter = num()?,
+        "axial_stiffness" => s.line.axial_stiffness = num()?,
+        "bending_stiffness" => s.line.bending_stiffness = num()?,
+        "torsional_stiffness" => s.line.torsional_stiffness = num()?,
+        "cd_normal" => s.line.cd_normal = num()?,
+        "cd_tangential" => s.line.cd_tangential = num()?,
+        "ca_normal" => s.line.ca_normal = num()?,
+        "rotary_inertia" => s.line.rotary_inertia = Some(num()?),
+        "water_density" => s.environment.water_density = num()?,
+        "water_surface_z" => s.environment.water_surface_z = num()?,
+        "gravity" => s.environment.gravity = num()?,
+        "anchor_x" => s.anchor.x = num()?,
+        "anchor_y" => s.anchor.y = num()?,
+        "anchor_z" => s.anchor.z = num()?,
+        "current_top" => current_end(s, name, num()?, true)?,
+        "current_bottom" => current_end(s, name, num()?, false)?,
+        "current_direction" => {
+            let deg = num()?;
+            s.current.direction = [deg.to_radians().cos(), deg.to_radians().sin()];
+        }
+        "buoyancy_load" => buoyancy_section(s, name)?.load = num()?,
+        "buoyancy_start" => buoyancy_section(s, name)?.start = num()?,
+        "buoyancy_end" => buoyancy_section(s, name)?.end = num()?,
+        _ => {
+            return Err(SceneError::Override {
+                name: name.into(),
+                message: format!(
+                    "unknown parameter; known: {}",
+                    PARAMETER_NAMES.iter().map(|p| p.0).collect::<Vec<_>>().join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}

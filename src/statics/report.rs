@@ -1,0 +1,92 @@
+//! The static state of a scene as users read it: end forces, tension along
+//! the line, the shape.
+
+use super::{StaticLoads, StaticOptions, StaticSolution, catenary_start, solve};
+use crate::error::RiserError;
+use crate::rod::kinematics::V3;
+use crate::rod::model::Rod;
+use crate::scene::{Model, Scene};
+
+/// One row of the static shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeRow {
+    /// Reference arc length from the hang-off, m.
+    pub s: f64,
+    /// Position, m.
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    /// Axial force (effective tension), N.
+    pub tension: f64,
+}
+
+/// Static equilibrium of a scene.
+#[derive(Debug, Clone)]
+pub struct StaticReport {
+    /// |force at the hang-off|, N.
+    pub top_tension: f64,
+    /// |force at the anchor|, N.
+    pub bottom_tension: f64,
+    /// Force the line exerts on the vessel, N.
+    pub top_force: V3,
+    /// Force the line exerts on the anchor, N.
+    pub bottom_force: V3,
+    /// Smallest axial force along the line, N.
+    pub min_tension: f64,
+    pub iterations: usize,
+    pub continuation_steps: usize,
+    pub residual: f64,
+    /// Rows at the element end nodes.
+    pub shape: Vec<ShapeRow>,
+    pub solution: StaticSolution,
+}
+
+impl StaticReport {
+    pub fn new(rod: &Rod, sol: StaticSolution) -> Self {
+        let cfg = &sol.config;
+        let tension = rod.nodal_axial_force(cfg);
+        let shape = (0..=rod.n_el)
+            .map(|a| ShapeRow { s: rod.s_node(a), x: cfg.x[a].x, y: cfg.x[a].y, z: cfg.x[a].z, tension: tension[a] })
+            .collect();
+        StaticReport {
+            top_tension: sol.reactions[0].norm(),
+            bottom_tension: sol.reactions[1].norm(),
+            top_force: -sol.reactions[0],
+            bottom_force: -sol.reactions[1],
+            min_tension: rod.min_axial_force(cfg),
+            iterations: sol.iterations,
+            continuation_steps: sol.continuation_steps,
+            residual: sol.residual,
+            shape,
+            solution: sol,
+        }
+    }
+}
+
+/// Loads of the initial static state: gravity and buoyancy, and the current
+/// when the scene's `static_current` asks for it (docs/theory.md §4).
+pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
+    let mut loads = StaticLoads::gravity_only(scene.vertical_load());
+    let current = scene.current();
+    let k = scene.drag_coefficients();
+    if scene.analysis.static_current && !current.is_none() && !k.is_zero() {
+        loads.drag = Some((k, current));
+    }
+    loads
+}
+
+/// Solves the static equilibrium of a scene.
+pub fn solve_scene(scene: &Scene) -> Result<(Rod, StaticReport), RiserError> {
+    if scene.analysis.model == Model::Cable {
+        return Err(RiserError::Unsupported(
+            "model = \"cable\" is not available yet; use model = \"rod\"".to_string(),
+        ));
+    }
+    let rod = scene.rod();
+    let loads = scene_static_loads(scene);
+    let start = catenary_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor());
+    let opts = StaticOptions { tolerance: scene.analysis.newton_tolerance.min(1e-10), ..Default::default() };
+    let sol = solve(&rod, &loads, start, &opts)?;
+    let report = StaticReport::new(&rod, sol);
+    Ok((rod, report))
+}
