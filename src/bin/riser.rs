@@ -124,7 +124,9 @@ fn main() -> ExitCode {
             }
             Ok(())
         }
-        Command::Scene { scene, set } => load(&scene, &set).map(|s| print!("{}", s.to_toml())).map_err(|e| e.to_string()),
+        Command::Scene { scene, set } => {
+            load(&scene, &set).map(|s| print!("{}", s.to_toml())).map_err(|e| e.to_string())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -11,7 +11,7 @@ use nalgebra::{Matrix3, Vector3};
 pub type V3 = Vector3<f64>;
 pub type M3 = Matrix3<f64>;
 
-/// Skew-symmetric matrix [a]× with [a]× b = a × b.
+/// Skew-symmetric matrix `[a]×` with `[a]× b = a × b`.
 #[inline]
 pub fn skew(a: &V3) -> M3 {
     M3::new(0.0, -a.z, a.y, a.z, 0.0, -a.x, -a.y, a.x, 0.0)

@@ -235,7 +235,7 @@ impl Rod {
 
     /// Expresses the rotation unknowns of the local-basis nodes in their frame
     /// D: rows and columns become Dᵀ(·) and (·)D, and the change of the frame
-    /// itself adds Dᵀ[m]×D, m the spatial residual moment (docs/theory.md §3.4).
+    /// itself adds `Dᵀ [m]× D`, m the spatial residual moment (docs/theory.md §3.4).
     pub fn to_local_basis(&self, cfg: &RodConfig, r: &mut [f64], sys: Option<&mut BandedSystem>) {
         let nodes = self.local_basis_nodes();
         let mut sys = sys;

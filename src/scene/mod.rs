@@ -274,8 +274,8 @@ impl std::error::Error for SceneError {}
 impl Scene {
     /// Parses and validates scene TOML text; `source` names it in messages.
     pub fn from_toml(text: &str, source: &str) -> Result<Scene, SceneError> {
-        let scene: Scene =
-            toml::from_str(text).map_err(|e| SceneError::Parse { source: source.to_string(), message: e.to_string() })?;
+        let scene: Scene = toml::from_str(text)
+            .map_err(|e| SceneError::Parse { source: source.to_string(), message: e.to_string() })?;
         scene.validate()?;
         Ok(scene)
     }
@@ -348,7 +348,8 @@ impl Scene {
             self.environment.water_density,
             self.environment.gravity,
         );
-        v.sections = self.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
+        v.sections =
+            self.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
         v
     }
 

@@ -35,10 +35,9 @@ pub const PARAMETER_NAMES: [(&str, &str); 27] = [
 ];
 
 fn number(name: &str, value: &str) -> Result<f64, SceneError> {
-    value.parse::<f64>().map_err(|_| SceneError::Override {
-        name: name.to_string(),
-        message: format!("'{value}' is not a number"),
-    })
+    value
+        .parse::<f64>()
+        .map_err(|_| SceneError::Override { name: name.to_string(), message: format!("'{value}' is not a number") })
 }
 
 /// The single buoyancy section the `buoyancy_*` parameters act on (created

@@ -78,9 +78,7 @@ pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
 /// Solves the static equilibrium of a scene.
 pub fn solve_scene(scene: &Scene) -> Result<(Rod, StaticReport), RiserError> {
     if scene.analysis.model == Model::Cable {
-        return Err(RiserError::Unsupported(
-            "model = \"cable\" is not available yet; use model = \"rod\"".to_string(),
-        ));
+        return Err(RiserError::Unsupported("model = \"cable\" is not available yet; use model = \"rod\"".to_string()));
     }
     let rod = scene.rod();
     let loads = scene_static_loads(scene);

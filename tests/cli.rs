@@ -1,0 +1,51 @@
+//! The command line as users call it: `riser statics` text, JSON and CSV.
+
+use std::process::Command;
+
+fn riser(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().expect("riser runs")
+}
+
+#[test]
+fn statics_json_has_the_documented_fields_and_balances() {
+    let out = riser(&["statics", "catenary", "--json", "--set", "n_elements=20"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let top = v["top_tension"].as_f64().unwrap();
+    let f: Vec<f64> = v["top_force"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(f.len(), 3);
+    assert!(((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() - top).abs() < 1e-9 * top);
+    assert!(v["bottom_tension"].as_f64().unwrap() > 0.0);
+    let shape = v["shape"].as_array().unwrap();
+    assert_eq!(shape.len(), 21);
+    let last = shape[20].as_array().unwrap();
+    // the last row is the anchor: S = L, (60, 0, -70)
+    let row: Vec<f64> = last.iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(row.len(), 5);
+    assert!((row[0] - 100.0).abs() < 1e-12 && (row[1] - 60.0).abs() < 1e-9 && (row[3] + 70.0).abs() < 1e-9);
+}
+
+#[test]
+fn statics_writes_shape_csv() {
+    let dir = std::env::temp_dir().join(format!("riser-cli-{}", std::process::id()));
+    let out = riser(&["statics", "lazy_wave", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(dir.join("shape.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("S,x,y,z,tension"));
+    assert_eq!(lines.count(), 61);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("top tension"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn bad_input_fails_with_a_message_and_no_panic() {
+    let out = riser(&["statics", "catenary", "--set", "length=-3"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("line.length") && err.contains("must be > 0"), "{err}");
+    assert!(!err.contains("panicked"));
+    let out = riser(&["statics", "no_such_scene"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a built-in scene"));
+}
