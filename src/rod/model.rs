@@ -8,8 +8,7 @@
 //! block-banded (half-bandwidth 20).
 
 use super::element::{self, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Strain};
-use super::kinematics::{M3, RodConfig, V3, cayley, frame_from_tangent, skew};
-use super::shape::GAUSS4;
+use super::kinematics::{RodConfig, V3, cayley, frame_from_tangent, skew};
 use crate::linsolve::{BandedSystem, LinearSolveError};
 
 /// Rotational condition at an end.
@@ -314,17 +313,6 @@ impl Rod {
         t
     }
 
-    /// Smallest axial force over the end nodes and Gauss points, N.
-    pub fn min_axial_force(&self, cfg: &RodConfig) -> f64 {
-        let mut m = f64::INFINITY;
-        for e in 0..self.n_el {
-            for xi in [0.0, GAUSS4.xi[0], GAUSS4.xi[1], GAUSS4.xi[2], GAUSS4.xi[3], 1.0] {
-                m = m.min(self.axial_force(cfg, e, xi));
-            }
-        }
-        m
-    }
-
     /// Centreline position at reference arc length s (Hermite interpolation).
     pub fn position_at(&self, cfg: &RodConfig, s: f64) -> V3 {
         let s = s.clamp(0.0, self.length);
@@ -334,9 +322,4 @@ impl Rod {
         let el = ElemDofs::gather(cfg, e);
         (0..4).map(|k| el.c[k] * n[k]).sum()
     }
-}
-
-/// Identity helper used by tests and statics.
-pub fn identity_frames(n: usize) -> Vec<M3> {
-    vec![M3::identity(); n]
 }
