@@ -10,6 +10,7 @@
 
 pub use error::RiserError;
 
+pub mod dynamics;
 pub mod error;
 pub mod hydro;
 pub mod linsolve;

@@ -2,5 +2,6 @@
 //! (paper eqs. 13–17), weight and buoyancy (including buoyancy modules).
 
 pub mod current;
+pub mod fluid;
 pub mod morison;
 pub mod weight;

@@ -27,7 +27,7 @@ pub fn cayley(theta: &V3) -> M3 {
 }
 
 /// Discrete rod configuration (positions in m, slopes dimensionless).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct RodConfig {
     /// Centreline position r at the end nodes, m.
     pub x: Vec<V3>,

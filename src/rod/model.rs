@@ -113,6 +113,23 @@ impl Rod {
         &self.stiff
     }
 
+    /// Reference strains ε⁰ at the Gauss points of element e (eq. 4).
+    pub fn reference_strains(&self, e: usize) -> &[Strain; NGP] {
+        &self.eps0[e]
+    }
+
+    /// Stress resultants of the midpoint scheme, C(½(ε_n + ε_{n+1}) − ε⁰)
+    /// (docs/theory.md §5.2): the stress at the average strain.
+    pub fn midpoint_stresses(&self, e: usize, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP]) -> [Strain; NGP] {
+        let mut s = [[0.0; 6]; NGP];
+        for g in 0..NGP {
+            for c in 0..6 {
+                s[g][c] = self.stiff[c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - self.eps0[e][g][c]);
+            }
+        }
+        s
+    }
+
     /// Number of reduced unknowns.
     pub fn n_dof(&self) -> usize {
         STRIDE * self.n_el + 9

@@ -1,0 +1,255 @@
+//! Dynamics (docs/theory.md §5): the paper's energy–momentum conserving
+//! midpoint scheme for the director rod, solved by Newton–Raphson with the
+//! consistent tangent, with Morison drag, added mass, a prescribed hang-off
+//! and step control.
+//!
+//! [`LineModel`] holds everything constant during a run, [`State`] the
+//! serializable state (configuration, velocities, work accumulators),
+//! [`Integrator`] the preallocated workspace and the stepping.
+
+pub mod mass;
+pub mod outputs;
+mod step;
+
+pub use outputs::Outputs;
+pub use step::Integrator;
+
+use crate::hydro::fluid::Fluid;
+use crate::hydro::weight::VerticalLoad;
+use crate::linsolve::LinearSolveError;
+use crate::rod::kinematics::{M3, RodConfig, V3};
+use crate::rod::model::Rod;
+use crate::scene::Scene;
+use crate::statics::vertical_load_vector;
+use mass::ElementMass;
+
+/// Everything about the line that does not change during a run.
+#[derive(Debug, Clone)]
+pub struct LineModel {
+    pub rod: Rod,
+    /// ρ̄, kg/m.
+    pub mass_per_length: f64,
+    /// Element mass matrices.
+    pub mass: ElementMass,
+    /// Weight, buoyancy, buoyancy modules.
+    pub vertical: VerticalLoad,
+    /// Drag and added mass.
+    pub fluid: Fluid,
+    /// Consistent nodal vector of the vertical load, N (and N m on r' rows).
+    f_grav: Vec<f64>,
+}
+
+impl LineModel {
+    /// `rotary` = (J1, J2): rotary inertia per length of d1 and d2, kg m.
+    pub fn new(rod: Rod, mass_per_length: f64, rotary: [f64; 2], vertical: VerticalLoad, fluid: Fluid) -> Self {
+        let mass = ElementMass::new(mass_per_length, rotary, rod.h);
+        let f_grav = vertical_load_vector(&rod, &vertical);
+        LineModel { rod, mass_per_length, mass, vertical, fluid, f_grav }
+    }
+
+    /// The line of a scene: its rod, section, weight, drag, current and added mass.
+    pub fn from_scene(scene: &Scene) -> Self {
+        let k = scene.drag_coefficients();
+        let current = scene.current();
+        let drag = if k.is_zero() { None } else { Some((k, current)) };
+        let d = scene.line.outer_diameter;
+        let added_mass = scene.line.ca_normal * scene.environment.water_density * std::f64::consts::PI * d * d / 4.0;
+        let j = scene.rotary_inertia();
+        LineModel::new(
+            scene.rod(),
+            scene.line.mass_per_length,
+            [j, j],
+            scene.vertical_load(),
+            Fluid { drag, added_mass },
+        )
+    }
+
+    /// Consistent nodal vertical load vector.
+    pub fn gravity_vector(&self) -> &[f64] {
+        &self.f_grav
+    }
+
+    /// Potential of the vertical load, −∫ q(S) z(S) dS, J (z from the origin).
+    pub fn potential_energy(&self, cfg: &RodConfig) -> f64 {
+        let mut v = 0.0;
+        for a in 0..=self.rod.n_el {
+            v -= self.f_grav[Rod::x_dof(a) + 2] * cfg.x[a].z + self.f_grav[Rod::xp_dof(a) + 2] * cfg.xp[a].z;
+        }
+        v
+    }
+
+    /// Kinetic energy, J.
+    pub fn kinetic_energy(&self, s: &State) -> f64 {
+        (0..self.rod.n_el).map(|e| self.mass.kinetic_energy(&s.hermite_velocity(e), &s.director_rates(e))).sum()
+    }
+
+    /// Linear momentum, kg m/s.
+    pub fn linear_momentum(&self, s: &State) -> V3 {
+        (0..self.rod.n_el).map(|e| self.mass.momentum(&s.hermite_velocity(e))).sum()
+    }
+
+    /// Angular momentum about the origin, kg m²/s.
+    pub fn angular_momentum(&self, s: &State) -> V3 {
+        (0..self.rod.n_el)
+            .map(|e| {
+                let c = &s.config;
+                let ce = [c.x[e], c.xp[e], c.x[e + 1], c.xp[e + 1]];
+                let d = [c.d[2 * e], c.d[2 * e + 1], c.d[2 * e + 2]];
+                self.mass.angular_momentum(&ce, &s.hermite_velocity(e), &d, &s.director_rates(e))
+            })
+            .sum()
+    }
+
+    /// Total mass, kg.
+    pub fn total_mass(&self) -> f64 {
+        self.mass_per_length * self.rod.length
+    }
+}
+
+/// Prescribed motion of the hang-off: displacement from its initial position
+/// (m) and velocity (m/s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HangOff {
+    pub displacement: V3,
+    pub velocity: V3,
+}
+
+/// The state of a run: everything needed to continue it (no scratch data).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct State {
+    /// Time, s.
+    pub time: f64,
+    pub config: RodConfig,
+    /// ṙ at the end nodes, m/s.
+    pub vel: Vec<V3>,
+    /// ṙ' at the end nodes, 1/s.
+    pub slope_vel: Vec<V3>,
+    /// Director rates [ḋ1 ḋ2 ḋ3] at the director nodes, 1/s.
+    pub director_vel: Vec<M3>,
+    /// Mean velocities (r_{n} − r_{n−1})/h and (r'_{n} − r'_{n−1})/h of the
+    /// last step, the predictor's velocities (free of the alternating part of
+    /// unresolved stiff modes), m/s and 1/s.
+    pub mean_vel: Vec<V3>,
+    pub mean_slope_vel: Vec<V3>,
+    /// Hang-off motion at `time`.
+    pub hang_off: HangOff,
+    /// Work done on the line by the hang-off since t = 0, J.
+    pub work_top: f64,
+    /// Work done on the line by the water (drag, added mass) since t = 0, J.
+    pub work_hydro: f64,
+    /// Work of the anchor's twist reaction since t = 0, J (zero for lines
+    /// moving in a vertical plane; docs/theory.md §5.5).
+    pub work_anchor: f64,
+    /// Hermite acceleration dofs of the first and last element over the last
+    /// step (for the end reactions), m/s².
+    pub end_accel: [[V3; 4]; 2],
+    /// Internal steps taken (including sub-steps).
+    pub steps: u64,
+    /// Newton iterations over all steps.
+    pub newton_iterations: u64,
+    /// Steps that had to be split into sub-steps.
+    pub retries: u64,
+}
+
+impl State {
+    /// A line at rest in `config` at time `time`.
+    pub fn at_rest(config: RodConfig, time: f64) -> Self {
+        let n = config.x.len();
+        let nd = config.d.len();
+        State {
+            time,
+            vel: vec![V3::zeros(); n],
+            slope_vel: vec![V3::zeros(); n],
+            director_vel: vec![M3::zeros(); nd],
+            mean_vel: vec![V3::zeros(); n],
+            mean_slope_vel: vec![V3::zeros(); n],
+            config,
+            ..Default::default()
+        }
+    }
+
+    /// Hermite velocity dofs of element e.
+    pub fn hermite_velocity(&self, e: usize) -> [V3; 4] {
+        [self.vel[e], self.slope_vel[e], self.vel[e + 1], self.slope_vel[e + 1]]
+    }
+
+    /// Director rates at the three director nodes of element e.
+    pub fn director_rates(&self, e: usize) -> [M3; 3] {
+        [self.director_vel[2 * e], self.director_vel[2 * e + 1], self.director_vel[2 * e + 2]]
+    }
+
+    /// Gives the whole line the rigid velocity v + ω × (x − x0).
+    pub fn set_rigid_velocity(&mut self, v: V3, omega: V3, x0: V3) {
+        for a in 0..self.vel.len() {
+            self.vel[a] = v + omega.cross(&(self.config.x[a] - x0));
+            self.slope_vel[a] = omega.cross(&self.config.xp[a]);
+        }
+        self.mean_vel.clone_from(&self.vel);
+        self.mean_slope_vel.clone_from(&self.slope_vel);
+        for j in 0..self.director_vel.len() {
+            let d = self.config.d[j];
+            self.director_vel[j] =
+                M3::from_columns(&[omega.cross(&d.column(0)), omega.cross(&d.column(1)), omega.cross(&d.column(2))]);
+        }
+    }
+
+    /// True if every number in the state is finite.
+    pub fn is_finite(&self) -> bool {
+        self.config.is_finite()
+            && self.vel.iter().chain(self.slope_vel.iter()).all(|v| v.iter().all(|c| c.is_finite()))
+            && self.director_vel.iter().all(|d| d.iter().all(|c| c.is_finite()))
+            && [self.time, self.work_top, self.work_hydro, self.work_anchor].iter().all(|v| v.is_finite())
+    }
+}
+
+/// Settings of the time stepping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicOptions {
+    /// Internal time step, s.
+    pub time_step: f64,
+    /// Newton converges when the largest residual component is below this
+    /// times the force scale (weight, or m L g without gravity).
+    pub newton_tolerance: f64,
+    /// Newton iterations before a step counts as failed.
+    pub max_iterations: usize,
+    /// How many times a failed step may be halved (1/2^n of `time_step`).
+    pub max_halvings: u32,
+}
+
+impl Default for DynamicOptions {
+    fn default() -> Self {
+        DynamicOptions { time_step: 0.05, newton_tolerance: 1e-8, max_iterations: 25, max_halvings: 6 }
+    }
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DynamicsError {
+    /// Newton did not converge even with the smallest sub-step.
+    NotConverged { time: f64, step: f64, iterations: usize, residual: f64 },
+    /// The tangent could not be factorised even with the smallest sub-step.
+    Linear { time: f64, step: f64, error: LinearSolveError },
+    /// A bad request (non-finite input, non-positive step).
+    BadInput(String),
+}
+
+impl std::fmt::Display for DynamicsError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DynamicsError::NotConverged { time, step, iterations, residual } => write!(
+                f,
+                "time step from t = {time:.6} s failed: Newton did not converge in {iterations} iterations \
+                 (relative residual {residual:.3e}) even with sub-step {step:.3e} s; the state is kept at \
+                 t = {time:.6} s (try a smaller time_step, more elements, or a gentler motion)"
+            ),
+            DynamicsError::Linear { time, step, error } => write!(
+                f,
+                "time step from t = {time:.6} s failed with sub-step {step:.3e} s: {error}; the state is kept \
+                 at t = {time:.6} s"
+            ),
+            DynamicsError::BadInput(m) => write!(f, "bad input: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for DynamicsError {}

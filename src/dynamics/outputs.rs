@@ -1,0 +1,165 @@
+//! The quantities a run reports at each output time, with the DESIGN.md names
+//! (docs/theory.md §5.6).
+
+use super::{LineModel, State};
+use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
+use crate::rod::element::{self, ElVec, ElemDofs, Factors};
+use crate::rod::kinematics::V3;
+use crate::rod::model::Rod;
+use crate::rod::shape::GAUSS4;
+
+/// Points of the `shape[k]` output: S = k L / 20, k = 0..=20.
+pub const SHAPE_POINTS: usize = 21;
+
+/// Output quantities at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outputs {
+    /// s.
+    pub time: f64,
+    /// |force at the hang-off|, N (effective tension).
+    pub top_tension: f64,
+    /// Force the line exerts on the vessel, N.
+    pub top_force: V3,
+    /// |force at the anchor|, N.
+    pub bottom_tension: f64,
+    /// Force the line exerts on the anchor, N.
+    pub bottom_force: V3,
+    /// Smallest axial force along the line (Gauss points and ends), N.
+    pub min_tension: f64,
+    /// kinetic + strain + potential, J.
+    pub total_energy: f64,
+    pub kinetic_energy: f64,
+    pub strain_energy: f64,
+    /// Potential of gravity and buoyancy, −∫ q z dS (z from the origin), J.
+    pub potential_energy: f64,
+    /// Work of the hang-off on the line since t = 0, J.
+    pub work_top: f64,
+    /// Work of the water on the line since t = 0, J.
+    pub work_hydro: f64,
+    /// Work of the anchor's twist reaction since t = 0, J (not a DESIGN output).
+    pub work_anchor: f64,
+    /// Centreline at S = k L / 20, m.
+    pub shape: [V3; SHAPE_POINTS],
+}
+
+impl Outputs {
+    /// Names of the scalar outputs, in the order of [`Outputs::values`].
+    pub const NAMES: [&'static str; 12] = [
+        "top_tension",
+        "top_force_x",
+        "top_force_y",
+        "top_force_z",
+        "bottom_tension",
+        "min_tension",
+        "total_energy",
+        "kinetic_energy",
+        "strain_energy",
+        "potential_energy",
+        "work_top",
+        "work_hydro",
+    ];
+
+    /// Scalar outputs in the order of [`Outputs::NAMES`].
+    pub fn values(&self) -> [f64; 12] {
+        [
+            self.top_tension,
+            self.top_force.x,
+            self.top_force.y,
+            self.top_force.z,
+            self.bottom_tension,
+            self.min_tension,
+            self.total_energy,
+            self.kinetic_energy,
+            self.strain_energy,
+            self.potential_energy,
+            self.work_top,
+            self.work_hydro,
+        ]
+    }
+
+    /// E(t) − E(0) − W_top − W_hydro − W_anchor: zero to the Newton tolerance (§5.5), J.
+    pub fn energy_balance_residual(&self, e0: f64) -> f64 {
+        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor
+    }
+}
+
+impl LineModel {
+    /// Force of the supports on the line at S = 0 and S = L in `state`, N:
+    /// the end rows of the equations of motion at the state (internal force,
+    /// weight and water at the state; inertia with the last step's acceleration).
+    pub fn end_reactions(&self, s: &State) -> [V3; 2] {
+        let rod = &self.rod;
+        let n = rod.n_el;
+        let mut out = [V3::zeros(); 2];
+        for (end, (e, k)) in [(0usize, 0usize), (n - 1, 2)].into_iter().enumerate() {
+            let el = ElemDofs::gather(&s.config, e);
+            let eps = element::gauss_strains(&el, rod.h);
+            let st = rod.stresses(e, &eps);
+            let mut re = ElVec::zeros();
+            element::internal_force(&el, &el, &st, rod.stiff(), Factors::STATIC, rod.h, &mut re, None);
+            let node = if end == 0 { 0 } else { n };
+            let g = self.gravity_vector();
+            let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);
+            f -= V3::new(g[Rod::x_dof(node)], g[Rod::x_dof(node) + 1], g[Rod::x_dof(node) + 2]);
+            let acc = &s.end_accel[end];
+            for m in 0..4 {
+                f += acc[m] * self.mass.centre[k][m];
+            }
+            if !self.fluid.is_inert() {
+                let mut ff = [V3::zeros(); 4];
+                let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
+                let v = s.hermite_velocity(e);
+                element_fluid_force(
+                    &self.fluid,
+                    FluidFields { c: &el.c, v: &v, a: acc },
+                    rod.s_node(e),
+                    rod.h,
+                    fac,
+                    &mut ff,
+                    None,
+                );
+                f -= ff[k];
+            }
+            out[end] = f;
+        }
+        out
+    }
+
+    /// Every output quantity of `state`.
+    pub fn outputs(&self, s: &State) -> Outputs {
+        let rod = &self.rod;
+        let cfg = &s.config;
+        let reactions = self.end_reactions(s);
+        let t0 = cfg.xp[0].normalize();
+        let t1 = cfg.xp[rod.n_el].normalize();
+        let mut min_tension = (-reactions[0].dot(&t0)).min(reactions[1].dot(&t1));
+        for e in 0..rod.n_el {
+            for xi in GAUSS4.xi {
+                min_tension = min_tension.min(rod.axial_force(cfg, e, xi));
+            }
+        }
+        let kinetic = self.kinetic_energy(s);
+        let strain = rod.strain_energy(cfg);
+        let potential = self.potential_energy(cfg);
+        let mut shape = [V3::zeros(); SHAPE_POINTS];
+        for (k, p) in shape.iter_mut().enumerate() {
+            *p = rod.position_at(cfg, rod.length * k as f64 / (SHAPE_POINTS - 1) as f64);
+        }
+        Outputs {
+            time: s.time,
+            top_tension: reactions[0].norm(),
+            top_force: -reactions[0],
+            bottom_tension: reactions[1].norm(),
+            bottom_force: -reactions[1],
+            min_tension,
+            total_energy: kinetic + strain + potential,
+            kinetic_energy: kinetic,
+            strain_energy: strain,
+            potential_energy: potential,
+            work_top: s.work_top,
+            work_hydro: s.work_hydro,
+            work_anchor: s.work_anchor,
+            shape,
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! Consistent nodal forces of the water on one element: Morison drag (paper
+//! eqs. 13–17) and normal added mass, with their derivatives with respect to
+//! the element's Hermite unknowns (docs/theory.md §5.4).
+//!
+//! The fields are interpolated with the Hermite functions of the centreline:
+//! position x(S) = Σ N_k c_k, slope p = Σ N'_k c_k, velocity v = Σ N_k v_k,
+//! acceleration a = Σ N_k a_k. Per unit reference length the line feels
+//!   drag          f_D = |p| · Morison(v_c(S, z) − v, t),   t = p/|p|
+//!   added mass    f_A = −m_a (I − t tᵀ) a,                   m_a = C_a ρ_w π D²/4
+//! (drag acts on the current length |p| dS; the added mass per reference length).
+//! The consistent nodal force is F_k = ∫ N_k f dS (4-point Gauss).
+
+use super::current::Current;
+use super::morison::{DragCoefficients, drag};
+use crate::rod::kinematics::{M3, V3};
+use crate::rod::shape::{GAUSS4, hermite, hermite_ds};
+
+/// Hydrodynamic description of the line.
+#[derive(Debug, Clone)]
+pub struct Fluid {
+    /// Drag coefficients and current (None: no drag).
+    pub drag: Option<(DragCoefficients, Current)>,
+    /// Normal added mass per unit length m_a = C_a ρ_w π D²/4, kg/m (0: none).
+    pub added_mass: f64,
+}
+
+impl Fluid {
+    pub fn none() -> Self {
+        Fluid { drag: None, added_mass: 0.0 }
+    }
+
+    /// True if the water exerts no force beyond weight and buoyancy.
+    pub fn is_inert(&self) -> bool {
+        self.drag.is_none() && self.added_mass == 0.0
+    }
+}
+
+/// How the evaluation fields depend on the unknowns c_{n+1} of the step:
+/// ∂c_eval/∂c = `position`, ∂v/∂c = `velocity`, ∂a/∂c = `acceleration`.
+#[derive(Debug, Clone, Copy)]
+pub struct FluidFactors {
+    pub position: f64,
+    pub velocity: f64,
+    pub acceleration: f64,
+}
+
+/// The element's Hermite fields at which the water acts.
+#[derive(Debug, Clone, Copy)]
+pub struct FluidFields<'a> {
+    /// Hermite position dofs [r_a, r'_a, r_b, r'_b].
+    pub c: &'a [V3; 4],
+    /// Hermite velocity dofs.
+    pub v: &'a [V3; 4],
+    /// Hermite acceleration dofs (used only with added mass).
+    pub a: &'a [V3; 4],
+}
+
+/// Adds the consistent nodal fluid forces of an element to `f` (N) and, if
+/// asked, −∂F/∂c (the contribution to the tangent of a residual r = … − F) to `k`.
+#[allow(clippy::too_many_arguments)]
+pub fn element_fluid_force(
+    fluid: &Fluid,
+    fields: FluidFields<'_>,
+    s0: f64,
+    h: f64,
+    fac: FluidFactors,
+    f: &mut [V3; 4],
+    mut k: Option<&mut [[M3; 4]; 4]>,
+) {
+    for g in 0..4 {
+        let xi = GAUSS4.xi[g];
+        let wg = GAUSS4.w[g] * h;
+        let n = hermite(xi, h);
+        let nd = hermite_ds(xi, h);
+        let mut x = V3::zeros();
+        let mut p = V3::zeros();
+        let mut v = V3::zeros();
+        for j in 0..4 {
+            x += fields.c[j] * n[j];
+            p += fields.c[j] * nd[j];
+            v += fields.v[j] * n[j];
+        }
+        let len = p.norm();
+        if len == 0.0 {
+            continue;
+        }
+        let t = p / len;
+        let proj = M3::identity() - t * t.transpose();
+        let mut force = V3::zeros();
+        // derivatives of the force per reference length with respect to x, v, a, p
+        let mut df_dx = M3::zeros();
+        let mut df_dv = M3::zeros();
+        let mut df_da = M3::zeros();
+        let mut df_dp = M3::zeros();
+        if let Some((kd, current)) = &fluid.drag {
+            let (vc, dvc_dz) = current.velocity(s0 + xi * h, x.z);
+            let d = drag(kd, &(vc - v), &t);
+            force += d.force * len;
+            df_dx += d.d_vrel * dvc_dz * V3::z().transpose() * len;
+            df_dv -= d.d_vrel * len;
+            df_dp += d.d_tangent * proj + d.force * t.transpose();
+        }
+        if fluid.added_mass > 0.0 {
+            let mut a = V3::zeros();
+            for j in 0..4 {
+                a += fields.a[j] * n[j];
+            }
+            let ma = fluid.added_mass;
+            force -= proj * a * ma;
+            df_da -= proj * ma;
+            // ∂(−m_a (I − t tᵀ) a)/∂t = m_a ((t·a) I + t aᵀ), ∂t/∂p = (I − t tᵀ)/|p|
+            df_dp += (M3::identity() * t.dot(&a) + t * a.transpose()) * proj * (ma / len);
+        }
+        for i in 0..4 {
+            f[i] += force * (wg * n[i]);
+        }
+        if let Some(k) = k.as_deref_mut() {
+            let by_value = df_dx * fac.position + df_dv * fac.velocity + df_da * fac.acceleration;
+            let by_slope = df_dp * fac.position;
+            for i in 0..4 {
+                for j in 0..4 {
+                    k[i][j] -= (by_value * n[j] + by_slope * nd[j]) * (wg * n[i]);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! Conservation properties of the energy–momentum scheme (docs/theory.md §5):
+//! exact energy in the Hamiltonian case, exact momenta for a free rod, the
+//! discrete energy balance with drag and a moving hang-off.
+
+use riser::dynamics::{DynamicOptions, HangOff, Integrator, LineModel, State};
+use riser::hydro::fluid::Fluid;
+use riser::rod::kinematics::V3;
+use riser::scene::Scene;
+use riser::statics::report::solve_scene;
+
+/// Catenary scene without water forces, static state, and a velocity kick.
+fn hamiltonian_setup(n_el: usize, dt: f64) -> (Integrator, State) {
+    let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("n_elements={n_el}")]).unwrap();
+    let (_, report) = solve_scene(&scene).unwrap();
+    let mut model = LineModel::from_scene(&scene);
+    model.fluid = Fluid::none();
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
+    let integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
+    let mut state = State::at_rest(report.solution.config.clone(), 0.0);
+    let l = scene.line.length;
+    for a in 0..state.vel.len() {
+        let s = integ.model.rod.s_node(a);
+        let w = (std::f64::consts::PI * s / l).sin();
+        let dw = std::f64::consts::PI / l * (std::f64::consts::PI * s / l).cos();
+        state.vel[a] = V3::new(0.0, 0.5, 0.0) * w;
+        state.slope_vel[a] = V3::new(0.0, 0.5, 0.0) * dw;
+    }
+    (integ, state)
+}
+
+#[test]
+fn hamiltonian_energy_is_conserved_for_small_and_large_steps() {
+    for &dt in &[1e-3, 0.05, 0.5] {
+        let (mut integ, mut state) = hamiltonian_setup(20, dt);
+        let still = |_t: f64| HangOff::default();
+        let e0 = integ.model.outputs(&state).total_energy;
+        let k0 = integ.model.outputs(&state).kinetic_energy;
+        let mut worst: f64 = 0.0;
+        let t = std::time::Instant::now();
+        for _ in 0..2000 {
+            integ.step(&mut state, dt, &still).unwrap();
+            let o = integ.model.outputs(&state);
+            worst = worst.max((o.total_energy - e0).abs());
+        }
+        eprintln!(
+            "dt {dt}: |E - E0| max {worst:.3e} J, E0 {e0:.6e}, K0 {k0:.3e}, rel {:.3e}, iters/step {:.2}, {:?}",
+            worst / e0.abs(),
+            state.newton_iterations as f64 / state.steps as f64,
+            t.elapsed()
+        );
+        // relative to |E| (datum: the hang-off) and, more demanding, to the
+        // kinetic energy of the kick, the energy that actually moves around
+        assert!(worst <= 1e-9 * e0.abs(), "energy drift {worst:e} J");
+        assert!(worst <= 1e-9 * k0, "energy drift {worst:e} J vs kinetic energy {k0:e} J");
+    }
+}
+
+/// A free rod in space: no gravity, no water, free ends.
+fn free_rod(n_el: usize, dt: f64) -> (Integrator, State) {
+    use riser::hydro::weight::VerticalLoad;
+    use riser::rod::model::{EndBc, Rod, Stiffness};
+    let l = 10.0;
+    let rod = Rod::new(n_el, l, Stiffness::paper(1e6, 1e3, 8e2), [EndBc::FREE, EndBc::FREE]);
+    let m = 5.0;
+    let vertical = VerticalLoad { uniform: 0.0, sections: vec![] };
+    let model = LineModel::new(rod, m, [0.01, 0.02], vertical, Fluid::none());
+    let cfg = model.rod.straight(V3::new(1.0, 2.0, -3.0), V3::new(1.0, 0.2, 0.1), V3::z());
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-12, ..Default::default() };
+    let integ = Integrator::new(model, opts, V3::zeros()).unwrap();
+    let mut state = State::at_rest(cfg, 0.0);
+    let centre = state.config.x[n_el / 2];
+    state.set_rigid_velocity(V3::new(1.0, -0.5, 0.2), V3::new(0.3, 1.1, -0.7), centre);
+    // plus a bending and stretching perturbation
+    for a in 0..state.vel.len() {
+        let s = integ.model.rod.s_node(a) / l;
+        state.vel[a] += V3::new(0.2 * s, -0.3 * s * s, 0.4 * (1.0 - s));
+    }
+    (integ, state)
+}
+
+#[test]
+fn free_rod_conserves_momenta_and_keeps_directors_orthonormal() {
+    let (mut integ, mut state) = free_rod(8, 0.01);
+    let p0 = integ.model.linear_momentum(&state);
+    let l0 = integ.model.angular_momentum(&state);
+    let e0 = integ.model.outputs(&state).total_energy;
+    let none = |_t: f64| HangOff::default();
+    let (mut dp, mut dl, mut de): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for _ in 0..10_000 {
+        integ.step(&mut state, 0.01, &none).unwrap();
+        dp = dp.max((integ.model.linear_momentum(&state) - p0).norm());
+        dl = dl.max((integ.model.angular_momentum(&state) - l0).norm());
+        de = de.max((integ.model.outputs(&state).total_energy - e0).abs());
+    }
+    let ortho = state.config.orthonormality_error();
+    eprintln!(
+        "free rod, 1e4 steps: |Δp|/|p| {:.2e}, |ΔL|/|L| {:.2e}, |ΔE|/E {:.2e}, |DᵀD − I| {:.2e}, iters/step {:.2}",
+        dp / p0.norm(),
+        dl / l0.norm(),
+        de / e0.abs(),
+        ortho,
+        state.newton_iterations as f64 / state.steps as f64
+    );
+    assert!(dp <= 1e-10 * p0.norm(), "linear momentum drift {dp:e}");
+    assert!(dl <= 1e-10 * l0.norm(), "angular momentum drift {dl:e}");
+    assert!(de <= 1e-9 * e0.abs(), "energy drift {de:e}");
+    assert!(ortho <= 1e-12, "directors not orthonormal: {ortho:e}");
+}
+
+/// Catenary scene with its current, 20 elements, heave 2.5 m / 20 s.
+fn heaving_catenary(extra: &[&str]) -> (Integrator, State, f64) {
+    let mut sets = vec!["n_elements=20".to_string()];
+    sets.extend(extra.iter().map(|s| s.to_string()));
+    let scene = Scene::builtin("catenary").unwrap().with_overrides(&sets).unwrap();
+    let (_, report) = solve_scene(&scene).unwrap();
+    let model = LineModel::from_scene(&scene);
+    let opts = DynamicOptions { time_step: 0.05, newton_tolerance: 1e-8, ..Default::default() };
+    let integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
+    let state = State::at_rest(report.solution.config.clone(), 0.0);
+    (integ, state, report.top_tension)
+}
+
+fn heave(t: f64) -> HangOff {
+    let w = 2.0 * std::f64::consts::PI / 20.0;
+    HangOff { displacement: V3::z() * (2.5 * (w * t).sin()), velocity: V3::z() * (2.5 * w * (w * t).cos()) }
+}
+
+#[test]
+fn energy_balance_closes_with_drag_current_added_mass_and_moving_hang_off() {
+    for extra in [&[][..], &["ca_normal=1.0", "current_direction=53"][..]] {
+        let (mut integ, mut state, _) = heaving_catenary(extra);
+        integ.impose_hang_off(&mut state, heave(0.0));
+        let e0 = integ.model.outputs(&state).total_energy;
+        let mut worst: f64 = 0.0;
+        let mut exchanged: f64 = 0.0;
+        for _ in 0..800 {
+            integ.step(&mut state, 0.05, &heave).unwrap();
+            let o = integ.model.outputs(&state);
+            worst = worst.max(o.energy_balance_residual(e0).abs());
+            exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs());
+        }
+        let o = integ.model.outputs(&state);
+        eprintln!(
+            "{extra:?}: W_top {:.4e} J, W_hydro {:.4e} J, W_anchor {:.2e} J, balance residual max {worst:.3e} J \
+             ({:.2e} of the energy exchanged), iters/step {:.2}",
+            o.work_top,
+            o.work_hydro,
+            o.work_anchor,
+            worst / exchanged,
+            state.newton_iterations as f64 / state.steps as f64
+        );
+        assert!(o.work_hydro < 0.0, "the water must take energy out of a heaving line");
+        assert!(worst <= 1e-6 * exchanged);
+    }
+}
