@@ -60,16 +60,18 @@ fn free_rod(n_el: usize, dt: f64) -> (Integrator, State) {
     use riser::hydro::weight::VerticalLoad;
     use riser::rod::model::{EndBc, Rod, Stiffness};
     let l = 10.0;
-    let rod = Rod::new(n_el, l, Stiffness::paper(1e6, 1e3, 8e2), [EndBc::FREE, EndBc::FREE]);
+    let rod = Rod::new(n_el, l, Stiffness::paper(1e5, 1e2, 80.0), [EndBc::FREE, EndBc::FREE]);
     let m = 5.0;
     let vertical = VerticalLoad { uniform: 0.0, sections: vec![] };
     let model = LineModel::new(rod, m, [0.01, 0.02], vertical, Fluid::none());
-    let cfg = model.rod.straight(V3::new(1.0, 2.0, -3.0), V3::new(1.0, 0.2, 0.1), V3::z());
-    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-12, ..Default::default() };
+    let cfg = model.rod.straight(V3::new(-4.9, -1.0, -0.5), V3::new(1.0, 0.2, 0.1), V3::z());
+    // Newton to round-off: the momenta drift by h Σ x × r per step
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-15, ..Default::default() };
     let integ = Integrator::new(model, opts, V3::zeros()).unwrap();
     let mut state = State::at_rest(cfg, 0.0);
     let centre = state.config.x[n_el / 2];
-    state.set_rigid_velocity(V3::new(1.0, -0.5, 0.2), V3::new(0.3, 1.1, -0.7), centre);
+    // slow drift: far from the origin, r' = Σ N'_k r_k loses digits (round-off ∝ |r|)
+    state.set_rigid_velocity(V3::new(0.05, -0.03, 0.02), V3::new(0.3, 1.1, -0.7), centre);
     // plus a bending and stretching perturbation
     for a in 0..state.vel.len() {
         let s = integ.model.rod.s_node(a) / l;
@@ -81,6 +83,7 @@ fn free_rod(n_el: usize, dt: f64) -> (Integrator, State) {
 #[test]
 fn free_rod_conserves_momenta_and_keeps_directors_orthonormal() {
     let (mut integ, mut state) = free_rod(8, 0.01);
+
     let p0 = integ.model.linear_momentum(&state);
     let l0 = integ.model.angular_momentum(&state);
     let e0 = integ.model.outputs(&state).total_energy;
@@ -90,6 +93,7 @@ fn free_rod_conserves_momenta_and_keeps_directors_orthonormal() {
         integ.step(&mut state, 0.01, &none).unwrap();
         dp = dp.max((integ.model.linear_momentum(&state) - p0).norm());
         dl = dl.max((integ.model.angular_momentum(&state) - l0).norm());
+
         de = de.max((integ.model.outputs(&state).total_energy - e0).abs());
     }
     let ortho = state.config.orthonormality_error();

@@ -165,7 +165,7 @@ impl Integrator {
         let n = rod.n_dof();
         let extent = state.config.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
         // the residual cannot be evaluated more precisely than the axial force
-        // from r' (EA ε |r|/h): below 100× that, stop when Newton stagnates
+        // from r' (EA ε |r|/h): below 10× that, stop when Newton stagnates
         let roundoff = rod.stiffness.axial.max(rod.stiffness.shear) * f64::EPSILON * extent / rod.h;
         let tol = (self.options.newton_tolerance * self.force_scale).max(roundoff);
         let mut converged = false;
@@ -183,7 +183,7 @@ impl Integrator {
                 ));
             }
             last = res;
-            if res <= tol || (res <= 100.0 * roundoff && res > 0.25 * last_res) {
+            if res <= tol || (res <= 10.0 * roundoff && res > 0.25 * last_res) {
                 converged = true;
                 break;
             }
