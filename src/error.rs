@@ -1,6 +1,7 @@
 //! The crate's error type: every failure is typed; the CLI prints it and the
 //! FMU turns it into an fmi2Status and a logged message.
 
+use crate::dynamics::DynamicsError;
 use crate::scene::SceneError;
 use crate::statics::StaticsError;
 
@@ -10,6 +11,8 @@ pub enum RiserError {
     Scene(SceneError),
     /// No static equilibrium.
     Statics(StaticsError),
+    /// A dynamic run stopped (the state is kept at the last good time).
+    Dynamics(DynamicsError),
     /// A feature the scene asks for that this version does not provide.
     Unsupported(String),
 }
@@ -19,6 +22,7 @@ impl std::fmt::Display for RiserError {
         match self {
             RiserError::Scene(e) => e.fmt(f),
             RiserError::Statics(e) => e.fmt(f),
+            RiserError::Dynamics(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
         }
     }
@@ -35,5 +39,11 @@ impl From<SceneError> for RiserError {
 impl From<StaticsError> for RiserError {
     fn from(e: StaticsError) -> Self {
         RiserError::Statics(e)
+    }
+}
+
+impl From<DynamicsError> for RiserError {
+    fn from(e: DynamicsError) -> Self {
+        RiserError::Dynamics(e)
     }
 }

@@ -49,3 +49,57 @@ fn bad_input_fails_with_a_message_and_no_panic() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("not a built-in scene"));
 }
+
+#[test]
+fn run_json_summary_and_csv_columns() {
+    let dir = std::env::temp_dir().join(format!("riser-run-{}", std::process::id()));
+    let out = riser(&[
+        "run",
+        "catenary",
+        "--set",
+        "n_elements=10",
+        "--heave",
+        "2.5,20",
+        "--ramp",
+        "10",
+        "--duration",
+        "2",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for k in ["real_time_factor", "wall_time", "steps", "newton_iterations", "energy_balance_residual"] {
+        assert!(v[k].is_number(), "missing {k}");
+    }
+    assert_eq!(v["steps"].as_u64().unwrap(), 40);
+    let tt = &v["top_tension"];
+    assert!(tt["min"].as_f64().unwrap() <= tt["mean"].as_f64().unwrap());
+    assert!(tt["mean"].as_f64().unwrap() <= tt["max"].as_f64().unwrap());
+    assert!(v["energy_balance_relative"].as_f64().unwrap() < 1e-6);
+    let ts = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let header = ts.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "t,top_tension,top_force_x,top_force_y,top_force_z,bottom_tension,min_tension,total_energy,\
+         kinetic_energy,strain_energy,potential_energy,work_top,work_hydro"
+    );
+    assert_eq!(ts.lines().count(), 42); // header + t = 0 + 40 steps
+    let last_t: f64 = ts.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();
+    assert_eq!(last_t, 2.0);
+    let shapes = std::fs::read_to_string(dir.join("shapes.csv")).unwrap();
+    assert_eq!(shapes.lines().next().unwrap(), "t,S,x,y,z");
+    assert_eq!(shapes.lines().count(), 1 + 8 * 11);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn run_rejects_bad_arguments_with_a_message() {
+    let out = riser(&["run", "catenary", "--heave", "2.5,-1", "--duration", "1"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("period"));
+    let out = riser(&["run", "catenary", "--duration", "-3"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--duration"));
+}

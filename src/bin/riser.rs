@@ -1,6 +1,7 @@
 //! `riser` — the engine of the FMU on the command line.
 //!
 //! `riser statics SCENE [--set name=value]... [--json] [--out DIR]`
+//! `riser run SCENE [--set name=value]... --heave AMPLITUDE,PERIOD [--heave-until T] --duration D [--out DIR] [--json]`
 
 use clap::{Parser, Subcommand};
 use riser::scene::{PARAMETER_NAMES, Scene};
@@ -32,6 +33,36 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Dynamic run from the static state with the hang-off heaving U0 sin(2πt/T).
+    Run {
+        /// Built-in scene (catenary, lazy_wave) or path to a scene file (TOML).
+        scene: String,
+        /// Override a parameter by name, e.g. --set time_step=0.1 (see `riser params`).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        heave: Option<(f64, f64)>,
+        /// Hold the hang-off still after this time (s).
+        #[arg(long, value_name = "T")]
+        heave_until: Option<f64>,
+        /// Grow the heave amplitude smoothly over this time (s), ½(1 − cos(πt/ramp)); default 0,
+        /// the paper's abrupt start, whose velocity jump rings the line's undamped axial waves.
+        #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
+        ramp: f64,
+        /// Simulated time, s.
+        #[arg(long, value_name = "D")]
+        duration: f64,
+        /// Times (s) at which shapes.csv records the shape; default: 8 over the last heave period.
+        #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
+        shape_times: Vec<f64>,
+        /// Print one JSON summary instead of the text summary.
+        #[arg(long)]
+        json: bool,
+        /// Write timeseries.csv and shapes.csv into this directory.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// List the parameter names accepted by --set (the FMU's parameters).
     Params,
     /// Print a scene file (built-in or path, after --set overrides) as TOML.
@@ -40,6 +71,19 @@ enum Command {
         #[arg(long = "set", value_name = "NAME=VALUE")]
         set: Vec<String>,
     },
+}
+
+fn parse_pair(s: &str) -> Result<(f64, f64), String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 2 {
+        return Err(format!("expected AMPLITUDE,PERIOD, got '{s}'"));
+    }
+    let a: f64 = parts[0].trim().parse().map_err(|_| format!("'{}' is not a number", parts[0]))?;
+    let t: f64 = parts[1].trim().parse().map_err(|_| format!("'{}' is not a number", parts[1]))?;
+    if !a.is_finite() || !(t.is_finite() && t > 0.0) {
+        return Err(format!("amplitude must be finite and period positive, got {a}, {t}"));
+    }
+    Ok((a, t))
 }
 
 fn load(scene: &str, set: &[String]) -> Result<Scene, riser::RiserError> {
@@ -114,10 +158,226 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
     Ok(())
 }
 
+/// A progress line on stderr for runs longer than a second (terminal only).
+struct Progress {
+    start: std::time::Instant,
+    last: f64,
+    enabled: bool,
+    shown: bool,
+}
+
+impl Progress {
+    fn new(enabled: bool) -> Self {
+        use std::io::IsTerminal;
+        Progress {
+            start: std::time::Instant::now(),
+            last: 0.0,
+            enabled: enabled && std::io::stderr().is_terminal(),
+            shown: false,
+        }
+    }
+
+    fn update(&mut self, t: f64, duration: f64, steps: u64) {
+        let wall = self.start.elapsed().as_secs_f64();
+        if !self.enabled || wall < 1.0 || wall - self.last < 0.2 {
+            return;
+        }
+        self.last = wall;
+        self.shown = true;
+        let frac = (t / duration).clamp(0.0, 1.0);
+        let filled = (frac * 30.0) as usize;
+        eprint!(
+            "\r[{}{}] {:5.1}%  t = {:.1}/{:.1} s  {} steps  {:.0}x real time ",
+            "#".repeat(filled),
+            ".".repeat(30 - filled),
+            100.0 * frac,
+            t,
+            duration,
+            steps,
+            t / wall
+        );
+    }
+
+    fn finish(&self) {
+        if self.shown {
+            eprint!("\r{}\r", " ".repeat(90));
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run(
+    scene: &str,
+    set: &[String],
+    heave: Option<(f64, f64)>,
+    heave_until: Option<f64>,
+    ramp: f64,
+    duration: f64,
+    shape_times: Vec<f64>,
+    json: bool,
+    out: Option<PathBuf>,
+) -> Result<(), String> {
+    use riser::dynamics::Outputs;
+    use riser::dynamics::run::{Heave, Simulation};
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(format!("--duration must be positive, got {duration}"));
+    }
+    if !(ramp.is_finite() && ramp >= 0.0) {
+        return Err(format!("--ramp must be zero or positive, got {ramp}"));
+    }
+    let scene = load(scene, set).map_err(|e| e.to_string())?;
+    let wall0 = std::time::Instant::now();
+    let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    let (amplitude, period) = heave.unwrap_or((0.0, 1.0));
+    let motion = Heave { amplitude, period, until: heave_until, ramp };
+    let motion_fn = move |t: f64| motion.at(t);
+    sim.start(motion.at(0.0));
+    let e0 = sim.initial_energy;
+    let mut shape_times = shape_times;
+    if shape_times.is_empty() {
+        let t0 = if heave.is_some() && duration >= period { duration - period } else { 0.0 };
+        let span = duration - t0;
+        shape_times = (0..8).map(|k| t0 + span * (k as f64 + 1.0) / 8.0).collect();
+    }
+    shape_times.sort_by(f64::total_cmp);
+    let mut series: Vec<Outputs> = vec![sim.outputs()];
+    let mut shapes: Vec<(f64, Vec<[f64; 4]>)> = Vec::new();
+    let mut next_shape = 0;
+    let record_shape = |sim: &Simulation| {
+        let rod = &sim.integrator.model.rod;
+        let cfg = &sim.state.config;
+        (0..=rod.n_el).map(|a| [rod.s_node(a), cfg.x[a].x, cfg.x[a].y, cfg.x[a].z]).collect::<Vec<_>>()
+    };
+    while next_shape < shape_times.len() && shape_times[next_shape] <= 0.0 {
+        shapes.push((0.0, record_shape(&sim)));
+        next_shape += 1;
+    }
+    let solve_start = std::time::Instant::now();
+    let mut progress = Progress::new(!json);
+    let mut failure = None;
+    let dt = sim.integrator.options.time_step;
+    let n_steps = (duration / dt - 1e-9).ceil().max(1.0) as u64;
+    for k in 1..=n_steps {
+        let target = if k == n_steps { duration } else { k as f64 * dt };
+        if let Err(e) = sim.advance_to(target, &motion_fn) {
+            failure = Some(e.to_string());
+            break;
+        }
+        let o = sim.outputs();
+        series.push(o);
+        while next_shape < shape_times.len() && shape_times[next_shape] <= sim.state.time + 0.5 * dt {
+            shapes.push((sim.state.time, record_shape(&sim)));
+            next_shape += 1;
+        }
+        progress.update(sim.state.time, duration, sim.state.steps);
+    }
+    progress.finish();
+    let solve_wall = solve_start.elapsed().as_secs_f64();
+    let wall = wall0.elapsed().as_secs_f64();
+    let tt: Vec<f64> = series.iter().map(|o| o.top_tension).collect();
+    let t_min = tt.iter().cloned().fold(f64::INFINITY, f64::min);
+    let t_max = tt.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let t_mean = tt.iter().sum::<f64>() / tt.len() as f64;
+    let balance = series.iter().map(|o| o.energy_balance_residual(e0).abs()).fold(0.0, f64::max);
+    let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
+    let st = &sim.state;
+    let simulated = st.time;
+    if let Some(dir) = &out {
+        write_run_csv(dir, &series, &shapes).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+    }
+    if json {
+        let v = serde_json::json!({
+            "scene": scene.name,
+            "n_elements": scene.analysis.n_elements,
+            "time_step": dt,
+            "duration": simulated,
+            "completed": failure.is_none(),
+            "error": failure,
+            "static_top_tension": sim.statics.top_tension,
+            "top_tension": {"min": t_min, "mean": t_mean, "max": t_max},
+            "min_tension": series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min),
+            "energy_balance_residual": balance,
+            "energy_exchanged": exchanged,
+            "energy_balance_relative": if exchanged > 0.0 { balance / exchanged } else { 0.0 },
+            "steps": st.steps,
+            "newton_iterations": st.newton_iterations,
+            "iterations_per_step": st.newton_iterations as f64 / (st.steps.max(1)) as f64,
+            "retries": st.retries,
+            "wall_time": wall,
+            "solve_wall_time": solve_wall,
+            "real_time_factor": simulated / solve_wall.max(1e-12),
+        });
+        println!("{v}");
+    } else {
+        let kn = |v: f64| v / 1e3;
+        println!(
+            "riser run: scene '{}' ({} elements, time step {} s), heave {} m / {} s{}{}",
+            scene.name,
+            scene.analysis.n_elements,
+            dt,
+            amplitude,
+            period,
+            heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
+            if ramp > 0.0 { format!(", ramped over {ramp} s") } else { String::new() }
+        );
+        println!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
+        println!("  top tension min/mean/max {:.3} / {:.3} / {:.3} kN", kn(t_min), kn(t_mean), kn(t_max));
+        println!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
+        println!(
+            "  {} steps, {:.2} Newton iterations/step, {} split steps; {:.2} s wall, {:.0}x real time",
+            st.steps,
+            st.newton_iterations as f64 / (st.steps.max(1)) as f64,
+            st.retries,
+            solve_wall,
+            simulated / solve_wall.max(1e-12)
+        );
+        if let Some(dir) = &out {
+            println!("  wrote {}/timeseries.csv and shapes.csv", dir.display());
+        }
+    }
+    match failure {
+        Some(msg) => Err(format!("run stopped at t = {simulated:.6} s: {msg}")),
+        None => Ok(()),
+    }
+}
+
+fn write_run_csv(
+    dir: &Path,
+    series: &[riser::dynamics::Outputs],
+    shapes: &[(f64, Vec<[f64; 4]>)],
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("timeseries.csv"))?);
+    write!(f, "t")?;
+    for n in riser::dynamics::Outputs::NAMES {
+        write!(f, ",{n}")?;
+    }
+    writeln!(f)?;
+    for o in series {
+        write!(f, "{}", o.time)?;
+        for v in o.values() {
+            write!(f, ",{v}")?;
+        }
+        writeln!(f)?;
+    }
+    f.flush()?;
+    let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("shapes.csv"))?);
+    writeln!(f, "t,S,x,y,z")?;
+    for (t, rows) in shapes {
+        for r in rows {
+            writeln!(f, "{t},{},{},{},{}", r[0], r[1], r[2], r[3])?;
+        }
+    }
+    f.flush()
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
+        Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, json, out } => {
+            run(&scene, &set, heave, heave_until, ramp, duration, shape_times, json, out)
+        }
         Command::Params => {
             for (n, u) in PARAMETER_NAMES {
                 println!("{n:22} {u}");

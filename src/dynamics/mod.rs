@@ -9,10 +9,11 @@
 
 pub mod mass;
 pub mod outputs;
+pub mod run;
 mod step;
 
 pub use outputs::Outputs;
-pub use step::Integrator;
+pub use step::{Integrator, SolverLog, StepInfo};
 
 use crate::hydro::fluid::Fluid;
 use crate::hydro::weight::VerticalLoad;
@@ -143,6 +144,9 @@ pub struct State {
     /// Hermite acceleration dofs of the first and last element over the last
     /// step (for the end reactions), m/s².
     pub end_accel: [[V3; 4]; 2],
+    /// Reactions of the supports on the line from the last step's midpoint
+    /// equations (the force over the step, t_{n+½}), N.
+    pub mid_reaction: [V3; 2],
     /// Internal steps taken (including sub-steps).
     pub steps: u64,
     /// Newton iterations over all steps.

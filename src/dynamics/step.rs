@@ -259,6 +259,7 @@ impl Integrator {
             trial.work_anchor += cayley_vector(&(cfg1.d[j] * cfg0.d[j].transpose())).dot(&buf.anchor_moment);
         }
         trial.end_accel = buf.end_accel;
+        trial.mid_reaction = buf.reaction;
         trial.hang_off = target;
         trial.time = state.time + h;
         trial.steps += 1;
