@@ -80,7 +80,7 @@ fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     }
     let a: f64 = parts[0].trim().parse().map_err(|_| format!("'{}' is not a number", parts[0]))?;
     let t: f64 = parts[1].trim().parse().map_err(|_| format!("'{}' is not a number", parts[1]))?;
-    if !a.is_finite() || !(t.is_finite() && t > 0.0) {
+    if !(a.is_finite() && t.is_finite() && t > 0.0) {
         return Err(format!("amplitude must be finite and period positive, got {a}, {t}"));
     }
     Ok((a, t))
