@@ -1,0 +1,51 @@
+//! Dynamics benchmark (issue 3, evidence 7): the catenary scene, 60
+//! elements, time step 0.05 s, 100 s of heave 2.5 m / 20 s with the 0.8 m/s
+//! current, from the static state. Prints wall time, Newton iterations per
+//! step and the real-time factor, median of several runs, for the paper's
+//! abrupt start and for a one-period smooth start.
+//!
+//! Run: `cargo bench --bench dynamics` (RISER_BENCH_RUNS sets the run count).
+
+use riser::dynamics::run::{Heave, Simulation};
+use riser::scene::Scene;
+use std::time::Instant;
+
+fn one_run(ramp: f64) -> (f64, f64, u64) {
+    let scene = Scene::builtin("catenary").unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp };
+    let motion = move |t: f64| heave.at(t);
+    sim.start(heave.at(0.0));
+    let dt = sim.integrator.options.time_step;
+    let t0 = Instant::now();
+    for k in 1..=2000u64 {
+        sim.advance_to(k as f64 * dt, &motion).unwrap();
+    }
+    let wall = t0.elapsed().as_secs_f64();
+    let st = &sim.state;
+    (wall, st.newton_iterations as f64 / st.steps as f64, st.retries)
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let runs: usize = std::env::var("RISER_BENCH_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(5);
+    println!("catenary, 60 elements, dt 0.05 s, 100 s simulated, {runs} runs (median)");
+    println!("{:<28} {:>10} {:>12} {:>10} {:>8}", "start", "wall (s)", "Newton/step", "RTF", "splits");
+    for (name, ramp) in [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)] {
+        let mut walls = Vec::new();
+        let mut its = 0.0;
+        let mut splits = 0;
+        for _ in 0..runs {
+            let (w, i, s) = one_run(ramp);
+            walls.push(w);
+            its = i;
+            splits = s;
+        }
+        let w = median(&mut walls);
+        println!("{:<28} {:>10.3} {:>12.2} {:>10.1} {:>8}", name, w, its, 100.0 / w, splits);
+    }
+}
