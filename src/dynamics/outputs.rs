@@ -93,10 +93,20 @@ impl LineModel {
         let mut out = [V3::zeros(); 2];
         for (end, (e, k)) in [(0usize, 0usize), (n - 1, 2)].into_iter().enumerate() {
             let el = ElemDofs::gather(&s.config, e);
-            let eps = element::gauss_strains(&el, rod.h);
+            let eps = rod.strains_of(&el, e);
             let st = rod.stresses(e, &eps);
             let mut re = ElVec::zeros();
-            element::internal_force(&el, &el, &st, rod.stiff(), Factors::STATIC, rod.h, &mut re, None);
+            element::internal_force(
+                &el,
+                &el,
+                &st,
+                rod.stiff(),
+                Factors::STATIC,
+                rod.h,
+                rod.reference_penalty(e),
+                &mut re,
+                None,
+            );
             let node = if end == 0 { 0 } else { n };
             let g = self.gravity_vector();
             let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);

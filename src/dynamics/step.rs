@@ -159,7 +159,7 @@ impl Integrator {
         let trial = &mut self.trial;
         trial.clone_from(state);
         for e in 0..rod.n_el {
-            self.buf.eps_n[e] = element::gauss_strains(&ElemDofs::gather(&state.config, e), rod.h);
+            self.buf.eps_n[e] = rod.element_strains(&state.config, e);
         }
         predict(model, state, trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
         let n = rod.n_dof();
@@ -277,7 +277,7 @@ impl Integrator {
     pub fn begin_step(&mut self, prev: &State, h: f64, target: HangOff) -> RodConfig {
         let model = &self.model;
         for e in 0..model.rod.n_el {
-            self.buf.eps_n[e] = element::gauss_strains(&ElemDofs::gather(&prev.config, e), model.rod.h);
+            self.buf.eps_n[e] = model.rod.element_strains(&prev.config, e);
         }
         let mut trial = prev.clone();
         predict(model, prev, &mut trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
@@ -463,7 +463,7 @@ fn assemble(
         let eln = ElemDofs::gather(&prev.config, e);
         let elm = ElemDofs::average(&eln, &el1);
         // internal force: discrete gradient (§5.2)
-        let eps1 = element::gauss_strains(&el1, rod.h);
+        let eps1 = rod.strains_of(&el1, e);
         let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
         element::internal_force(
             &elm,
@@ -472,6 +472,7 @@ fn assemble(
             rod.stiff(),
             Factors::MIDPOINT,
             rod.h,
+            rod.reference_penalty(e),
             &mut re,
             if want_k { Some(&mut ke) } else { None },
         );

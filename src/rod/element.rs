@@ -1,12 +1,18 @@
 //! The rod element: strains, stored energy, internal force and consistent
 //! tangent (docs/theory.md §2–§3; paper eqs. 3, 4, 12).
 //!
-//! Strains are the quadratic measures of Betsch & Steinmann, which equal the
-//! paper's for orthonormal directors:
-//!   Γ_i = d_i·r' − δ_i3                       (shear Γ1, Γ2; extension Γ3)
+//! Strains (docs/theory.md §2.2):
+//!   γ = r' − d3 − Σ_i g⁰_i d_i   (spatial vector: the paper's penalty strain, eq. 12)
 //!   K_i = ½ (d_k·d_j' − d_j·d_k'),  (i,j,k) cyclic   (bending K1, K2; twist K3)
-//! and W = ½ Σ C_i (Γ_i − Γ_i⁰)² + ½ Σ D_i (K_i − K_i⁰)²  with C = (EA, EA, EA)
-//! (the paper's penalty ½R|r' − d3|², R = EA) and D = (EI1, EI2, GJ).
+//! and W = ½ R |γ|² + ½ Σ D_i (K_i − K_i⁰)²  with R = EA and D = (EI1, EI2, GJ).
+//! g⁰ (per Gauss point) makes the reference configuration stress-free while
+//! keeping γ objective (it turns with the directors); g⁰ = 0 for a straight
+//! reference. γ is linear and K quadratic in the unknowns, which the
+//! midpoint scheme needs. The penalty acts on the interpolated directors as
+//! the paper writes it, |r' − d3|², not on Σ_i (d_i·r' − δ_i3)²: the two agree
+//! at orthonormal directors, but between the nodes the interpolated d3 is
+//! shorter than 1, and the second form lets a tensioned line with small EI
+//! release axial energy by zig-zagging its directors (negative stiffness).
 //!
 //! Element unknowns, in the order of the global vector (so that element e owns
 //! the contiguous global rows 12e .. 12e+21):
@@ -26,7 +32,8 @@ pub const STRIDE: usize = 12;
 
 pub type ElVec = SVector<f64, NDOF_EL>;
 pub type ElMat = SMatrix<f64, NDOF_EL, NDOF_EL>;
-/// Strain vector (Γ1, Γ2, Γ3, K1, K2, K3).
+/// Strain vector (γ_x, γ_y, γ_z, K1, K2, K3): spatial penalty strain, then
+/// bending and twist.
 pub type Strain = [f64; 6];
 
 /// Local offsets of the Hermite dofs [r_a, r'_a, r_b, r'_b].
@@ -101,30 +108,44 @@ fn kin(e: &ElemDofs, xi: f64, h: f64) -> GpKin {
 }
 
 #[inline]
-fn strains_of(k: &GpKin) -> Strain {
+fn strains_of(k: &GpKin, g0: &V3) -> Strain {
     let mut s = [0.0; 6];
-    for i in 0..3 {
-        s[i] = k.di[i].dot(&k.p);
-    }
-    s[2] -= 1.0;
+    let gamma = k.p - k.di[2] - k.di[0] * g0[0] - k.di[1] * g0[1] - k.di[2] * g0[2];
+    s[0] = gamma.x;
+    s[1] = gamma.y;
+    s[2] = gamma.z;
     for &(i, j, kk) in &CYC {
         s[3 + i] = 0.5 * (k.di[kk].dot(&k.dpi[j]) - k.di[j].dot(&k.dpi[kk]));
     }
     s
 }
 
-/// Strains at the Gauss point ξ of an element of reference length h.
-pub fn strains_at(e: &ElemDofs, xi: f64, h: f64) -> Strain {
-    strains_of(&kin(e, xi, h))
+/// Strains at ξ of an element of reference length h, with reference
+/// penalty coefficients g⁰ at that point.
+pub fn strains_at(e: &ElemDofs, xi: f64, h: f64, g0: &V3) -> Strain {
+    strains_of(&kin(e, xi, h), g0)
 }
 
 /// Strains at the element's Gauss points.
-pub fn gauss_strains(e: &ElemDofs, h: f64) -> [Strain; NGP] {
+pub fn gauss_strains(e: &ElemDofs, h: f64, g0: &[V3; NGP]) -> [Strain; NGP] {
     let mut out = [[0.0; 6]; NGP];
     for (g, o) in out.iter_mut().enumerate() {
-        *o = strains_at(e, GAUSS4.xi[g], h);
+        *o = strains_at(e, GAUSS4.xi[g], h, &g0[g]);
     }
     out
+}
+
+/// Reference penalty coefficients at ξ: g⁰ = D⁰(ξ)⁻¹ (r'⁰ − d3⁰)(ξ) with D⁰ the
+/// interpolated reference frame, so that γ vanishes in the reference.
+pub fn reference_penalty_at(e: &ElemDofs, xi: f64, h: f64) -> V3 {
+    let k = kin(e, xi, h);
+    let d = M3::from_columns(&[k.di[0], k.di[1], k.di[2]]);
+    d.try_inverse().map(|inv| inv * (k.p - k.di[2])).unwrap_or_else(V3::zeros)
+}
+
+/// [`reference_penalty_at`] at the Gauss points.
+pub fn reference_penalty(e: &ElemDofs, h: f64) -> [V3; NGP] {
+    std::array::from_fn(|g| reference_penalty_at(e, GAUSS4.xi[g], h))
 }
 
 /// Stored energy of the element, ∫ W dS (J), for strains `eps` at the Gauss points.
@@ -143,19 +164,18 @@ pub fn energy(eps: &[Strain; NGP], eps0: &[Strain; NGP], stiff: &[f64; 6], h: f6
 
 /// Reduced strain operator B̃ = Dε · G (6 × 21) at a Gauss point:
 /// rows ∂ε/∂(r_a, r'_a, θ_A, ...), with δd_i = θ × d_i at the director nodes.
-fn b_matrix(e: &ElemDofs, k: &GpKin) -> SMatrix<f64, 6, NDOF_EL> {
+fn b_matrix(e: &ElemDofs, k: &GpKin, g0: &V3) -> SMatrix<f64, 6, NDOF_EL> {
     let mut b = SMatrix::<f64, 6, NDOF_EL>::zeros();
-    for i in 0..3 {
-        // ∂Γ_i/∂c_k = N'_k d_i
-        for (kk, &off) in C_OFF.iter().enumerate() {
-            let v = k.di[i] * k.nds[kk];
-            b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
+    // ∂γ/∂c_k = N'_k I
+    for (kk, &off) in C_OFF.iter().enumerate() {
+        for j in 0..3 {
+            b[(j, off + j)] = k.nds[kk];
         }
-        // ∂Γ_i/∂θ_A = L_A (d_iA × r')
-        for (a, &off) in T_OFF.iter().enumerate() {
-            let v = e.d[a].column(i).cross(&k.p) * k.l[a];
-            b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
-        }
+    }
+    // ∂γ/∂θ_A = L_A [w_A]×,  w_A = d3A + Σ_i g⁰_i d_iA   (δd = θ × d)
+    for (a, &off) in T_OFF.iter().enumerate() {
+        let w: V3 = e.d[a] * (V3::z() + g0);
+        b.fixed_view_mut::<3, 3>(0, off).copy_from(&(skew(&w) * k.l[a]));
     }
     for &(i, j, kk) in &CYC {
         // ∂K_i/∂θ_A = ½[L_A d_kA×d_j' + L'_A d_jA×d_k − L_A d_jA×d_k' − L'_A d_kA×d_j]
@@ -195,7 +215,8 @@ impl Factors {
 ///
 /// `eb` is q_B (strain operator and test frames), `ee` is q_E (trial
 /// frames), `stress` the stress resultants C(ε̄ − ε⁰) at the Gauss points
-/// (N for Γ rows, N m for K rows).
+/// (spatial force n = Rγ in N for the first three rows, N m for K rows),
+/// `g0` the reference penalty coefficients at the Gauss points.
 #[allow(clippy::too_many_arguments)]
 pub fn internal_force(
     eb: &ElemDofs,
@@ -204,6 +225,7 @@ pub fn internal_force(
     stiff: &[f64; 6],
     fac: Factors,
     h: f64,
+    g0: &[V3; NGP],
     r: &mut ElVec,
     kt: Option<&mut ElMat>,
 ) {
@@ -216,16 +238,18 @@ pub fn internal_force(
         let wg = GAUSS4.w[g] * h;
         let s = &stress[g];
         let kb = kin(eb, xi, h);
-        let bb = b_matrix(eb, &kb);
+        let bb = b_matrix(eb, &kb, &g0[g]);
         let sv = SVector::<f64, 6>::from_column_slice(s);
         *r += bb.transpose() * sv * wg;
         if !want_k {
             continue;
         }
-        // unreduced director gradient of W at q_B
+        // unreduced director gradient of W at q_B: ∂(½R|γ|²)/∂d_iA = −L_A (δ_i3 + g⁰_i) n
+        let n = V3::new(s[0], s[1], s[2]);
         for i in 0..3 {
+            let c = if i == 2 { 1.0 + g0[g][2] } else { g0[g][i] };
             for a in 0..3 {
-                fdir[a][i] += kb.p * (s[i] * kb.l[a] * wg);
+                fdir[a][i] -= n * (c * kb.l[a] * wg);
             }
         }
         for &(i, j, kk) in &CYC {
@@ -237,7 +261,7 @@ pub fn internal_force(
         }
         // material part: γ B̃_Bᵀ C B̃_E
         let ke = kin(ee, xi, h);
-        let be = b_matrix(ee, &ke);
+        let be = b_matrix(ee, &ke, &g0[g]);
         let mut cbe = be;
         for row in 0..6 {
             let c = stiff[row] * fac.stress * wg;
@@ -246,21 +270,8 @@ pub fn internal_force(
             }
         }
         k_acc += bb.transpose() * cbe;
-        // stress part α Σ s_k ∇²ε_k[G_B ·, G_E ·]
+        // stress part α Σ s_k ∇²ε_k[G_B ·, G_E ·] (γ is linear: only the K terms)
         let alpha = fac.config * wg;
-        for a in 0..3 {
-            let nb: V3 = eb.d[a] * V3::new(s[0], s[1], s[2]);
-            let ne: V3 = ee.d[a] * V3::new(s[0], s[1], s[2]);
-            let snb = skew(&nb);
-            let sne = skew(&ne);
-            for (kk, &coff) in C_OFF.iter().enumerate() {
-                let f = alpha * kb.l[a] * kb.nds[kk];
-                let mut blk = k_acc.fixed_view_mut::<3, 3>(T_OFF[a], coff);
-                blk += snb * f;
-                let mut blk = k_acc.fixed_view_mut::<3, 3>(coff, T_OFF[a]);
-                blk -= sne * f;
-            }
-        }
         for a in 0..3 {
             for bnode in 0..3 {
                 if a == bnode {

@@ -59,9 +59,12 @@ impl Stiffness {
         Stiffness { axial: ea, shear: ea, bending: [ei, ei], torsion: gj }
     }
 
-    /// Stiffness per strain component (Γ1, Γ2, Γ3, K1, K2, K3).
+    /// Stiffness per strain component (γ_x, γ_y, γ_z, K1, K2, K3): the
+    /// paper's penalty R acts on the whole vector γ = r' − d3 (extension and
+    /// shear alike), so its three entries are the penalty `shear` (= EA in the
+    /// paper; `axial` is the same number and names the line's EA).
     pub fn diagonal(&self) -> [f64; 6] {
-        [self.shear, self.shear, self.axial, self.bending[0], self.bending[1], self.torsion]
+        [self.shear, self.shear, self.shear, self.bending[0], self.bending[1], self.torsion]
     }
 }
 
@@ -81,6 +84,8 @@ pub struct Rod {
     pub reference: RodConfig,
     /// Reference strains at the Gauss points (eq. 4).
     eps0: Vec<[Strain; NGP]>,
+    /// Reference penalty coefficients g⁰ at the Gauss points (element.rs).
+    g0: Vec<[V3; NGP]>,
 }
 
 impl Rod {
@@ -97,6 +102,7 @@ impl Rod {
             ends,
             reference: RodConfig { x: vec![], xp: vec![], d: vec![] },
             eps0: vec![],
+            g0: vec![],
         };
         let straight = rod.straight(V3::zeros(), V3::x(), V3::y());
         rod.set_reference(straight);
@@ -105,8 +111,36 @@ impl Rod {
 
     /// Sets the stress-free configuration (reference strains, eq. 4).
     pub fn set_reference(&mut self, reference: RodConfig) {
-        self.eps0 = (0..self.n_el).map(|e| element::gauss_strains(&ElemDofs::gather(&reference, e), self.h)).collect();
+        self.g0 =
+            (0..self.n_el).map(|e| element::reference_penalty(&ElemDofs::gather(&reference, e), self.h)).collect();
+        self.eps0 = (0..self.n_el)
+            .map(|e| {
+                let mut eps = element::gauss_strains(&ElemDofs::gather(&reference, e), self.h, &self.g0[e]);
+                // γ vanishes in the reference by construction of g⁰ (not only to round-off)
+                for row in eps.iter_mut() {
+                    row[0] = 0.0;
+                    row[1] = 0.0;
+                    row[2] = 0.0;
+                }
+                eps
+            })
+            .collect();
         self.reference = reference;
+    }
+
+    /// Reference penalty coefficients g⁰ of element e at its Gauss points.
+    pub fn reference_penalty(&self, e: usize) -> &[V3; NGP] {
+        &self.g0[e]
+    }
+
+    /// Strains of element e of `cfg` at its Gauss points.
+    pub fn element_strains(&self, cfg: &RodConfig, e: usize) -> [Strain; NGP] {
+        element::gauss_strains(&ElemDofs::gather(cfg, e), self.h, &self.g0[e])
+    }
+
+    /// Strains of an element's gathered dofs at its Gauss points.
+    pub fn strains_of(&self, el: &ElemDofs, e: usize) -> [Strain; NGP] {
+        element::gauss_strains(el, self.h, &self.g0[e])
     }
 
     pub fn stiff(&self) -> &[f64; 6] {
@@ -186,7 +220,7 @@ impl Rod {
     pub fn strain_energy(&self, cfg: &RodConfig) -> f64 {
         (0..self.n_el)
             .map(|e| {
-                let eps = element::gauss_strains(&ElemDofs::gather(cfg, e), self.h);
+                let eps = self.element_strains(cfg, e);
                 element::energy(&eps, &self.eps0[e], &self.stiff, self.h)
             })
             .sum()
@@ -202,12 +236,12 @@ impl Rod {
     pub fn add_internal_force(&self, cfg: &RodConfig, r: &mut [f64], mut sys: Option<&mut BandedSystem>) {
         for e in 0..self.n_el {
             let el = ElemDofs::gather(cfg, e);
-            let eps = element::gauss_strains(&el, self.h);
+            let eps = self.strains_of(&el, e);
             let s = self.stresses(e, &eps);
             let mut re = ElVec::zeros();
             let mut ke = ElMat::zeros();
             let kt = if sys.is_some() { Some(&mut ke) } else { None };
-            element::internal_force(&el, &el, &s, &self.stiff, Factors::STATIC, self.h, &mut re, kt);
+            element::internal_force(&el, &el, &s, &self.stiff, Factors::STATIC, self.h, &self.g0[e], &mut re, kt);
             let off = STRIDE * e;
             for i in 0..NDOF_EL {
                 r[off + i] += re[i];
@@ -293,18 +327,13 @@ impl Rod {
         }
     }
 
-    /// Force resultant n = Σ C_i (Γ_i − Γ_i⁰) d_i (N) and unit tangent at ξ of element e.
+    /// Force resultant n = R γ (N, spatial) and unit tangent at ξ of element e.
     pub fn force_resultant(&self, cfg: &RodConfig, e: usize, xi: f64) -> (V3, V3) {
         let el = ElemDofs::gather(cfg, e);
-        let eps = element::strains_at(&el, xi, self.h);
-        let eps0 = element::strains_at(&ElemDofs::gather(&self.reference, e), xi, self.h);
-        let l = super::shape::lagrange(xi);
+        let g0 = element::reference_penalty_at(&ElemDofs::gather(&self.reference, e), xi, self.h);
+        let eps = element::strains_at(&el, xi, self.h, &g0);
         let nds = super::shape::hermite_ds(xi, self.h);
-        let mut n = V3::zeros();
-        for i in 0..3 {
-            let di: V3 = (0..3).map(|a| el.d[a].column(i) * l[a]).sum();
-            n += di * (self.stiff[i] * (eps[i] - eps0[i]));
-        }
+        let n = V3::new(eps[0], eps[1], eps[2]) * self.stiff[0];
         let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
         (n, p.normalize())
     }
