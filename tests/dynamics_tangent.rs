@@ -9,13 +9,23 @@ use riser::statics::report::solve_scene;
 
 #[test]
 fn step_tangent_matches_finite_differences_of_the_residual() {
+    check_tangent(0.0);
+}
+
+#[test]
+fn step_tangent_with_structural_damping_matches_finite_differences() {
+    check_tangent(0.05);
+}
+
+fn check_tangent(eta: f64) {
     let scene = Scene::builtin("catenary")
         .unwrap()
         .with_overrides(&["n_elements=4", "ca_normal=1.0", "current_direction=40"])
         .unwrap();
     let (_, report) = solve_scene(&scene).unwrap();
     let model = LineModel::from_scene(&scene);
-    let mut integ = Integrator::new(model, DynamicOptions::default(), scene.hang_off()).unwrap();
+    let opts = DynamicOptions { structural_damping: eta, ..Default::default() };
+    let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
     let mut prev = State::at_rest(report.solution.config.clone(), 0.0);
     // a moving, out-of-plane state so that every term is active
     for a in 0..prev.vel.len() {

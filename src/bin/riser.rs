@@ -298,6 +298,8 @@ fn run(
             "min_tension": series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min),
             "energy_balance_residual": balance,
             "energy_exchanged": exchanged,
+            "dissipated_energy": series.last().map(|o| o.dissipated_energy).unwrap_or(0.0),
+            "structural_damping": scene.analysis.structural_damping,
             "energy_balance_relative": if exchanged > 0.0 { balance / exchanged } else { 0.0 },
             "steps": st.steps,
             "newton_iterations": st.newton_iterations,

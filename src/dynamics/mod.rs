@@ -138,6 +138,8 @@ pub struct State {
     pub work_top: f64,
     /// Work done on the line by the water (drag, added mass) since t = 0, J.
     pub work_hydro: f64,
+    /// Energy dissipated by structural damping since t = 0, J (≥ 0).
+    pub dissipated: f64,
     /// Work of the anchor's twist reaction since t = 0, J (zero for lines
     /// moving in a vertical plane; docs/theory.md §5.5).
     pub work_anchor: f64,
@@ -234,7 +236,9 @@ impl State {
         self.config.is_finite()
             && self.vel.iter().chain(self.slope_vel.iter()).all(|v| v.iter().all(|c| c.is_finite()))
             && self.director_vel.iter().all(|d| d.iter().all(|c| c.is_finite()))
-            && [self.time, self.work_top, self.work_hydro, self.work_anchor].iter().all(|v| v.is_finite())
+            && [self.time, self.work_top, self.work_hydro, self.work_anchor, self.dissipated]
+                .iter()
+                .all(|v| v.is_finite())
     }
 }
 
@@ -250,11 +254,19 @@ pub struct DynamicOptions {
     pub max_iterations: usize,
     /// How many times a failed step may be halved (1/2^n of `time_step`).
     pub max_halvings: u32,
+    /// Kelvin–Voigt structural damping time η, s (0: energy-conserving).
+    pub structural_damping: f64,
 }
 
 impl Default for DynamicOptions {
     fn default() -> Self {
-        DynamicOptions { time_step: 0.05, newton_tolerance: 1e-8, max_iterations: 25, max_halvings: 6 }
+        DynamicOptions {
+            time_step: 0.05,
+            newton_tolerance: 1e-8,
+            max_iterations: 25,
+            max_halvings: 6,
+            structural_damping: 0.0,
+        }
     }
 }
 

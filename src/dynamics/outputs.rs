@@ -38,13 +38,15 @@ pub struct Outputs {
     pub work_hydro: f64,
     /// Work of the anchor's twist reaction since t = 0, J (not a DESIGN output).
     pub work_anchor: f64,
+    /// Energy dissipated by structural damping since t = 0, J (≥ 0; 0 without damping).
+    pub dissipated_energy: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 12] = [
+    pub const NAMES: [&'static str; 13] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -57,10 +59,11 @@ impl Outputs {
         "potential_energy",
         "work_top",
         "work_hydro",
+        "dissipated_energy",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 12] {
+    pub fn values(&self) -> [f64; 13] {
         [
             self.top_tension,
             self.top_force.x,
@@ -74,12 +77,14 @@ impl Outputs {
             self.potential_energy,
             self.work_top,
             self.work_hydro,
+            self.dissipated_energy,
         ]
     }
 
-    /// E(t) − E(0) − W_top − W_hydro − W_anchor: zero to the Newton tolerance (§5.5), J.
+    /// E(t) − E(0) − W_top − W_hydro − W_anchor + D: zero to the Newton
+    /// tolerance (§5.5, §5.9), J.
     pub fn energy_balance_residual(&self, e0: f64) -> f64 {
-        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor
+        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor + self.dissipated_energy
     }
 }
 
@@ -103,7 +108,7 @@ impl LineModel {
                 rod.stiff(),
                 Factors::STATIC,
                 rod.h,
-                rod.reference_penalty(e),
+                element::Shear::Spatial(rod.reference_penalty(e)),
                 &mut re,
                 None,
             );
@@ -169,6 +174,7 @@ impl LineModel {
             work_top: s.work_top,
             work_hydro: s.work_hydro,
             work_anchor: s.work_anchor,
+            dissipated_energy: s.dissipated,
             shape,
         }
     }

@@ -59,6 +59,7 @@ impl Simulation {
         let options = DynamicOptions {
             time_step: scene.analysis.time_step,
             newton_tolerance: scene.analysis.newton_tolerance,
+            structural_damping: scene.analysis.structural_damping,
             ..Default::default()
         };
         let integrator = Integrator::new(model, options, scene.hang_off())

@@ -30,6 +30,10 @@ struct Buffers {
     vpnew: Vec<V3>,
     /// Strains of q_n at the Gauss points.
     eps_n: Vec<[Strain; NGP]>,
+    /// Material strains (Γ_i = d_i·r' − δ_i3, K) of q_n and of the trial
+    /// q_{n+1}, for the structural damping.
+    damp_n: Vec<[Strain; NGP]>,
+    damp_1: Vec<[Strain; NGP]>,
     /// Reactions (force of the supports on the line) at S = 0 and S = L, N.
     reaction: [V3; 2],
     /// Inertia rows M a at the end nodes, N.
@@ -85,6 +89,8 @@ impl Integrator {
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
             eps_n: vec![[[0.0; 6]; NGP]; rod.n_el],
+            damp_n: vec![[[0.0; 6]; NGP]; rod.n_el],
+            damp_1: vec![[[0.0; 6]; NGP]; rod.n_el],
             reaction: [V3::zeros(); 2],
             end_inertia: [V3::zeros(); 2],
             end_accel: [[V3::zeros(); 4]; 2],
@@ -160,6 +166,10 @@ impl Integrator {
         trial.clone_from(state);
         for e in 0..rod.n_el {
             self.buf.eps_n[e] = rod.element_strains(&state.config, e);
+            if self.options.structural_damping > 0.0 {
+                self.buf.damp_n[e] =
+                    element::gauss_strains_with(&ElemDofs::gather(&state.config, e), rod.h, element::Shear::Material);
+            }
         }
         predict(model, state, trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
         let n = rod.n_dof();
@@ -174,7 +184,7 @@ impl Integrator {
         let mut first = f64::INFINITY;
         let mut last_res = f64::INFINITY;
         for it in 0..=self.options.max_iterations {
-            assemble(model, state, &trial.config, h, target, &mut self.buf, true);
+            assemble(model, state, &trial.config, h, target, self.options.structural_damping, &mut self.buf, true);
             let res = residual_norm(&self.buf.r, &self.fixed, rod.h);
             if let Some(log) = self.solver_log.as_mut() {
                 log(&format!(
@@ -254,6 +264,12 @@ impl Integrator {
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&buf.reaction[0]) + (vbar0 * h - dx0).dot(&buf.end_inertia[0]);
         trial.work_hydro += w_hydro;
+        let eta = self.options.structural_damping;
+        if eta > 0.0 {
+            for e in 0..rod.n_el {
+                trial.dissipated += rod.damping_dissipation(&buf.damp_n[e], &buf.damp_1[e], eta / h);
+            }
+        }
         if rod.ends[1].rotation == RotationBc::TwistFixed {
             let j = 2 * rod.n_el;
             trial.work_anchor += cayley_vector(&(cfg1.d[j] * cfg0.d[j].transpose())).dot(&buf.anchor_moment);
@@ -278,6 +294,8 @@ impl Integrator {
         let model = &self.model;
         for e in 0..model.rod.n_el {
             self.buf.eps_n[e] = model.rod.element_strains(&prev.config, e);
+            self.buf.damp_n[e] =
+                element::gauss_strains_with(&ElemDofs::gather(&prev.config, e), model.rod.h, element::Shear::Material);
         }
         let mut trial = prev.clone();
         predict(model, prev, &mut trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
@@ -295,7 +313,7 @@ impl Integrator {
         target: HangOff,
         want_tangent: bool,
     ) -> Vec<f64> {
-        assemble(&self.model, prev, cfg, h, target, &mut self.buf, want_tangent);
+        assemble(&self.model, prev, cfg, h, target, self.options.structural_damping, &mut self.buf, want_tangent);
         self.buf.r.clone()
     }
 
@@ -419,16 +437,20 @@ fn residual_norm(r: &[f64], fixed: &[usize], h: f64) -> f64 {
 }
 
 /// Assembles the midpoint residual (5.3) at the trial configuration `cfg`
-/// and, if asked, its tangent with respect to (Δr, Δr', θ) of q_{n+1}.
+/// and, if asked, its tangent with respect to (Δr, Δr', θ) of q_{n+1};
+/// `eta` the Kelvin–Voigt damping time, s.
+#[allow(clippy::too_many_arguments)]
 fn assemble(
     model: &LineModel,
     prev: &State,
     cfg: &RodConfig,
     h: f64,
     target: HangOff,
+    eta: f64,
     buf: &mut Buffers,
     want_k: bool,
 ) {
+    let damping = Factors { config: 0.5, stress: eta / h };
     let rod = &model.rod;
     let n_el = rod.n_el;
     let mass = &model.mass;
@@ -472,10 +494,27 @@ fn assemble(
             rod.stiff(),
             Factors::MIDPOINT,
             rod.h,
-            rod.reference_penalty(e),
+            element::Shear::Spatial(rod.reference_penalty(e)),
             &mut re,
             if want_k { Some(&mut ke) } else { None },
         );
+        // Kelvin–Voigt damping on the objective material strains (§5.9)
+        if eta > 0.0 {
+            let d1 = element::gauss_strains_with(&el1, rod.h, element::Shear::Material);
+            buf.damp_1[e] = d1;
+            let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
+            element::internal_force(
+                &elm,
+                &el1,
+                &sd,
+                rod.stiff(),
+                damping,
+                rod.h,
+                element::Shear::Material,
+                &mut re,
+                if want_k { Some(&mut ke) } else { None },
+            );
+        }
         // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
         let vn = prev.hermite_velocity(e);
         let v1 = [buf.vnew[e], buf.vpnew[e], buf.vnew[e + 1], buf.vpnew[e + 1]];

@@ -41,6 +41,17 @@ pub const C_OFF: [usize; 4] = [0, 3, 12, 15];
 /// Local offsets of the director-node rotations [θ_a, θ_mid, θ_b].
 pub const T_OFF: [usize; 3] = [6, 9, 18];
 
+/// Which shear/extension measure the first three strain rows carry.
+#[derive(Debug, Clone, Copy)]
+pub enum Shear<'a> {
+    /// The paper's spatial penalty strain γ = r' − d3 − Σ g⁰_i d_i, with the
+    /// reference coefficients g⁰ at the Gauss points (the stored energy).
+    Spatial(&'a [V3; NGP]),
+    /// Material components Γ_i = d_i·r' − δ_i3 (quadratic and invariant under
+    /// rigid motions): used for the objective structural damping (theory §5.9).
+    Material,
+}
+
 /// Cyclic index triples (i, j, k).
 const CYC: [(usize, usize, usize); 3] = [(0, 1, 2), (1, 2, 0), (2, 0, 1)];
 
@@ -108,12 +119,22 @@ fn kin(e: &ElemDofs, xi: f64, h: f64) -> GpKin {
 }
 
 #[inline]
-fn strains_of(k: &GpKin, g0: &V3) -> Strain {
+fn strains_of(k: &GpKin, g0: Option<&V3>) -> Strain {
     let mut s = [0.0; 6];
-    let gamma = k.p - k.di[2] - k.di[0] * g0[0] - k.di[1] * g0[1] - k.di[2] * g0[2];
-    s[0] = gamma.x;
-    s[1] = gamma.y;
-    s[2] = gamma.z;
+    match g0 {
+        Some(g0) => {
+            let gamma = k.p - k.di[2] - k.di[0] * g0[0] - k.di[1] * g0[1] - k.di[2] * g0[2];
+            s[0] = gamma.x;
+            s[1] = gamma.y;
+            s[2] = gamma.z;
+        }
+        None => {
+            for i in 0..3 {
+                s[i] = k.di[i].dot(&k.p);
+            }
+            s[2] -= 1.0;
+        }
+    }
     for &(i, j, kk) in &CYC {
         s[3 + i] = 0.5 * (k.di[kk].dot(&k.dpi[j]) - k.di[j].dot(&k.dpi[kk]));
     }
@@ -123,14 +144,23 @@ fn strains_of(k: &GpKin, g0: &V3) -> Strain {
 /// Strains at ξ of an element of reference length h, with reference
 /// penalty coefficients g⁰ at that point.
 pub fn strains_at(e: &ElemDofs, xi: f64, h: f64, g0: &V3) -> Strain {
-    strains_of(&kin(e, xi, h), g0)
+    strains_of(&kin(e, xi, h), Some(g0))
 }
 
 /// Strains at the element's Gauss points.
 pub fn gauss_strains(e: &ElemDofs, h: f64, g0: &[V3; NGP]) -> [Strain; NGP] {
+    gauss_strains_with(e, h, Shear::Spatial(g0))
+}
+
+/// Strains at the element's Gauss points with the chosen shear measure.
+pub fn gauss_strains_with(e: &ElemDofs, h: f64, shear: Shear<'_>) -> [Strain; NGP] {
     let mut out = [[0.0; 6]; NGP];
     for (g, o) in out.iter_mut().enumerate() {
-        *o = strains_at(e, GAUSS4.xi[g], h, &g0[g]);
+        let g0 = match shear {
+            Shear::Spatial(g0) => Some(&g0[g]),
+            Shear::Material => None,
+        };
+        *o = strains_of(&kin(e, GAUSS4.xi[g], h), g0);
     }
     out
 }
@@ -164,18 +194,36 @@ pub fn energy(eps: &[Strain; NGP], eps0: &[Strain; NGP], stiff: &[f64; 6], h: f6
 
 /// Reduced strain operator B̃ = Dε · G (6 × 21) at a Gauss point:
 /// rows ∂ε/∂(r_a, r'_a, θ_A, ...), with δd_i = θ × d_i at the director nodes.
-fn b_matrix(e: &ElemDofs, k: &GpKin, g0: &V3) -> SMatrix<f64, 6, NDOF_EL> {
+fn b_matrix(e: &ElemDofs, k: &GpKin, g0: Option<&V3>) -> SMatrix<f64, 6, NDOF_EL> {
     let mut b = SMatrix::<f64, 6, NDOF_EL>::zeros();
-    // ∂γ/∂c_k = N'_k I
-    for (kk, &off) in C_OFF.iter().enumerate() {
-        for j in 0..3 {
-            b[(j, off + j)] = k.nds[kk];
+    match g0 {
+        Some(g0) => {
+            // ∂γ/∂c_k = N'_k I
+            for (kk, &off) in C_OFF.iter().enumerate() {
+                for j in 0..3 {
+                    b[(j, off + j)] = k.nds[kk];
+                }
+            }
+            // ∂γ/∂θ_A = L_A [w_A]×,  w_A = d3A + Σ_i g⁰_i d_iA   (δd = θ × d)
+            for (a, &off) in T_OFF.iter().enumerate() {
+                let w: V3 = e.d[a] * (V3::z() + g0);
+                b.fixed_view_mut::<3, 3>(0, off).copy_from(&(skew(&w) * k.l[a]));
+            }
         }
-    }
-    // ∂γ/∂θ_A = L_A [w_A]×,  w_A = d3A + Σ_i g⁰_i d_iA   (δd = θ × d)
-    for (a, &off) in T_OFF.iter().enumerate() {
-        let w: V3 = e.d[a] * (V3::z() + g0);
-        b.fixed_view_mut::<3, 3>(0, off).copy_from(&(skew(&w) * k.l[a]));
+        None => {
+            for i in 0..3 {
+                // ∂Γ_i/∂c_k = N'_k d_i
+                for (kk, &off) in C_OFF.iter().enumerate() {
+                    let v = k.di[i] * k.nds[kk];
+                    b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
+                }
+                // ∂Γ_i/∂θ_A = L_A (d_iA × r')
+                for (a, &off) in T_OFF.iter().enumerate() {
+                    let v = e.d[a].column(i).cross(&k.p) * k.l[a];
+                    b.fixed_view_mut::<1, 3>(i, off).copy_from(&v.transpose());
+                }
+            }
+        }
     }
     for &(i, j, kk) in &CYC {
         // ∂K_i/∂θ_A = ½[L_A d_kA×d_j' + L'_A d_jA×d_k − L_A d_jA×d_k' − L'_A d_kA×d_j]
@@ -225,7 +273,7 @@ pub fn internal_force(
     stiff: &[f64; 6],
     fac: Factors,
     h: f64,
-    g0: &[V3; NGP],
+    shear: Shear<'_>,
     r: &mut ElVec,
     kt: Option<&mut ElMat>,
 ) {
@@ -237,19 +285,34 @@ pub fn internal_force(
         let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
         let s = &stress[g];
+        let g0 = match shear {
+            Shear::Spatial(g0) => Some(&g0[g]),
+            Shear::Material => None,
+        };
         let kb = kin(eb, xi, h);
-        let bb = b_matrix(eb, &kb, &g0[g]);
+        let bb = b_matrix(eb, &kb, g0);
         let sv = SVector::<f64, 6>::from_column_slice(s);
         *r += bb.transpose() * sv * wg;
         if !want_k {
             continue;
         }
-        // unreduced director gradient of W at q_B: ∂(½R|γ|²)/∂d_iA = −L_A (δ_i3 + g⁰_i) n
-        let n = V3::new(s[0], s[1], s[2]);
-        for i in 0..3 {
-            let c = if i == 2 { 1.0 + g0[g][2] } else { g0[g][i] };
-            for a in 0..3 {
-                fdir[a][i] -= n * (c * kb.l[a] * wg);
+        match g0 {
+            Some(g0) => {
+                // unreduced director gradient at q_B: ∂(½R|γ|²)/∂d_iA = −L_A (δ_i3 + g⁰_i) n
+                let n = V3::new(s[0], s[1], s[2]);
+                for i in 0..3 {
+                    let c = if i == 2 { 1.0 + g0[2] } else { g0[i] };
+                    for a in 0..3 {
+                        fdir[a][i] -= n * (c * kb.l[a] * wg);
+                    }
+                }
+            }
+            None => {
+                for i in 0..3 {
+                    for a in 0..3 {
+                        fdir[a][i] += kb.p * (s[i] * kb.l[a] * wg);
+                    }
+                }
             }
         }
         for &(i, j, kk) in &CYC {
@@ -261,7 +324,7 @@ pub fn internal_force(
         }
         // material part: γ B̃_Bᵀ C B̃_E
         let ke = kin(ee, xi, h);
-        let be = b_matrix(ee, &ke, &g0[g]);
+        let be = b_matrix(ee, &ke, g0);
         let mut cbe = be;
         for row in 0..6 {
             let c = stiff[row] * fac.stress * wg;
@@ -270,8 +333,23 @@ pub fn internal_force(
             }
         }
         k_acc += bb.transpose() * cbe;
-        // stress part α Σ s_k ∇²ε_k[G_B ·, G_E ·] (γ is linear: only the K terms)
+        // stress part α Σ s_k ∇²ε_k[G_B ·, G_E ·] (γ is linear: only K and Γ_i = d_i·r')
         let alpha = fac.config * wg;
+        if g0.is_none() {
+            for a in 0..3 {
+                let nb: V3 = eb.d[a] * V3::new(s[0], s[1], s[2]);
+                let ne: V3 = ee.d[a] * V3::new(s[0], s[1], s[2]);
+                let snb = skew(&nb);
+                let sne = skew(&ne);
+                for (kk, &coff) in C_OFF.iter().enumerate() {
+                    let f = alpha * kb.l[a] * kb.nds[kk];
+                    let mut blk = k_acc.fixed_view_mut::<3, 3>(T_OFF[a], coff);
+                    blk += snb * f;
+                    let mut blk = k_acc.fixed_view_mut::<3, 3>(coff, T_OFF[a]);
+                    blk -= sne * f;
+                }
+            }
+        }
         for a in 0..3 {
             for bnode in 0..3 {
                 if a == bnode {

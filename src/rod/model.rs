@@ -164,6 +164,33 @@ impl Rod {
         s
     }
 
+    /// Kelvin–Voigt stresses (η/h) C (ε_{n+1} − ε_n) of the objective
+    /// material strains (theory §5.9).
+    pub fn damping_stresses(&self, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP], eta_over_h: f64) -> [Strain; NGP] {
+        let mut s = [[0.0; 6]; NGP];
+        for g in 0..NGP {
+            for c in 0..6 {
+                s[g][c] = self.stiff[c] * eta_over_h * (eps_1[g][c] - eps_n[g][c]);
+            }
+        }
+        s
+    }
+
+    /// Energy dissipated over a step by the Kelvin–Voigt stress,
+    /// ∫ (η/h) Δε·C Δε dS over element e, J (≥ 0).
+    pub fn damping_dissipation(&self, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP], eta_over_h: f64) -> f64 {
+        let mut d = 0.0;
+        for g in 0..NGP {
+            let mut dg = 0.0;
+            for c in 0..6 {
+                let de = eps_1[g][c] - eps_n[g][c];
+                dg += self.stiff[c] * de * de;
+            }
+            d += super::shape::GAUSS4.w[g] * self.h * eta_over_h * dg;
+        }
+        d
+    }
+
     /// Number of reduced unknowns.
     pub fn n_dof(&self) -> usize {
         STRIDE * self.n_el + 9
@@ -241,7 +268,17 @@ impl Rod {
             let mut re = ElVec::zeros();
             let mut ke = ElMat::zeros();
             let kt = if sys.is_some() { Some(&mut ke) } else { None };
-            element::internal_force(&el, &el, &s, &self.stiff, Factors::STATIC, self.h, &self.g0[e], &mut re, kt);
+            element::internal_force(
+                &el,
+                &el,
+                &s,
+                &self.stiff,
+                Factors::STATIC,
+                self.h,
+                element::Shear::Spatial(&self.g0[e]),
+                &mut re,
+                kt,
+            );
             let off = STRIDE * e;
             for i in 0..NDOF_EL {
                 r[off + i] += re[i];

@@ -189,6 +189,12 @@ pub struct Analysis {
     /// Include the current in the initial static equilibrium.
     #[serde(default)]
     pub static_current: bool,
+    /// Stiffness-proportional (Kelvin–Voigt) structural damping time η, s:
+    /// stress += η C ε̇. Damps the unresolved axial and shear waves (damping
+    /// ratio η ω/2 for a mode of circular frequency ω); 0 keeps the paper's
+    /// energy-conserving scheme (docs/theory.md §5.9).
+    #[serde(default)]
+    pub structural_damping: f64,
 }
 
 fn default_model() -> Model {
@@ -212,6 +218,7 @@ impl Default for Analysis {
             time_step: default_time_step(),
             newton_tolerance: default_tolerance(),
             static_current: false,
+            structural_damping: 0.0,
         }
     }
 }

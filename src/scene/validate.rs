@@ -163,6 +163,11 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     {
         c.err("analysis.newton_tolerance", format!("{} must be in (0, 1e-2]", an.newton_tolerance));
     }
+    if c.finite("analysis.structural_damping", an.structural_damping, "s")
+        && !(an.structural_damping >= 0.0 && an.structural_damping <= 10.0)
+    {
+        c.err("analysis.structural_damping", format!("{} s must be in [0, 10] s", an.structural_damping));
+    }
     let _ = Model::Rod;
     c.0
 }
