@@ -224,8 +224,16 @@ impl BandedSystem {
 
     /// Solves A x = b in place with the last factorisation.
     pub fn solve_in_place(&mut self, b: &mut [f64]) -> Result<(), LinearSolveError> {
-        assert!(self.factorized, "solve before factorize");
-        assert_eq!(b.len(), self.n);
+        if !self.factorized {
+            return Err(LinearSolveError::Backend("solve requested before the matrix was factorised".into()));
+        }
+        if b.len() != self.n {
+            return Err(LinearSolveError::Backend(format!(
+                "right-hand side of length {} for {} unknowns",
+                b.len(),
+                self.n
+            )));
+        }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(LinearSolveError::NonFinite);
         }

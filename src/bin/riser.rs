@@ -56,6 +56,9 @@ enum Command {
         /// Times (s) at which shapes.csv records the shape; default: 8 over the last heave period.
         #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
         shape_times: Vec<f64>,
+        /// Steps a factorised Newton tangent may be reused for (0: a new one every step).
+        #[arg(long, value_name = "STEPS", default_value_t = 20)]
+        max_tangent_age: u32,
         /// Print one JSON summary instead of the text summary.
         #[arg(long)]
         json: bool,
@@ -214,6 +217,7 @@ fn run(
     ramp: f64,
     duration: f64,
     shape_times: Vec<f64>,
+    max_tangent_age: u32,
     json: bool,
     out: Option<PathBuf>,
 ) -> Result<(), String> {
@@ -228,6 +232,7 @@ fn run(
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
+    sim.integrator.options.max_tangent_age = max_tangent_age;
     let (amplitude, period) = heave.unwrap_or((0.0, 1.0));
     let motion = Heave { amplitude, period, until: heave_until, ramp };
     let motion_fn = move |t: f64| motion.at(t);
@@ -377,8 +382,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
-        Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, json, out } => {
-            run(&scene, &set, heave, heave_until, ramp, duration, shape_times, json, out)
+        Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out } => {
+            run(&scene, &set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
         }
         Command::Params => {
             for (n, u) in PARAMETER_NAMES {

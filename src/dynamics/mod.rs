@@ -132,6 +132,9 @@ pub struct State {
     /// unresolved stiff modes), m/s and 1/s.
     pub mean_vel: Vec<V3>,
     pub mean_slope_vel: Vec<V3>,
+    /// The same of the step before (the predictor extrapolates quadratically).
+    pub prev_mean_vel: Vec<V3>,
+    pub prev_mean_slope_vel: Vec<V3>,
     /// Hang-off motion at `time`.
     pub hang_off: HangOff,
     /// Work done on the line by the hang-off since t = 0, J.
@@ -169,6 +172,8 @@ impl State {
             director_vel: vec![M3::zeros(); nd],
             mean_vel: vec![V3::zeros(); n],
             mean_slope_vel: vec![V3::zeros(); n],
+            prev_mean_vel: vec![V3::zeros(); n],
+            prev_mean_slope_vel: vec![V3::zeros(); n],
             config,
             ..Default::default()
         }
@@ -229,6 +234,8 @@ impl State {
         }
         self.mean_vel.clone_from(&self.vel);
         self.mean_slope_vel.clone_from(&self.slope_vel);
+        self.prev_mean_vel.clone_from(&self.vel);
+        self.prev_mean_slope_vel.clone_from(&self.slope_vel);
     }
 
     /// True if every number in the state is finite.
@@ -256,6 +263,9 @@ pub struct DynamicOptions {
     pub max_halvings: u32,
     /// Kelvin–Voigt structural damping time η, s (0: energy-conserving).
     pub structural_damping: f64,
+    /// Steps a factorised tangent may be reused for (modified Newton; 0: a
+    /// new tangent at every step, 1 per step and on slow convergence).
+    pub max_tangent_age: u32,
 }
 
 impl Default for DynamicOptions {
@@ -266,6 +276,7 @@ impl Default for DynamicOptions {
             max_iterations: 25,
             max_halvings: 6,
             structural_damping: 0.0,
+            max_tangent_age: 20,
         }
     }
 }

@@ -61,6 +61,10 @@ pub struct Integrator {
     force_scale: f64,
     /// Receives one line per Newton iteration when set (the FMU's `logSolver`).
     pub solver_log: Option<SolverLog>,
+    /// Step size the factorised tangent belongs to (NaN: none).
+    factor_h: f64,
+    /// Steps taken since the tangent was factorised.
+    factor_age: u32,
 }
 
 /// Outcome of one successful call to [`Integrator::step`].
@@ -98,7 +102,25 @@ impl Integrator {
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
         };
-        Ok(Integrator { model, options, origin, buf, trial: State::default(), fixed, force_scale, solver_log: None })
+        Ok(Integrator {
+            model,
+            options,
+            origin,
+            buf,
+            trial: State::default(),
+            fixed,
+            force_scale,
+            solver_log: None,
+            factor_h: f64::NAN,
+            factor_age: 0,
+        })
+    }
+
+    /// Forgets the factorised tangent: the next step starts with a new one.
+    /// Call it where results must depend on the state alone (an FMU's
+    /// communication step, after a state was restored).
+    pub fn invalidate_tangent(&mut self) {
+        self.factor_h = f64::NAN;
     }
 
     /// Puts the hang-off of `state` on its prescribed motion at the state's time
@@ -132,7 +154,20 @@ impl Integrator {
         while state.time < t_end - 1e-12 * h {
             let hh = sub.min(t_end - state.time);
             let target = motion(state.time + hh);
-            match self.try_step(state, hh, target) {
+            // first the quadratic predictor; if Newton fails from it (it
+            // extrapolates unresolved oscillations too), the linear one at the
+            // same step, then halved steps
+            let first = if level == 0 {
+                self.try_step(state, hh, target, 2)
+            } else {
+                Err(DynamicsError::BadInput(String::new()))
+            };
+            let result = match first {
+                Ok(it) => Ok(it),
+                Err(DynamicsError::BadInput(m)) if !m.is_empty() => return Err(DynamicsError::BadInput(m)),
+                Err(_) => self.try_step(state, hh, target, 1),
+            };
+            match result {
                 Ok(it) => {
                     info.iterations += it;
                     info.substeps += 1;
@@ -156,7 +191,7 @@ impl Integrator {
 
     /// One step of size h without splitting: on success `state` becomes the
     /// new state; on failure it is untouched.
-    fn try_step(&mut self, state: &mut State, h: f64, target: HangOff) -> Result<usize, DynamicsError> {
+    fn try_step(&mut self, state: &mut State, h: f64, target: HangOff, order: u32) -> Result<usize, DynamicsError> {
         let model = &self.model;
         let rod = &model.rod;
         if !(target.displacement.iter().chain(target.velocity.iter()).all(|v| v.is_finite())) {
@@ -171,7 +206,7 @@ impl Integrator {
                     element::gauss_strains_with(&ElemDofs::gather(&state.config, e), rod.h, element::Shear::Material);
             }
         }
-        predict(model, state, trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
+        predict(model, state, trial, h, self.origin, target, order, &self.buf.twist_nodes, &mut self.buf.theta_step);
         let n = rod.n_dof();
         let extent = state.config.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
         // the residual cannot be evaluated more precisely than the axial force
@@ -183,40 +218,103 @@ impl Integrator {
         let mut last = f64::INFINITY;
         let mut first = f64::INFINITY;
         let mut last_res = f64::INFINITY;
+        // modified Newton: the factorised tangent is reused across iterations
+        // and steps; it is refreshed when it is older than max_tangent_age
+        // steps, when h changed, or when the residual contracts slowly
+        let mut refresh = self.factor_h != h || self.factor_age >= self.options.max_tangent_age;
+        // whether the last Newton correction used a tangent of its own iterate
+        let mut solved_fresh = false;
+        // far from the solution (a rough predictor: abrupt inputs, unresolved
+        // oscillations) modified Newton may wander to another root of the
+        // step equations: such steps take full Newton from the start
+        let mut full = false;
+        let mut tried_linear = false;
+        let mut at_start = true;
         for it in 0..=self.options.max_iterations {
-            assemble(model, state, &trial.config, h, target, self.options.structural_damping, &mut self.buf, true);
+            if refresh {
+                // assembling overwrites the factorised matrix
+                self.factor_h = f64::NAN;
+            }
+            assemble(model, state, &trial.config, h, target, self.options.structural_damping, &mut self.buf, refresh);
             let res = residual_norm(&self.buf.r, &self.fixed, rod.h);
             if let Some(log) = self.solver_log.as_mut() {
                 log(&format!(
-                    "t = {:.6} s, h = {h:.3e} s, Newton iteration {it}: residual {res:.3e} N (tolerance {tol:.3e} N)",
-                    state.time
+                    "t = {:.6} s, h = {h:.3e} s, Newton iteration {it}{}: residual {res:.3e} N (tolerance {tol:.3e} N)",
+                    state.time,
+                    if refresh { " (new tangent)" } else { "" }
                 ));
             }
             last = res;
-            if res <= tol || (res <= 10.0 * roundoff && res > 0.25 * last_res) {
+            // converged; or stagnating at round-off after a full Newton correction
+            if res <= tol || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
                 converged = true;
                 break;
             }
-            last_res = res;
-            if it == self.options.max_iterations || !res.is_finite() || res > 1e8 * first.min(1e300) {
+            if at_start && res > 0.1 * self.force_scale {
+                if order >= 2 && !tried_linear {
+                    // the quadratic predictor extrapolated an unresolved
+                    // oscillation: start again from the linear one
+                    tried_linear = true;
+                    predict(
+                        model,
+                        state,
+                        trial,
+                        h,
+                        self.origin,
+                        target,
+                        1,
+                        &self.buf.twist_nodes,
+                        &mut self.buf.theta_step,
+                    );
+                    continue;
+                }
+                full = true;
+                if !refresh {
+                    refresh = true;
+                    at_start = false;
+                    continue;
+                }
+            }
+            at_start = false;
+            if it == self.options.max_iterations || !res.is_finite() {
                 break;
             }
             if it == 0 {
                 first = res;
             }
+            if res > 1e8 * first {
+                break;
+            }
+            let slow = res > 0.5 * last_res;
+            last_res = res;
             iterations += 1;
             let buf = &mut self.buf;
             for &i in &self.fixed {
                 buf.r[i] = 0.0;
-                buf.sys.constrain(i);
             }
-            if let Err(error) = buf.sys.factorize() {
-                return Err(DynamicsError::Linear { time: state.time, step: h, error });
+            if refresh {
+                for &i in &self.fixed {
+                    buf.sys.constrain(i);
+                }
+                if let Err(error) = buf.sys.factorize() {
+                    self.factor_h = f64::NAN;
+                    return Err(DynamicsError::Linear { time: state.time, step: h, error });
+                }
+                self.factor_h = h;
+                self.factor_age = 0;
             }
+            solved_fresh = refresh;
+            // a stale tangent that contracts slowly is renewed at the next
+            // iterate; a fresh one that does means strong nonlinearity: full Newton
+            if slow && it > 0 {
+                full = true;
+            }
+            refresh = full;
             for i in 0..n {
                 buf.du[i] = -buf.r[i];
             }
             if let Err(error) = buf.sys.solve_in_place(&mut buf.du) {
+                self.factor_h = f64::NAN;
                 return Err(DynamicsError::Linear { time: state.time, step: h, error });
             }
             let mut theta_max: f64 = 0.0;
@@ -234,6 +332,8 @@ impl Integrator {
             }
         }
         if !converged {
+            // the next attempt (a smaller sub-step) starts from a new tangent
+            self.factor_h = f64::NAN;
             return Err(DynamicsError::NotConverged {
                 time: state.time,
                 step: h,
@@ -251,6 +351,8 @@ impl Integrator {
             trial.slope_vel[a] = buf.vpnew[a];
             let dx = cfg1.x[a] - cfg0.x[a];
             let dp = cfg1.xp[a] - cfg0.xp[a];
+            trial.prev_mean_vel[a] = state.mean_vel[a];
+            trial.prev_mean_slope_vel[a] = state.mean_slope_vel[a];
             trial.mean_vel[a] = dx / h;
             trial.mean_slope_vel[a] = dp / h;
             for c in 0..3 {
@@ -279,6 +381,7 @@ impl Integrator {
         trial.hang_off = target;
         trial.time = state.time + h;
         trial.steps += 1;
+        self.factor_age += 1;
         trial.newton_iterations += iterations as u64;
         std::mem::swap(state, trial);
         Ok(iterations)
@@ -298,7 +401,7 @@ impl Integrator {
                 element::gauss_strains_with(&ElemDofs::gather(&prev.config, e), model.rod.h, element::Shear::Material);
         }
         let mut trial = prev.clone();
-        predict(model, prev, &mut trial, h, self.origin, target, &self.buf.twist_nodes, &mut self.buf.theta_step);
+        predict(model, prev, &mut trial, h, self.origin, target, 2, &self.buf.twist_nodes, &mut self.buf.theta_step);
         trial.config
     }
 
@@ -366,9 +469,11 @@ fn apply_increment(rod: &Rod, prev: &RodConfig, cfg: &mut RodConfig, du: &[f64],
     }
 }
 
-/// Predictor: constant velocity for the centreline, the hang-off on its
-/// path, and directors carried along with the predicted tangent (no spin
-/// about d3 at a twist-held node).
+/// Predictor: quadratic (`order` 2) extrapolation of the centreline from the
+/// last two steps, r_{n+1} = r_n + h (2 v̄_n − v̄_{n−1}) (v̄ the steps' mean
+/// velocities), or linear (`order` 1), r_{n+1} = r_n + h v̄_n;
+/// the hang-off on its path, and directors carried along with the predicted
+/// tangent (no spin about d3 at a twist-held node).
 #[allow(clippy::too_many_arguments)]
 fn predict(
     model: &LineModel,
@@ -377,16 +482,18 @@ fn predict(
     h: f64,
     origin: V3,
     target: HangOff,
+    order: u32,
     twist: &[usize],
     theta: &mut [V3],
 ) {
+    let (c1, c0) = if order >= 2 { (2.0, 1.0) } else { (1.0, 0.0) };
     let rod = &model.rod;
     for a in 0..=rod.n_el {
         let fixed = (a == 0 && rod.ends[0].position_fixed) || (a == rod.n_el && rod.ends[1].position_fixed);
         if !fixed {
-            trial.config.x[a] = prev.config.x[a] + prev.mean_vel[a] * h;
+            trial.config.x[a] = prev.config.x[a] + (prev.mean_vel[a] * c1 - prev.prev_mean_vel[a] * c0) * h;
         }
-        trial.config.xp[a] = prev.config.xp[a] + prev.mean_slope_vel[a] * h;
+        trial.config.xp[a] = prev.config.xp[a] + (prev.mean_slope_vel[a] * c1 - prev.prev_mean_slope_vel[a] * c0) * h;
     }
     if rod.ends[0].position_fixed {
         trial.config.x[0] = origin + target.displacement;
