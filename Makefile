@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc
+.PHONY: all build demo test rust-test lint venv clean doc paper
 
 all: build
 
@@ -28,6 +28,12 @@ demo: build venv
 	$(BIN) statics catenary --out $(DEMO_DIR)
 	$(PY) scripts/plot_statics.py $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
 	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png"
+
+# The seed paper's runs (DESIGN.md list): docs/paper_runs.md, docs/paper_runs_damped.md
+# and docs/figures/paper_*.png (a few minutes).
+paper: build venv
+	$(PY) scripts/paper_runs.py
+	$(PY) scripts/paper_runs.py --damping 0.002
 
 lint:
 	$(CARGO) fmt --check
