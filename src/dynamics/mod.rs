@@ -116,7 +116,7 @@ pub struct HangOff {
 }
 
 /// The state of a run: everything needed to continue it (no scratch data).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct State {
     /// Time, s.
     pub time: f64,
@@ -158,6 +158,60 @@ pub struct State {
     pub newton_iterations: u64,
     /// Steps that had to be split into sub-steps.
     pub retries: u64,
+}
+
+impl Clone for State {
+    fn clone(&self) -> Self {
+        let mut s = State::default();
+        s.clone_from(self);
+        s
+    }
+
+    /// Field by field, reusing this state's buffers (a time step copies the
+    /// state into its trial state without allocating).
+    fn clone_from(&mut self, o: &Self) {
+        // destructured so that a new field cannot be forgotten
+        let State {
+            time,
+            config,
+            vel,
+            slope_vel,
+            director_vel,
+            mean_vel,
+            mean_slope_vel,
+            prev_mean_vel,
+            prev_mean_slope_vel,
+            hang_off,
+            work_top,
+            work_hydro,
+            dissipated,
+            work_anchor,
+            end_accel,
+            mid_reaction,
+            steps,
+            newton_iterations,
+            retries,
+        } = o;
+        self.time = *time;
+        self.config.clone_from(config);
+        self.vel.clone_from(vel);
+        self.slope_vel.clone_from(slope_vel);
+        self.director_vel.clone_from(director_vel);
+        self.mean_vel.clone_from(mean_vel);
+        self.mean_slope_vel.clone_from(mean_slope_vel);
+        self.prev_mean_vel.clone_from(prev_mean_vel);
+        self.prev_mean_slope_vel.clone_from(prev_mean_slope_vel);
+        self.hang_off = *hang_off;
+        self.work_top = *work_top;
+        self.work_hydro = *work_hydro;
+        self.dissipated = *dissipated;
+        self.work_anchor = *work_anchor;
+        self.end_accel = *end_accel;
+        self.mid_reaction = *mid_reaction;
+        self.steps = *steps;
+        self.newton_iterations = *newton_iterations;
+        self.retries = *retries;
+    }
 }
 
 impl State {

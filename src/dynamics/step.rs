@@ -221,7 +221,8 @@ impl Integrator {
         // modified Newton: the factorised tangent is reused across iterations
         // and steps; it is refreshed when it is older than max_tangent_age
         // steps, when h changed, or when the residual contracts slowly
-        let mut refresh = self.factor_h != h || self.factor_age >= self.options.max_tangent_age;
+        let same_h = (self.factor_h - h).abs() <= 1e-9 * h; // false for NaN
+        let mut refresh = !same_h || self.factor_age >= self.options.max_tangent_age;
         // whether the last Newton correction used a tangent of its own iterate
         let mut solved_fresh = false;
         // far from the solution (a rough predictor: abrupt inputs, unresolved

@@ -27,7 +27,7 @@ pub fn cayley(theta: &V3) -> M3 {
 }
 
 /// Discrete rod configuration (positions in m, slopes dimensionless).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct RodConfig {
     /// Centreline position r at the end nodes, m.
     pub x: Vec<V3>,
@@ -36,6 +36,19 @@ pub struct RodConfig {
     /// Director frames [d1 d2 d3] at the 2N+1 director nodes (node 2a = end node a,
     /// node 2e+1 = mid node of element e).
     pub d: Vec<M3>,
+}
+
+impl Clone for RodConfig {
+    fn clone(&self) -> Self {
+        RodConfig { x: self.x.clone(), xp: self.xp.clone(), d: self.d.clone() }
+    }
+
+    /// Reuses this configuration's buffers.
+    fn clone_from(&mut self, o: &Self) {
+        self.x.clone_from(&o.x);
+        self.xp.clone_from(&o.xp);
+        self.d.clone_from(&o.d);
+    }
 }
 
 impl RodConfig {
