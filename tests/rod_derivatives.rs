@@ -108,7 +108,13 @@ fn local_basis_tangent_at_a_twist_fixed_end_is_consistent() {
     let mut sys = rod.new_system().unwrap();
     rod.add_internal_force(&cfg, &mut r, Some(&mut sys));
     rod.to_local_basis(&cfg, &mut r, Some(&mut sys));
-    assert_eq!(r, residual(&cfg));
+    // the residual-only path (no strain operator formed) agrees with the
+    // residual assembled with the tangent to round-off
+    let r_only = residual(&cfg);
+    let scale = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (a, b) in r.iter().zip(&r_only) {
+        assert!((a - b).abs() <= 1e-13 * scale, "{a} vs {b}");
+    }
     let eps = 1e-6;
     let j0 = Rod::theta_dof(2 * rod.n_el);
     for j in j0 - 6..j0 + 3 {

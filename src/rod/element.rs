@@ -239,6 +239,59 @@ fn b_matrix(e: &ElemDofs, k: &GpKin, g0: Option<&V3>) -> SMatrix<f64, 6, NDOF_EL
     b
 }
 
+/// The internal force B̃ᵀ s without forming B̃ (the residual-only path of
+/// [`internal_force`]; the same products written out, ≈ 2× cheaper).
+fn residual_only(eb: &ElemDofs, stress: &[Strain; NGP], h: f64, shear: Shear<'_>, r: &mut ElVec) {
+    for g in 0..NGP {
+        let xi = GAUSS4.xi[g];
+        let wg = GAUSS4.w[g] * h;
+        let s = &stress[g];
+        let k = kin(eb, xi, h);
+        // shear/extension rows
+        let (fc, ft): (V3, [V3; 3]) = match shear {
+            Shear::Spatial(g0) => {
+                // ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×  ⇒  N'_k n and L_A n × w_A
+                let n = V3::new(s[0], s[1], s[2]);
+                let ft = std::array::from_fn(|a| n.cross(&(eb.d[a] * (V3::z() + g0[g]))) * k.l[a]);
+                (n, ft)
+            }
+            Shear::Material => {
+                // ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
+                let n = k.di[0] * s[0] + k.di[1] * s[1] + k.di[2] * s[2];
+                let ft = std::array::from_fn(|a| {
+                    let m: V3 = eb.d[a] * V3::new(s[0], s[1], s[2]);
+                    m.cross(&k.p) * k.l[a]
+                });
+                (n, ft)
+            }
+        };
+        for (kk, &off) in C_OFF.iter().enumerate() {
+            let f = fc * (k.nds[kk] * wg);
+            r[off] += f.x;
+            r[off + 1] += f.y;
+            r[off + 2] += f.z;
+        }
+        for (a, &off) in T_OFF.iter().enumerate() {
+            // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)]
+            let mut m = ft[a];
+            for &(i, j, kk) in &CYC {
+                let sk = 0.5 * s[3 + i];
+                if sk == 0.0 {
+                    continue;
+                }
+                let dja: V3 = eb.d[a].column(j).into();
+                let dka: V3 = eb.d[a].column(kk).into();
+                m += (dka.cross(&k.dpi[j]) - dja.cross(&k.dpi[kk])) * (sk * k.l[a])
+                    + (dja.cross(&k.di[kk]) - dka.cross(&k.di[j])) * (sk * k.dl[a]);
+            }
+            let m = m * wg;
+            r[off] += m.x;
+            r[off + 1] += m.y;
+            r[off + 2] += m.z;
+        }
+    }
+}
+
 /// How the internal force depends on the unknowns (docs/theory.md §3.2).
 ///
 /// The internal force is f = G(d_B)ᵀ Dε(q_B)ᵀ s with the stress s evaluated at
@@ -278,6 +331,10 @@ pub fn internal_force(
     kt: Option<&mut ElMat>,
 ) {
     let want_k = kt.is_some();
+    if !want_k {
+        residual_only(eb, stress, h, shear, r);
+        return;
+    }
     let mut k_acc = ElMat::zeros();
     // unreduced director gradient ∂W/∂d_iA of q_B, for the frame-rotation term
     let mut fdir = [[V3::zeros(); 3]; 3];
