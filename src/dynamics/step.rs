@@ -304,13 +304,15 @@ impl Integrator {
                 self.factor_h = h;
                 self.factor_age = 0;
             }
+            // the contraction just observed is that of the previous correction:
+            // slow after a stale tangent, renew it once; slow after a fresh
+            // one, the step is strongly nonlinear: full Newton from here
+            let prev_fresh = solved_fresh;
             solved_fresh = refresh;
-            // a stale tangent that contracts slowly is renewed at the next
-            // iterate; a fresh one that does means strong nonlinearity: full Newton
-            if slow && it > 0 {
+            if slow && it > 0 && prev_fresh {
                 full = true;
             }
-            refresh = full;
+            refresh = full || (slow && it > 0);
             for i in 0..n {
                 buf.du[i] = -buf.r[i];
             }
