@@ -178,3 +178,22 @@ fn lazy_wave_has_sag_and_hog_bends_and_matches_the_piecewise_catenary() {
     let (mins, maxs) = local_extrema(&rep);
     assert!(mins.iter().any(|&s| s > 30.0 && s < 50.0) && maxs.iter().any(|&s| (50.0..=80.0).contains(&s)));
 }
+
+#[test]
+fn both_scenes_converge_from_4_to_400_elements() {
+    // reference: 400 elements; coarse meshes within the stated bounds
+    for (scene, coarse_tol, tol) in [("catenary", 1e-3, 2e-4), ("lazy_wave", 3e-2, 2e-3)] {
+        let top = |n: usize| {
+            let s = Scene::builtin(scene).unwrap().with_overrides(&[format!("n_elements={n}")]).unwrap();
+            let (_, rep) = solve_scene(&s).unwrap_or_else(|e| panic!("{scene}, {n} elements: {e}"));
+            rep.top_tension
+        };
+        let reference = top(400);
+        for n in [4usize, 10, 20, 40, 60, 120, 240] {
+            let t = top(n);
+            let err = (t - reference).abs() / reference;
+            eprintln!("{scene} {n:3} elements: top tension {t:.1} N, {err:.2e} from 400 elements");
+            assert!(err <= if n == 4 { coarse_tol } else { tol }, "{scene}, {n} elements: {err:e}");
+        }
+    }
+}

@@ -236,8 +236,145 @@ impl<'a> StaticProblem<'a> {
     }
 }
 
-/// Finds the static equilibrium from `initial`.
+/// Finds the static equilibrium from `initial`: the homotopy continuation,
+/// and, if it stalls (a turning point of the homotopy path), pseudo-transient
+/// continuation from the same start.
 pub fn solve(
+    rod: &Rod,
+    loads: &StaticLoads,
+    initial: RodConfig,
+    opts: &StaticOptions,
+) -> Result<StaticSolution, StaticsError> {
+    match solve_homotopy(rod, loads, initial.clone(), opts) {
+        Ok(s) => Ok(s),
+        Err(StaticsError::NotConverged { iterations, .. }) => pseudo_transient(rod, loads, initial, opts, iterations)
+            .map_err(|e| match e {
+                StaticsError::NotConverged { iterations: i, residual, .. } => {
+                    StaticsError::NotConverged { iterations: i, residual, continuation: 1.0 }
+                }
+                other => other,
+            }),
+        Err(e) => Err(e),
+    }
+}
+
+/// Pseudo-transient continuation (docs/theory.md §4): a sequence of
+/// regularised problems R(q) + μ D (q − q_k) = 0, each started from the last,
+/// with μ decreased while Newton converges easily and increased when it does
+/// not; ends with Newton on R(q) = 0 alone. D is 1 on position and slope
+/// unknowns and h² on rotations. Robust where the homotopy path turns.
+fn pseudo_transient(
+    rod: &Rod,
+    loads: &StaticLoads,
+    initial: RodConfig,
+    opts: &StaticOptions,
+    prior_iterations: usize,
+) -> Result<StaticSolution, StaticsError> {
+    let prob = StaticProblem::new(rod, loads);
+    let n = rod.n_dof();
+    let mut sys = rod.new_system().map_err(StaticsError::Linear)?;
+    let mut r = vec![0.0; n];
+    let mut du = vec![0.0; n];
+    let mut acc = vec![0.0; n];
+    let mut cfg = initial;
+    let scale = prob.force_scale.max(f64::MIN_POSITIVE);
+    let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
+    let floor = 10.0 * rod.stiffness.axial.max(rod.stiffness.shear) * f64::EPSILON * extent / rod.h / scale;
+    let tolerance = opts.tolerance.max(floor);
+    let d_of = |i: usize| if i % 12 < 6 { 1.0 } else { rod.h * rod.h };
+    let mut mu = 10.0 * scale / rod.length;
+    let mu_max = 1e12 * mu;
+    let mut iterations = prior_iterations;
+    let mut steps = 0;
+    let mut last_res = f64::INFINITY;
+    for _ in 0..2000 {
+        let saved = cfg.clone();
+        acc.iter_mut().for_each(|v| *v = 0.0);
+        let mut ok = false;
+        let mut newton_its = 0;
+        for _ in 0..12 {
+            prob.residual(&cfg, &mut r, Some(&mut sys));
+            let res_plain = prob.relative_residual(&r, scale);
+            last_res = res_plain;
+            if mu == 0.0 && res_plain <= tolerance {
+                let reactions = prob.reactions(&r);
+                return Ok(StaticSolution {
+                    config: cfg,
+                    iterations,
+                    continuation_steps: steps,
+                    residual: res_plain,
+                    reactions,
+                });
+            }
+            for i in 0..n {
+                r[i] += mu * d_of(i) * acc[i];
+                sys.add(i, i, mu * d_of(i));
+            }
+            let res = prob.relative_residual(&r, scale);
+            if !res.is_finite() {
+                break;
+            }
+            if res <= tolerance.max(1e-8) && mu > 0.0 {
+                ok = true;
+                break;
+            }
+            iterations += 1;
+            newton_its += 1;
+            for &i in &prob.fixed {
+                r[i] = 0.0;
+                sys.constrain(i);
+            }
+            if sys.factorize().is_err() {
+                break;
+            }
+            for i in 0..n {
+                du[i] = -r[i];
+            }
+            if sys.solve_in_place(&mut du).is_err() {
+                break;
+            }
+            let mut theta_max: f64 = 0.0;
+            for j in 0..rod.n_director_nodes() {
+                let i = Rod::theta_dof(j);
+                theta_max = theta_max.max(V3::new(du[i], du[i + 1], du[i + 2]).norm());
+            }
+            if theta_max > 0.25 {
+                let f = 0.25 / theta_max;
+                du.iter_mut().for_each(|v| *v *= f);
+            }
+            rod.apply_increment(&mut cfg, &du);
+            for i in 0..n {
+                acc[i] += du[i];
+            }
+            if !cfg.is_finite() {
+                break;
+            }
+        }
+        if ok {
+            steps += 1;
+            // an easy pseudo-step: lighten the regularisation; below a
+            // threshold, drop it and finish with plain Newton
+            mu *= if newton_its <= 3 { 0.2 } else { 0.6 };
+            if mu < 1e-9 * scale / rod.length {
+                mu = 0.0;
+            }
+        } else {
+            cfg = saved;
+            if mu == 0.0 {
+                mu = 1e-6 * scale / rod.length;
+            } else {
+                mu *= 4.0;
+            }
+            if mu > mu_max {
+                break;
+            }
+        }
+    }
+    Err(StaticsError::NotConverged { iterations, residual: last_res, continuation: 1.0 })
+}
+
+/// The homotopy continuation R(q) − (1 − s) R(q₀) = 0, s: 0 → 1.
+fn solve_homotopy(
     rod: &Rod,
     loads: &StaticLoads,
     initial: RodConfig,
