@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test
 
 all: build
 
@@ -45,9 +45,19 @@ rust-test:
 doc:
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
 
-# Every test: formatting, lints, docs, Rust tests (release: the physics needs speed).
-test: lint doc rust-test
+# fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
+# build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
+fmu: build venv
+	$(PY) scripts/package_fmu.py
+
+# The FMU as fmpy drives it (tests/python).
+fmu-test: fmu
+	$(PY) -m pytest -q tests/python
+
+# Every test: formatting, lints, docs, Rust tests (release: the physics needs
+# speed), then the packaged FMU through fmpy.
+test: lint doc rust-test fmu-test
 
 clean:
 	$(CARGO) clean
-	rm -rf out $(VENV)
+	rm -rf out $(VENV) fmu/riser.fmu

@@ -12,6 +12,7 @@ pub use error::RiserError;
 
 pub mod dynamics;
 pub mod error;
+pub mod fmi;
 pub mod hydro;
 pub mod linsolve;
 pub mod rod;

@@ -68,6 +68,8 @@ enum Command {
     },
     /// List the parameter names accepted by --set (the FMU's parameters).
     Params,
+    /// Print the FMU's modelDescription.xml (generated from modelDescription/variables.csv).
+    ModelDescription,
     /// Print a scene file (built-in or path, after --set overrides) as TOML.
     Scene {
         scene: String,
@@ -384,6 +386,10 @@ fn main() -> ExitCode {
         Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
         Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out } => {
             run(&scene, &set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
+        }
+        Command::ModelDescription => {
+            print!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
+            Ok(())
         }
         Command::Params => {
             for (n, u) in PARAMETER_NAMES {

@@ -10,6 +10,7 @@
 pub mod mass;
 pub mod outputs;
 pub mod run;
+pub mod serialize;
 mod step;
 
 pub use outputs::Outputs;

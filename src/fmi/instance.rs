@@ -1,0 +1,691 @@
+//! The safe FMU instance behind the C shims: parameters, inputs, the FMI 2.0
+//! Co-Simulation state machine (one table, checked in one place), the run,
+//! saved states. Nothing here is `unsafe`.
+
+use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
+use crate::dynamics::run::Simulation;
+use crate::dynamics::serialize::fnv1a;
+use crate::dynamics::{HangOff, Outputs, State};
+use crate::rod::kinematics::V3;
+use crate::scene::Scene;
+use std::path::PathBuf;
+
+/// fmi2Status.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[repr(i32)]
+pub enum Status {
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
+}
+
+/// States of the FMI 2.0 Co-Simulation state machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+}
+
+/// The operations whose allowed states the table lists.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Op {
+    SetDebugLogging,
+    SetupExperiment,
+    EnterInitializationMode,
+    ExitInitializationMode,
+    Terminate,
+    Reset,
+    Get,
+    SetParameter,
+    SetInput,
+    GetFmuState,
+    SetFmuState,
+    DoStep,
+    GetStatus,
+}
+
+use Mode::*;
+
+/// The state machine: in which states each operation is allowed (FMI 2.0
+/// standard, section 4.2.4; as modelica/Reference-FMUs checks it).
+pub fn allowed(op: Op) -> &'static [Mode] {
+    match op {
+        Op::SetDebugLogging => &[Instantiated, InitializationMode, StepComplete, StepFailed, Terminated, Error],
+        Op::SetupExperiment | Op::EnterInitializationMode => &[Instantiated],
+        Op::ExitInitializationMode => &[InitializationMode],
+        Op::Terminate => &[StepComplete, StepFailed],
+        Op::Reset => &[Instantiated, InitializationMode, StepComplete, StepFailed, Terminated, Error],
+        Op::Get => &[InitializationMode, StepComplete, StepFailed, Terminated, Error],
+        Op::SetParameter => &[Instantiated, InitializationMode],
+        Op::SetInput => &[Instantiated, InitializationMode, StepComplete],
+        Op::GetFmuState => &[StepComplete, StepFailed, Terminated],
+        Op::SetFmuState => &[StepComplete, StepFailed, Terminated, Error],
+        Op::DoStep => &[StepComplete],
+        Op::GetStatus => &[StepComplete, StepFailed, Terminated],
+    }
+}
+
+/// Log categories (modelDescription.xml's LogCategories).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Category {
+    Events,
+    Warning,
+    Discard,
+    Error,
+    Solver,
+}
+
+impl Category {
+    pub fn name(self) -> &'static str {
+        match self {
+            Category::Events => "logEvents",
+            Category::Warning => "logStatusWarning",
+            Category::Discard => "logStatusDiscard",
+            Category::Error => "logStatusError",
+            Category::Solver => "logSolver",
+        }
+    }
+}
+
+/// Where messages go (the C logger callback, wrapped by the shims).
+pub type Logger = Box<dyn Fn(Status, &str, &str) + Send>;
+
+/// A parameter's value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+    String(String),
+}
+
+/// A saved FMU state (fmi2GetFMUstate).
+#[derive(Debug, Clone)]
+pub struct Saved {
+    state: State,
+    inputs: [f64; 6],
+    step_inputs: [f64; 6],
+    mode: Mode,
+    params_hash: u64,
+}
+
+/// Input order: heave, surge, sway, heave_velocity, surge_velocity, sway_velocity.
+const INPUT_NAMES: [&str; 6] = ["heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_velocity"];
+
+/// One FMU instance.
+pub struct Instance {
+    pub name: String,
+    resources: Option<PathBuf>,
+    logger: Logger,
+    logging_on: bool,
+    categories: [bool; 5],
+    pub mode: Mode,
+    params: Vec<Option<(Value, bool)>>,
+    inputs: [f64; 6],
+    /// Inputs at the last communication point (the start of the next step).
+    step_inputs: [f64; 6],
+    sim: Option<Simulation>,
+    outputs: Option<Outputs>,
+    start_time: f64,
+    last_successful_time: f64,
+    last_status: Status,
+}
+
+fn parse_start(v: &Variable) -> Value {
+    match v.kind {
+        Kind::Real => Value::Real(v.start.parse().unwrap_or(0.0)),
+        Kind::Integer => Value::Integer(v.start.parse().unwrap_or(0)),
+        Kind::Boolean => Value::Boolean(v.start == "true"),
+        Kind::String => Value::String(v.start.to_string()),
+    }
+}
+
+impl Instance {
+    /// fmi2Instantiate. `resources` is the resources directory (decoded from
+    /// the resource location), if any.
+    pub fn new(
+        name: &str,
+        guid: &str,
+        resources: Option<PathBuf>,
+        logger: Logger,
+        logging_on: bool,
+    ) -> Result<Self, String> {
+        if guid != GUID {
+            return Err(format!(
+                "GUID {guid} does not match this binary's {GUID} (modelDescription.xml of another build)"
+            ));
+        }
+        let mut inst = Instance {
+            name: name.to_string(),
+            resources,
+            logger,
+            logging_on,
+            categories: [true; 5],
+            mode: Instantiated,
+            params: Vec::new(),
+            inputs: [0.0; 6],
+            step_inputs: [0.0; 6],
+            sim: None,
+            outputs: None,
+            start_time: 0.0,
+            last_successful_time: 0.0,
+            last_status: Status::Ok,
+        };
+        inst.reset_values();
+        Ok(inst)
+    }
+
+    fn reset_values(&mut self) {
+        self.params = VARIABLES
+            .iter()
+            .map(|v| if v.causality == Causality::Parameter { Some((parse_start(v), false)) } else { None })
+            .collect();
+        self.inputs = [0.0; 6];
+        self.step_inputs = [0.0; 6];
+        self.sim = None;
+        self.outputs = None;
+        self.start_time = 0.0;
+        self.last_successful_time = 0.0;
+        self.last_status = Status::Ok;
+    }
+
+    /// Sends a message to the logger if its category is enabled.
+    pub fn log(&self, status: Status, cat: Category, msg: &str) {
+        let idx = cat as usize;
+        let always = matches!(status, Status::Error | Status::Fatal);
+        if always || (self.logging_on && self.categories[idx]) {
+            (self.logger)(status, cat.name(), msg);
+        }
+    }
+
+    /// An error: logged, the instance goes to the Error state.
+    pub fn fail(&mut self, msg: &str) -> Status {
+        self.log(Status::Error, Category::Error, msg);
+        self.mode = Error;
+        Status::Error
+    }
+
+    /// Checks the state machine for `op`; on a violation logs and errs.
+    pub fn check(&mut self, op: Op, fname: &str) -> Result<(), Status> {
+        if allowed(op).contains(&self.mode) {
+            Ok(())
+        } else {
+            let m = self.mode;
+            Err(self.fail(&format!("{fname} is not allowed in state {m:?}")))
+        }
+    }
+
+    /// fmi2SetDebugLogging.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
+        self.logging_on = on;
+        if categories.is_empty() {
+            self.categories = [true; 5];
+            return Status::Ok;
+        }
+        self.categories = [false; 5];
+        for c in categories {
+            let idx = match c.as_str() {
+                "logEvents" => 0,
+                "logStatusWarning" => 1,
+                "logStatusDiscard" => 2,
+                "logStatusError" => 3,
+                "logSolver" => 4,
+                "logAll" => {
+                    self.categories = [true; 5];
+                    continue;
+                }
+                other => {
+                    self.log(Status::Warning, Category::Warning, &format!("unknown log category '{other}'"));
+                    continue;
+                }
+            };
+            self.categories[idx] = true;
+        }
+        Status::Ok
+    }
+
+    /// fmi2SetupExperiment.
+    pub fn setup_experiment(&mut self, start_time: f64) -> Status {
+        if !start_time.is_finite() {
+            return self.fail(&format!("start time {start_time} is not finite"));
+        }
+        self.start_time = start_time;
+        Status::Ok
+    }
+
+    /// The scene with the parameters the master set.
+    fn build_scene(&self) -> Result<Scene, String> {
+        let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
+            Some((Value::String(s), _)) => s.clone(),
+            _ => "catenary".into(),
+        };
+        let mut scene = match Scene::builtin(&name) {
+            Some(s) => s,
+            None => {
+                let p = PathBuf::from(&name);
+                let path = if p.is_absolute() {
+                    p
+                } else if let Some(r) = &self.resources {
+                    let in_res = r.join(&p);
+                    if in_res.exists() { in_res } else { p }
+                } else {
+                    p
+                };
+                Scene::load(path.to_str().unwrap_or(&name)).map_err(|e| e.to_string())?
+            }
+        };
+        let mut sets = Vec::new();
+        for (i, p) in self.params.iter().enumerate() {
+            if let Some((v, true)) = p {
+                let n = VARIABLES[i].name;
+                if n == "scene" {
+                    continue;
+                }
+                let text = match v {
+                    Value::Real(x) => format!("{x}"),
+                    Value::Integer(x) => format!("{x}"),
+                    Value::Boolean(b) => format!("{b}"),
+                    Value::String(s) => s.clone(),
+                };
+                sets.push(format!("{n}={text}"));
+            }
+        }
+        scene = scene.with_overrides(&sets).map_err(|e| e.to_string())?;
+        Ok(scene)
+    }
+
+    /// fmi2EnterInitializationMode.
+    pub fn enter_initialization_mode(&mut self) -> Status {
+        self.mode = InitializationMode;
+        Status::Ok
+    }
+
+    /// fmi2ExitInitializationMode: the static state; outputs valid from here.
+    pub fn exit_initialization_mode(&mut self) -> Status {
+        let scene = match self.build_scene() {
+            Ok(s) => s,
+            Err(e) => return self.fail(&e),
+        };
+        let mut sim = match Simulation::from_scene(&scene) {
+            Ok(s) => s,
+            Err(e) => return self.fail(&format!("initialisation failed: {e}")),
+        };
+        sim.state.time = self.start_time;
+        let m = self.motion_at(&self.inputs, &self.inputs, self.start_time, 1.0)(self.start_time);
+        if m.displacement.norm() > 0.0 {
+            self.log(
+                Status::Warning,
+                Category::Warning,
+                "the hang-off inputs are not zero at the start: the line starts from the static state with its \
+                 hang-off moved there",
+            );
+        }
+        sim.start(m);
+        sim.integrator.invalidate_tangent();
+        self.step_inputs = self.inputs;
+        self.outputs = Some(sim.outputs());
+        self.log(
+            Status::Ok,
+            Category::Events,
+            &format!(
+                "initialised scene '{}' ({} elements): static top tension {:.3} kN",
+                scene.name,
+                scene.analysis.n_elements,
+                sim.statics.top_tension / 1e3
+            ),
+        );
+        self.last_successful_time = self.start_time;
+        self.sim = Some(sim);
+        self.mode = StepComplete;
+        Status::Ok
+    }
+
+    /// The hang-off motion over a communication step [t0, t0 + h], inputs
+    /// interpolated linearly; the velocity follows from the displacement
+    /// unless the master gives velocity inputs.
+    fn motion_at(&self, u0: &[f64; 6], u1: &[f64; 6], t0: f64, h: f64) -> impl Fn(f64) -> HangOff + use<> {
+        let (u0, u1) = (*u0, *u1);
+        let given_velocity = u0[3..].iter().chain(u1[3..].iter()).any(|v| *v != 0.0);
+        move |t: f64| {
+            let a = ((t - t0) / h).clamp(0.0, 1.0);
+            let lerp = |i: usize| u0[i] + a * (u1[i] - u0[i]);
+            // heave → z, surge → x, sway → y
+            let displacement = V3::new(lerp(1), lerp(2), lerp(0));
+            let velocity = if given_velocity {
+                V3::new(lerp(4), lerp(5), lerp(3))
+            } else {
+                V3::new(u1[1] - u0[1], u1[2] - u0[2], u1[0] - u0[0]) / h
+            };
+            HangOff { displacement, velocity }
+        }
+    }
+
+    /// fmi2DoStep.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Status {
+        let Some(sim) = self.sim.as_ref() else {
+            return self.fail("fmi2DoStep before initialisation");
+        };
+        let now = sim.state.time;
+        if !(h.is_finite() && h > 0.0) {
+            return self.fail(&format!("communication step size must be positive and finite, got {h}"));
+        }
+        if !t.is_finite() || (t - now).abs() > 1e-9 * now.abs().max(1.0) {
+            return self.fail(&format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
+        }
+        let motion = self.motion_at(&self.step_inputs, &self.inputs, now, h);
+        let t_end = now + h;
+        let solver_log = self.logging_on && self.categories[Category::Solver as usize];
+        let sim = self.sim.as_mut().unwrap();
+        if solver_log {
+            sim.integrator.solver_log = None; // messages are routed below via the status
+        }
+        // every communication step starts from a new tangent, so that results
+        // depend on the state alone (a restored state continues bit for bit)
+        sim.integrator.invalidate_tangent();
+        let dt = sim.integrator.options.time_step;
+        let n = ((h / dt) - 1e-9).ceil().max(1.0) as u64;
+        let mut result = Ok(());
+        for k in 1..=n {
+            let target = if k == n { t_end } else { now + k as f64 * dt };
+            if let Err(e) = sim.advance_to(target, &motion) {
+                result = Err(e);
+                break;
+            }
+        }
+        let reached = sim.state.time;
+        self.outputs = Some(sim.outputs());
+        match result {
+            Ok(()) => {
+                self.step_inputs = self.inputs;
+                self.last_successful_time = t_end;
+                self.last_status = Status::Ok;
+                Status::Ok
+            }
+            Err(e) => {
+                self.last_successful_time = reached;
+                self.last_status = Status::Discard;
+                self.mode = StepFailed;
+                self.log(
+                    Status::Discard,
+                    Category::Discard,
+                    &format!("step from t = {now} s to {t_end} s discarded at t = {reached} s: {e}"),
+                );
+                Status::Discard
+            }
+        }
+    }
+
+    /// fmi2Terminate.
+    pub fn terminate(&mut self) -> Status {
+        self.mode = Terminated;
+        Status::Ok
+    }
+
+    /// fmi2Reset: back to the just-instantiated state.
+    pub fn reset(&mut self) -> Status {
+        self.reset_values();
+        self.mode = Instantiated;
+        Status::Ok
+    }
+
+    fn var(&mut self, vr: u32, kind: Kind) -> Result<&'static Variable, Status> {
+        match variable(vr) {
+            Some(v) if v.kind == kind => Ok(v),
+            Some(v) => Err(self.fail(&format!("value reference {vr} ('{}') is not of type {kind:?}", v.name))),
+            None => Err(self.fail(&format!("unknown value reference {vr}"))),
+        }
+    }
+
+    fn output_value(&self, name: &str) -> f64 {
+        let Some(o) = &self.outputs else { return 0.0 };
+        match name {
+            "top_tension" => o.top_tension,
+            "top_force_x" => o.top_force.x,
+            "top_force_y" => o.top_force.y,
+            "top_force_z" => o.top_force.z,
+            "bottom_tension" => o.bottom_tension,
+            "min_tension" => o.min_tension,
+            "total_energy" => o.total_energy,
+            "kinetic_energy" => o.kinetic_energy,
+            "strain_energy" => o.strain_energy,
+            "potential_energy" => o.potential_energy,
+            "work_top" => o.work_top,
+            "work_hydro" => o.work_hydro,
+            "dissipated_energy" => o.dissipated_energy,
+            _ => {
+                // shape[k].c
+                let inner = name.strip_prefix("shape[").unwrap_or("");
+                let (k, c) = inner.split_once("].").unwrap_or(("", ""));
+                let k: usize = k.parse().unwrap_or(0);
+                let p = o.shape[k.min(o.shape.len() - 1)];
+                match c {
+                    "x" => p.x,
+                    "y" => p.y,
+                    _ => p.z,
+                }
+            }
+        }
+    }
+
+    /// fmi2GetReal for one value reference.
+    pub fn get_real(&mut self, vr: u32) -> Result<f64, Status> {
+        let v = self.var(vr, Kind::Real)?;
+        Ok(match v.causality {
+            Causality::Input => self.inputs[INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0)],
+            Causality::Output => {
+                if self.outputs.is_none() && self.mode == InitializationMode {
+                    // outputs requested during initialisation: the static state now
+                    let st = self.exit_initialization_mode();
+                    if st != Status::Ok {
+                        return Err(st);
+                    }
+                    self.mode = InitializationMode;
+                }
+                self.output_value(v.name)
+            }
+            Causality::Parameter => match &self.params[vr as usize] {
+                Some((Value::Real(x), _)) => *x,
+                _ => 0.0,
+            },
+        })
+    }
+
+    /// fmi2GetInteger / Boolean / String for one value reference.
+    pub fn get_param(&mut self, vr: u32, kind: Kind) -> Result<Value, Status> {
+        self.var(vr, kind)?;
+        match &self.params[vr as usize] {
+            Some((v, _)) => Ok(v.clone()),
+            None => Err(self.fail(&format!("value reference {vr} has no value"))),
+        }
+    }
+
+    /// fmi2SetReal for one value reference.
+    pub fn set_real(&mut self, vr: u32, x: f64) -> Status {
+        let v = match self.var(vr, Kind::Real) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if !x.is_finite() {
+            return self.fail(&format!("{} = {x} is not finite", v.name));
+        }
+        match v.causality {
+            Causality::Input => {
+                if let Err(s) = self.check(Op::SetInput, "fmi2SetReal") {
+                    return s;
+                }
+                let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
+                self.inputs[i] = x;
+                Status::Ok
+            }
+            Causality::Parameter => self.set_param(vr, Value::Real(x)),
+            Causality::Output => self.fail(&format!("{} is an output and cannot be set", v.name)),
+        }
+    }
+
+    /// fmi2SetInteger / Boolean / String for one parameter.
+    pub fn set_param(&mut self, vr: u32, value: Value) -> Status {
+        if let Err(s) = self.check(Op::SetParameter, "fmi2Set (parameter)") {
+            return s;
+        }
+        let kind = match value {
+            Value::Real(_) => Kind::Real,
+            Value::Integer(_) => Kind::Integer,
+            Value::Boolean(_) => Kind::Boolean,
+            Value::String(_) => Kind::String,
+        };
+        let v = match self.var(vr, kind) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if v.causality != Causality::Parameter {
+            return self.fail(&format!("{} is not a parameter", v.name));
+        }
+        // check the value now, against a scene with this one override
+        if v.name != "scene" {
+            let text = match &value {
+                Value::Real(x) => format!("{x}"),
+                Value::Integer(x) => format!("{x}"),
+                Value::Boolean(b) => format!("{b}"),
+                Value::String(s) => s.clone(),
+            };
+            let mut probe = Scene::builtin("catenary").expect("built-in scene");
+            if let Err(e) = probe.set(v.name, &text) {
+                return self.fail(&e.to_string());
+            }
+            // range errors of this field alone (the whole scene is checked again
+            // at fmi2ExitInitializationMode, with every parameter set)
+            if let Err(crate::scene::SceneError::Invalid(errs)) = probe.validate() {
+                let dotted = v.name.replacen('_', ".", 1);
+                let own: Vec<String> = errs
+                    .iter()
+                    .filter(|e| e.field.ends_with(&format!(".{}", v.name)) || e.field.ends_with(&dotted))
+                    .map(|e| e.to_string())
+                    .collect();
+                if !own.is_empty() {
+                    return self.fail(&format!("{} = {text}: {}", v.name, own.join("; ")));
+                }
+            }
+        }
+        self.params[vr as usize] = Some((value, true));
+        self.outputs = None;
+        Status::Ok
+    }
+
+    /// fmi2GetRealStatus(fmi2LastSuccessfulTime).
+    pub fn last_successful_time(&self) -> f64 {
+        self.last_successful_time
+    }
+
+    /// fmi2GetStatus(fmi2DoStepStatus).
+    pub fn last_status(&self) -> Status {
+        self.last_status
+    }
+
+    fn params_hash(&self) -> u64 {
+        fnv1a(format!("{:?}", self.params).as_bytes())
+    }
+
+    /// fmi2GetFMUstate.
+    pub fn save(&self) -> Option<Saved> {
+        let sim = self.sim.as_ref()?;
+        Some(Saved {
+            state: sim.state.clone(),
+            inputs: self.inputs,
+            step_inputs: self.step_inputs,
+            mode: self.mode,
+            params_hash: self.params_hash(),
+        })
+    }
+
+    /// fmi2SetFMUstate.
+    pub fn restore(&mut self, s: &Saved) -> Status {
+        if s.params_hash != self.params_hash() {
+            return self.fail("the FMU state was saved with other parameters");
+        }
+        let Some(sim) = self.sim.as_mut() else {
+            return self.fail("fmi2SetFMUstate before initialisation");
+        };
+        if s.state.config.x.len() != sim.state.config.x.len() {
+            return self.fail("the FMU state has another mesh");
+        }
+        sim.state.clone_from(&s.state);
+        sim.integrator.invalidate_tangent();
+        self.inputs = s.inputs;
+        self.step_inputs = s.step_inputs;
+        self.mode = if s.mode == Error { StepComplete } else { s.mode };
+        self.last_successful_time = s.state.time;
+        self.outputs = Some(sim.outputs());
+        Status::Ok
+    }
+
+    /// fmi2SerializeFMUstate's bytes.
+    pub fn serialize(&self, s: &Saved) -> Vec<u8> {
+        let mut extra = Vec::with_capacity(15);
+        extra.extend_from_slice(&s.inputs);
+        extra.extend_from_slice(&s.step_inputs);
+        extra.push(match s.mode {
+            StepFailed => 1.0,
+            Terminated => 2.0,
+            _ => 0.0,
+        });
+        // the hash as two exact integers (every number in the format is finite)
+        extra.push((s.params_hash >> 32) as f64);
+        extra.push((s.params_hash & 0xffff_ffff) as f64);
+        let mut out = Vec::new();
+        s.state.write_bytes(&extra, &mut out);
+        out
+    }
+
+    /// fmi2DeSerializeFMUstate.
+    pub fn deserialize(&mut self, bytes: &[u8]) -> Result<Saved, Status> {
+        let Some(sim) = self.sim.as_ref() else {
+            return Err(self.fail("fmi2DeSerializeFMUstate before initialisation"));
+        };
+        let nodes = sim.state.config.x.len();
+        match State::read_bytes(bytes, nodes) {
+            Ok((state, extra)) if extra.len() == 15 => {
+                let mut inputs = [0.0; 6];
+                let mut step_inputs = [0.0; 6];
+                inputs.copy_from_slice(&extra[0..6]);
+                step_inputs.copy_from_slice(&extra[6..12]);
+                let mode = match extra[12] as i32 {
+                    1 => StepFailed,
+                    2 => Terminated,
+                    _ => StepComplete,
+                };
+                let params_hash = ((extra[13] as u64) << 32) | (extra[14] as u64 & 0xffff_ffff);
+                Ok(Saved { state, inputs, step_inputs, mode, params_hash })
+            }
+            Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
+            Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quiet() -> Logger {
+        Box::new(|_, _, _| {})
+    }
+
+    #[test]
+    fn the_state_machine_rejects_calls_out_of_order() {
+        let mut i = Instance::new("t", GUID, None, quiet(), false).unwrap();
+        assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+        assert_eq!(i.mode, Mode::Error);
+        i.reset();
+        assert!(i.check(Op::SetupExperiment, "fmi2SetupExperiment").is_ok());
+        assert_eq!(i.enter_initialization_mode(), Status::Ok);
+        assert!(i.check(Op::ExitInitializationMode, "x").is_ok());
+        assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+        assert!(Instance::new("t", "{wrong}", None, quiet(), false).is_err());
+    }
+}

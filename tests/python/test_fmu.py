@@ -1,0 +1,168 @@
+"""fmu/riser.fmu as fmpy drives it (issue 4's evidence): validation, agreement
+with `riser run`, the energy balance from the outputs, bit-for-bit state save
+and restore (also across processes), instances in one process and in threads,
+bad input."""
+
+import json
+import subprocess
+import sys
+import threading
+
+import numpy as np
+import pytest
+from fmpy import read_model_description, simulate_fmu
+from fmpy.fmi2 import FMU2Slave
+from fmpy.validation import validate_fmu
+
+OUT = ["top_tension", "top_force_x", "top_force_z", "min_tension", "total_energy", "work_top", "work_hydro",
+       "dissipated_energy", "shape[10].x", "shape[10].z"]
+
+
+def heave_signal(duration, period=20.0, ramp=20.0, dt=0.05, amplitude=2.5):
+    t = np.arange(0.0, duration + 1e-9, dt)
+    r = np.where(t < ramp, 0.5 * (1.0 - np.cos(np.pi * t / ramp)), 1.0)
+    return np.array(list(zip(t, amplitude * r * np.sin(2 * np.pi * t / period))),
+                    dtype=[("time", np.float64), ("heave", np.float64)])
+
+
+def test_fmpy_validate_reports_no_problems(fmu_path):
+    assert validate_fmu(fmu_path) == []
+    md = read_model_description(fmu_path)
+    names = {v.name for v in md.modelVariables}
+    for n in ["heave", "surge", "sway", "heave_velocity", "top_tension", "top_force_x", "bottom_tension",
+              "min_tension", "total_energy", "kinetic_energy", "strain_energy", "potential_energy", "work_top",
+              "work_hydro", "shape[0].x", "shape[20].z", "scene", "model", "n_elements", "time_step",
+              "newton_tolerance", "static_current", "length", "anchor_x", "current_top", "buoyancy_end"]:
+        assert n in names, n
+
+
+def test_simulate_fmu_agrees_with_riser_run_and_closes_the_energy_balance(fmu_path, riser_bin):
+    duration = 100.0
+    res = simulate_fmu(fmu_path, stop_time=duration, output_interval=0.05, input=heave_signal(duration), output=OUT)
+    tt = res["top_tension"]
+    cli = json.loads(subprocess.run(
+        [riser_bin, "run", "catenary", "--heave", "2.5,20", "--ramp", "20", "--duration", str(duration), "--json"],
+        check=True, capture_output=True, text=True).stdout)
+    for k, v in [("min", tt.min()), ("mean", tt.mean()), ("max", tt.max())]:
+        ref = cli["top_tension"][k]
+        assert abs(v - ref) <= 1e-3 * ref, (k, v, ref)
+    balance = res["total_energy"] - res["total_energy"][0] - res["work_top"] - res["work_hydro"] \
+        + res["dissipated_energy"]
+    exchanged = np.max(np.abs(res["work_top"]) + np.abs(res["work_hydro"]))
+    assert np.max(np.abs(balance)) <= 1e-6 * exchanged
+
+
+def _slave(fmu_path, unzipped, name="riser", scene=None):
+    md = read_model_description(fmu_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName=name)
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    if scene is not None:
+        s.setString([vr["scene"]], [scene])
+    s.exitInitializationMode()
+    return s, vr
+
+
+def _run(s, vr, t0, t1, h=0.1):
+    rows = []
+    t = t0
+    while t < t1 - 1e-9:
+        s.setReal([vr["heave"]], [2.5 * np.sin(2 * np.pi * (t + h) / 20.0)])
+        s.doStep(t, h)
+        t += h
+        rows.append(s.getReal([vr[n] for n in OUT]))
+    return np.array(rows)
+
+
+def test_state_save_restore_is_bit_for_bit_also_in_a_fresh_process(fmu_path, unzipped, tmp_path):
+    s, vr = _slave(fmu_path, unzipped)
+    _run(s, vr, 0.0, 20.0)
+    state = s.getFMUstate()
+    first = _run(s, vr, 20.0, 40.0)
+    s.setFMUstate(state)
+    second = _run(s, vr, 20.0, 40.0)
+    assert np.array_equal(first, second)
+    blob = s.serializeFMUstate(state)
+    s.freeFMUstate(state)
+    s.terminate()
+    s.freeInstance()
+    (tmp_path / "state.bin").write_bytes(bytes(blob))
+    np.save(tmp_path / "expected.npy", first)
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    code = f"""
+import sys, numpy as np
+sys.path.insert(0, {str(root / 'tests' / 'python')!r})
+from test_fmu import _slave, _run
+s, vr = _slave({str(fmu_path)!r}, {str(unzipped)!r})
+st = s.deSerializeFMUstate(open({str(tmp_path / 'state.bin')!r}, 'rb').read())
+s.setFMUstate(st)
+rows = _run(s, vr, 20.0, 40.0)
+assert np.array_equal(rows, np.load({str(tmp_path / 'expected.npy')!r})), 'differs'
+print('identical')
+"""
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert p.returncode == 0 and "identical" in p.stdout, p.stderr
+
+
+def test_instances_are_independent_in_one_process_and_across_threads(fmu_path, unzipped):
+    # alone
+    ref = {}
+    for scene in ["catenary", "lazy_wave"]:
+        s, vr = _slave(fmu_path, unzipped, scene=scene)
+        ref[scene] = _run(s, vr, 0.0, 5.0)
+        s.terminate()
+        s.freeInstance()
+    # interleaved in one process
+    a, vra = _slave(fmu_path, unzipped, "a", "catenary")
+    b, vrb = _slave(fmu_path, unzipped, "b", "lazy_wave")
+    ra, rb = [], []
+    t = 0.0
+    for _ in range(50):
+        ra.append(_run(a, vra, t, t + 0.1)[-1])
+        rb.append(_run(b, vrb, t, t + 0.1)[-1])
+        t += 0.1
+    assert np.array_equal(np.array(ra), ref["catenary"])
+    assert np.array_equal(np.array(rb), ref["lazy_wave"])
+    # four threads, four instances, at the same time
+    scenes = ["catenary", "lazy_wave", "catenary", "lazy_wave"]
+    slaves = [_slave(fmu_path, unzipped, f"t{k}", sc) for k, sc in enumerate(scenes)]
+    results = [None] * 4
+
+    def work(k):
+        s, vr = slaves[k]
+        results[k] = _run(s, vr, 0.0, 5.0)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    for k, sc in enumerate(scenes):
+        assert np.array_equal(results[k], ref[sc])
+
+
+def test_bad_input_is_an_error_not_a_crash(fmu_path, unzipped):
+    from fmpy.fmi1 import FMICallException
+
+    s, vr = _slave(fmu_path, unzipped)
+    with pytest.raises(FMICallException):
+        s.setReal([vr["heave"]], [float("nan")])
+    s.reset()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    with pytest.raises(FMICallException):
+        s.setReal([vr["length"]], [-5.0])
+    s.reset()
+    with pytest.raises(FMICallException):
+        s.getReal([100000])
+    s.reset()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    with pytest.raises(FMICallException):
+        s.doStep(0.0, -1.0)
+    s.freeInstance()
