@@ -21,13 +21,15 @@ $(VENV)/.installed: requirements.txt
 
 venv: $(VENV)/.installed
 
-# The main job on the built-in default scene: static equilibrium of `catenary`,
-# printed, written as CSV and plotted as PNG in out/demo/.
-demo: build venv
+# The main job on the built-in default scene: the static equilibrium of
+# `catenary` (CSV and PNG), then the paper's catenary case through the FMU
+# with fmpy (100 s of heave 2.5 m / 20 s, current 0.8 m/s), all in out/demo/.
+demo: build venv fmu
 	mkdir -p $(DEMO_DIR)
 	$(BIN) statics catenary --out $(DEMO_DIR)
 	$(PY) scripts/plot_statics.py $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
-	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png"
+	$(PY) scripts/demo_fmu.py --fmu fmu/riser.fmu --out $(DEMO_DIR)
+	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png"
 
 # The seed paper's runs (DESIGN.md list): docs/paper_runs.md, docs/paper_runs_damped.md
 # and docs/figures/paper_*.png (a few minutes).

@@ -131,7 +131,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         };
         let env_addr = env as usize;
         let cname = CString::new(name.clone()).unwrap_or_default();
-        let logger: super::instance::Logger = Box::new(move |status: Status, cat: &str, msg: &str| {
+        let logger: super::instance::Logger = std::sync::Arc::new(move |status: Status, cat: &str, msg: &str| {
             if let Some(log) = logger_fn {
                 let cat = CString::new(cat).unwrap_or_default();
                 let msg = CString::new(msg.replace('\0', " ")).unwrap_or_default();

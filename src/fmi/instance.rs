@@ -94,7 +94,7 @@ impl Category {
 }
 
 /// Where messages go (the C logger callback, wrapped by the shims).
-pub type Logger = Box<dyn Fn(Status, &str, &str) + Send>;
+pub type Logger = std::sync::Arc<dyn Fn(Status, &str, &str) + Send + Sync>;
 
 /// A parameter's value.
 #[derive(Debug, Clone, PartialEq)]
@@ -346,22 +346,38 @@ impl Instance {
         Status::Ok
     }
 
-    /// The hang-off motion over a communication step [t0, t0 + h], inputs
-    /// interpolated linearly; the velocity follows from the displacement
-    /// unless the master gives velocity inputs.
+    /// The hang-off motion over a communication step [t0, t0 + h].
+    ///
+    /// Displacement inputs only (velocity inputs left at 0): the displacement
+    /// is interpolated linearly and the velocity is its slope (DESIGN.md).
+    /// With velocity inputs: cubic Hermite interpolation of the displacement
+    /// through both ends' displacements and velocities, so that the motion has
+    /// no velocity kinks at the communication points. Kinks launch axial waves;
+    /// at a communication step near the line's axial round-trip time
+    /// (2L/c ≈ 0.1 s on the catenary scene) they resonate (docs/VALIDATION.md).
     fn motion_at(&self, u0: &[f64; 6], u1: &[f64; 6], t0: f64, h: f64) -> impl Fn(f64) -> HangOff + use<> {
         let (u0, u1) = (*u0, *u1);
         let given_velocity = u0[3..].iter().chain(u1[3..].iter()).any(|v| *v != 0.0);
         move |t: f64| {
             let a = ((t - t0) / h).clamp(0.0, 1.0);
-            let lerp = |i: usize| u0[i] + a * (u1[i] - u0[i]);
-            // heave → z, surge → x, sway → y
-            let displacement = V3::new(lerp(1), lerp(2), lerp(0));
-            let velocity = if given_velocity {
-                V3::new(lerp(4), lerp(5), lerp(3))
-            } else {
-                V3::new(u1[1] - u0[1], u1[2] - u0[2], u1[0] - u0[0]) / h
-            };
+            // heave → z, surge → x, sway → y: (displacement, velocity) input indices
+            let axes = [(1usize, 4usize), (2, 5), (0, 3)];
+            let mut displacement = V3::zeros();
+            let mut velocity = V3::zeros();
+            for (c, &(iu, iv)) in axes.iter().enumerate() {
+                if given_velocity {
+                    let (a2, a3) = (a * a, a * a * a);
+                    let (h00, h10, h01, h11) =
+                        (2.0 * a3 - 3.0 * a2 + 1.0, a3 - 2.0 * a2 + a, -2.0 * a3 + 3.0 * a2, a3 - a2);
+                    let (d00, d10, d01, d11) =
+                        (6.0 * a2 - 6.0 * a, 3.0 * a2 - 4.0 * a + 1.0, -6.0 * a2 + 6.0 * a, 3.0 * a2 - 2.0 * a);
+                    displacement[c] = h00 * u0[iu] + h10 * h * u0[iv] + h01 * u1[iu] + h11 * h * u1[iv];
+                    velocity[c] = (d00 * u0[iu] + d01 * u1[iu]) / h + d10 * u0[iv] + d11 * u1[iv];
+                } else {
+                    displacement[c] = u0[iu] + a * (u1[iu] - u0[iu]);
+                    velocity[c] = (u1[iu] - u0[iu]) / h;
+                }
+            }
             HangOff { displacement, velocity }
         }
     }
@@ -381,10 +397,14 @@ impl Instance {
         let motion = self.motion_at(&self.step_inputs, &self.inputs, now, h);
         let t_end = now + h;
         let solver_log = self.logging_on && self.categories[Category::Solver as usize];
+        let logger = self.logger.clone();
         let sim = self.sim.as_mut().unwrap();
-        if solver_log {
-            sim.integrator.solver_log = None; // messages are routed below via the status
-        }
+        // logSolver: one message per Newton iteration, straight to the master's logger
+        sim.integrator.solver_log = if solver_log {
+            Some(Box::new(move |m: &str| logger(Status::Ok, Category::Solver.name(), m)))
+        } else {
+            None
+        };
         // every communication step starts from a new tangent, so that results
         // depend on the state alone (a restored state continues bit for bit)
         sim.integrator.invalidate_tangent();
@@ -673,7 +693,7 @@ mod tests {
     use super::*;
 
     fn quiet() -> Logger {
-        Box::new(|_, _, _| {})
+        std::sync::Arc::new(|_, _, _| {})
     }
 
     #[test]
