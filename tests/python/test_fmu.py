@@ -192,3 +192,27 @@ def test_velocity_inputs_make_the_motion_smooth_across_communication_steps(fmu_p
     a, b = run(0.05), run(0.2)
     for x, y in zip(a, b):
         assert abs(x - y) <= 2e-3 * x, (a, b)
+
+
+def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path):
+    # OSP libcosim as an independent master: the riser alone for 5 s from the
+    # system structure in osp/, against fmpy with the same settings
+    from pathlib import Path
+
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    root = Path(__file__).resolve().parents[2]
+    ex = CosimExecution.from_osp_config_file(osp_path=str(root / "osp" / "OspSystemStructure.xml"))
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(observer=obs)
+    idx = ex.slave_index_from_instance_name("riser")
+    refs = {v.name.decode(): v.reference for v in ex.slave_variables(idx)}
+    assert ex.simulate_until(target_time=int(5e9))
+    top, energy = obs.last_real_values(slave_index=idx, variable_references=[refs["top_tension"], refs["total_energy"]])
+    res = simulate_fmu(fmu_path, stop_time=5.0, output_interval=0.05, output=["top_tension", "total_energy"],
+                       start_values={"structural_damping": 0.002})
+    assert abs(top - res["top_tension"][-1]) <= 1e-9 * top
+    assert abs(energy - res["total_energy"][-1]) <= 1e-9 * abs(energy)
