@@ -709,3 +709,38 @@ mod tests {
         assert!(Instance::new("t", "{wrong}", None, quiet(), false).is_err());
     }
 }
+
+#[cfg(test)]
+mod discard_tests {
+    use super::*;
+    use crate::fmi::vars::vr_of;
+    use std::sync::{Arc, Mutex};
+
+    #[test]
+    fn a_step_newton_cannot_take_is_discarded_and_the_state_kept() {
+        // internal step 100 s (split down to 1.56 s) while the hang-off is thrown
+        // 69 m down and 55 m towards the anchor: Newton gives up part-way
+        let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+        let m2 = messages.clone();
+        let mut i =
+            Instance::new("t", GUID, None, Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into())), true)
+                .unwrap();
+        assert_eq!(i.set_param(vr_of("time_step").unwrap(), Value::Real(100.0)), Status::Ok);
+        assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+        i.enter_initialization_mode();
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        assert_eq!(i.set_real(vr_of("heave").unwrap(), -69.0), Status::Ok);
+        assert_eq!(i.set_real(vr_of("surge").unwrap(), 55.0), Status::Ok);
+        assert_eq!(i.do_step(0.0, 100.0), Status::Discard);
+        assert_eq!(i.mode, Mode::StepFailed);
+        let t = i.last_successful_time();
+        assert!(t > 0.0 && t < 100.0, "{t}");
+        // the outputs are those of the last good state, finite
+        for name in ["top_tension", "total_energy", "shape[10].z"] {
+            assert!(i.get_real(vr_of(name).unwrap()).unwrap().is_finite());
+        }
+        assert!(messages.lock().unwrap().iter().any(|m| m.contains("discarded") && m.contains("Newton")));
+        // no further step from a failed one
+        assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+    }
+}
