@@ -11,7 +11,7 @@
 //! The consistent nodal force is F_k = ∫ N_k f dS (4-point Gauss).
 
 use super::current::Current;
-use super::morison::{DragCoefficients, drag};
+use super::morison::{DragCoefficients, drag, drag_force};
 use crate::rod::kinematics::{M3, V3};
 use crate::rod::shape::{GAUSS4, hermite, hermite_ds};
 
@@ -92,6 +92,17 @@ pub fn element_fluid_force(
         let mut df_dv = M3::zeros();
         let mut df_da = M3::zeros();
         let mut df_dp = M3::zeros();
+        if k.is_none() && fluid.added_mass == 0.0 {
+            // residual only: the force, no derivatives
+            if let Some((kd, current)) = &fluid.drag {
+                let (vc, _) = current.velocity(s0 + xi * h, x.z);
+                let force = drag_force(kd, &(vc - v), &t) * len;
+                for i in 0..4 {
+                    f[i] += force * (wg * n[i]);
+                }
+            }
+            continue;
+        }
         if let Some((kd, current)) = &fluid.drag {
             let (vc, dvc_dz) = current.velocity(s0 + xi * h, x.z);
             let d = drag(kd, &(vc - v), &t);

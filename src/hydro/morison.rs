@@ -43,6 +43,13 @@ fn abs_times(a: &V3) -> (V3, M3) {
     if n == 0.0 { (V3::zeros(), M3::zeros()) } else { (a * n, M3::identity() * n + a * a.transpose() / n) }
 }
 
+/// The drag force alone (no derivatives), for residual-only evaluations.
+pub fn drag_force(k: &DragCoefficients, vrel: &V3, t: &V3) -> V3 {
+    let vrt = t * t.dot(vrel);
+    let vrn = vrel - vrt;
+    vrn * (vrn.norm() * k.normal) + vrt * (vrt.norm() * k.tangential)
+}
+
 /// Morison drag for relative velocity `vrel` = v_current − v_line and unit tangent `t`.
 pub fn drag(k: &DragCoefficients, vrel: &V3, t: &V3) -> Drag {
     let vt_s = t.dot(vrel);
@@ -88,6 +95,8 @@ mod tests {
         let n = V3::new(0.0, 1.0, 0.0);
         let d = drag(&k, &(n * 2.0), &V3::x());
         assert!((d.force - n * (k.normal * 4.0)).norm() < 1e-12);
+        // the force-only path agrees
+        assert!((drag_force(&k, &v, &t) - d.force).norm() < 1e-14);
         // drag opposes motion in still water: f·v ≤ 0
         let d = drag(&k, &(-v), &t);
         assert!(d.force.dot(&v) < 0.0);
