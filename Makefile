@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability
 
 all: build
 
@@ -36,6 +36,10 @@ demo: build venv fmu
 paper: build venv
 	$(PY) scripts/paper_runs.py
 	$(PY) scripts/paper_runs.py --damping 0.002
+
+# The stability matrix (issue 5): docs/stability.md (several minutes).
+stability: build venv
+	$(PY) scripts/stability.py
 
 lint:
 	$(CARGO) fmt --check

@@ -1,0 +1,85 @@
+//! The cheap cells of the stability matrix (docs/stability.md): each extreme
+//! setting either completes with finite outputs and the energy balance
+//! closed, or stops with a typed error and a finite state kept. Never a NaN,
+//! a panic or a hang.
+
+use riser::dynamics::run::{Heave, Simulation};
+use riser::scene::Scene;
+
+/// Runs `duration` s of heave from the static state; returns the outcome.
+fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String {
+    let mut all = vec!["n_elements=20".to_string()];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    let scene = Scene::builtin(scene).unwrap().with_overrides(&all).unwrap();
+    let mut sim = match Simulation::from_scene(&scene) {
+        Ok(s) => s,
+        Err(e) => {
+            let msg = e.to_string();
+            assert!(!msg.is_empty());
+            return format!("clean error in statics: {msg}");
+        }
+    };
+    let h = Heave { amplitude: heave.0, period: heave.1, until: None, ramp: 0.0 };
+    let motion = move |t: f64| h.at(t);
+    sim.start(h.at(0.0));
+    let e0 = sim.initial_energy;
+    let dt = sim.integrator.options.time_step;
+    let n = (duration / dt).ceil() as u64;
+    let mut worst: f64 = 0.0;
+    let mut exchanged: f64 = 0.0;
+    for k in 1..=n {
+        let r = sim.advance_to((k as f64 * dt).min(duration), &motion);
+        let o = sim.outputs();
+        assert!(o.values().iter().all(|v| v.is_finite()), "non-finite output at t = {}", sim.state.time);
+        assert!(sim.state.is_finite());
+        if let Err(e) = r {
+            let msg = e.to_string();
+            assert!(msg.contains("kept"), "{msg}");
+            return format!("clean stop at t = {:.3} s: {msg}", sim.state.time);
+        }
+        worst = worst.max(o.energy_balance_residual(e0).abs());
+        exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs());
+    }
+    assert!(worst <= 1e-6 * exchanged.max(1.0), "energy balance {worst:e} of {exchanged:e}");
+    "completes".to_string()
+}
+
+#[test]
+fn extreme_time_steps() {
+    for (dt, dur) in [("1", 4.0), ("1e-3", 0.2)] {
+        let r = cell("catenary", &[&format!("time_step={dt}")], (2.5, 20.0), dur);
+        eprintln!("dt {dt}: {r}");
+    }
+}
+
+#[test]
+fn extreme_meshes() {
+    for (n, dur) in [("4", 2.0), ("400", 0.3)] {
+        let r = cell("catenary", &[&format!("n_elements={n}")], (2.5, 20.0), dur);
+        eprintln!("{n} elements: {r}");
+    }
+}
+
+#[test]
+fn extreme_stiffnesses() {
+    for s in ["axial_stiffness=1e6", "axial_stiffness=1e11", "bending_stiffness=0", "bending_stiffness=1e7"] {
+        let r = cell("catenary", &[s], (2.5, 20.0), 1.0);
+        eprintln!("{s}: {r}");
+    }
+}
+
+#[test]
+fn violent_heave_and_strong_currents() {
+    let r = cell("catenary", &[], (10.0, 3.0), 1.5);
+    eprintln!("heave 10 m / 3 s: {r}");
+    for c in ["-3", "3"] {
+        let r = cell("catenary", &[&format!("current_top={c}"), &format!("current_bottom={c}")], (2.5, 20.0), 1.0);
+        eprintln!("current {c} m/s: {r}");
+    }
+}
+
+#[test]
+fn lazy_wave_with_doubled_buoyancy() {
+    let r = cell("lazy_wave", &["buoyancy_load=1340"], (2.5, 30.0), 1.0);
+    eprintln!("lazy wave, buoyancy doubled: {r}");
+}
