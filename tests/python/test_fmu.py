@@ -216,3 +216,28 @@ def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path):
                        start_values={"structural_damping": 0.002})
     assert abs(top - res["top_tension"][-1]) <= 1e-9 * top
     assert abs(energy - res["total_energy"][-1]) <= 1e-9 * abs(energy)
+
+
+def test_a_step_newton_cannot_take_is_discarded_with_the_last_good_time(fmu_path, unzipped):
+    from fmpy.fmi1 import FMICallException
+
+    md = read_model_description(fmu_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="discard")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.setReal([vr["time_step"]], [100.0])
+    s.setInteger([vr["n_elements"]], [10])
+    s.exitInitializationMode()
+    # the hang-off thrown 69 m down and 55 m towards the anchor in one 100 s step
+    s.setReal([vr["heave"], vr["surge"]], [-69.0, 55.0])
+    with pytest.raises(FMICallException) as e:
+        s.doStep(0.0, 100.0)
+    assert e.value.status == 2  # fmi2Discard
+    last = s.getRealStatus(2)  # fmi2LastSuccessfulTime
+    assert 0.0 < last < 100.0
+    assert s.getStatus(0) == 2  # fmi2DoStepStatus: discarded
+    assert np.all(np.isfinite(s.getReal([vr["top_tension"], vr["total_energy"], vr["shape[10].z"]])))
+    s.terminate()
+    s.freeInstance()
