@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study
 
 all: build
 
@@ -36,6 +36,11 @@ demo: build venv fmu
 paper: build venv
 	$(PY) scripts/paper_runs.py
 	$(PY) scripts/paper_runs.py --damping 0.002
+
+# Speed against accuracy (issue 5): docs/study.md and docs/figures/work_precision.png
+# (tens of minutes; run it on a quiet machine, it measures wall time).
+study: build venv
+	$(PY) scripts/study.py
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv
