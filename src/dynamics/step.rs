@@ -208,10 +208,8 @@ impl Integrator {
         }
         predict(model, state, trial, h, self.origin, target, order, &self.buf.twist_nodes, &mut self.buf.theta_step);
         let n = rod.n_dof();
-        let extent = state.config.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
-        // the residual cannot be evaluated more precisely than the axial force
-        // from r' (EA ε |r|/h): below 10× that, stop when Newton stagnates
-        let roundoff = rod.stiffness.axial.max(rod.stiffness.shear) * f64::EPSILON * extent / rod.h;
+        // below 10× the residual's round-off, stop when Newton stagnates
+        let roundoff = rod.residual_roundoff(&state.config);
         let tol = (self.options.newton_tolerance * self.force_scale).max(roundoff);
         let mut converged = false;
         let mut iterations = 0;
@@ -320,15 +318,7 @@ impl Integrator {
                 self.factor_h = f64::NAN;
                 return Err(DynamicsError::Linear { time: state.time, step: h, error });
             }
-            let mut theta_max: f64 = 0.0;
-            for j in 0..rod.n_director_nodes() {
-                let i = Rod::theta_dof(j);
-                theta_max = theta_max.max(V3::new(buf.du[i], buf.du[i + 1], buf.du[i + 2]).norm());
-            }
-            if theta_max > 0.5 {
-                let f = 0.5 / theta_max;
-                buf.du.iter_mut().for_each(|v| *v *= f);
-            }
+            rod.limit_rotation_increments(&mut buf.du, 0.5);
             apply_increment(rod, &state.config, &mut trial.config, &buf.du, &buf.twist_nodes, &mut buf.theta_step);
             if !trial.config.is_finite() {
                 break;

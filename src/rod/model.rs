@@ -344,6 +344,29 @@ impl Rod {
         }
     }
 
+    /// Scales a Newton increment so that no director rotates by more than
+    /// `max_angle` (rad) in one iteration (the Cayley map is exact for any
+    /// angle, Newton's linear model is not).
+    pub fn limit_rotation_increments(&self, du: &mut [f64], max_angle: f64) {
+        let mut theta_max: f64 = 0.0;
+        for j in 0..self.n_director_nodes() {
+            let i = Self::theta_dof(j);
+            theta_max = theta_max.max(V3::new(du[i], du[i + 1], du[i + 2]).norm());
+        }
+        if theta_max > max_angle {
+            let f = max_angle / theta_max;
+            du.iter_mut().for_each(|v| *v *= f);
+        }
+    }
+
+    /// The round-off of a residual evaluated at `cfg`, N: the axial force
+    /// comes from r' = Σ N'_k r_k, i.e. differences of positions of size |r|
+    /// over h, so no residual is more precise than R ε_mach |r|/h.
+    pub fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
+        let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.length);
+        self.stiffness.axial.max(self.stiffness.shear) * f64::EPSILON * extent / self.h
+    }
+
     /// q ← q ⊕ Δu: additive on r and r', Cayley on the directors
     /// (d_i ← cay(θ) d_i), with θ = D θ_loc at the local-basis nodes.
     pub fn apply_increment(&self, cfg: &mut RodConfig, du: &[f64]) {

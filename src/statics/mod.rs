@@ -218,6 +218,22 @@ impl<'a> StaticProblem<'a> {
         [V3::new(r[i0], r[i0 + 1], r[i0 + 2]), V3::new(r[i1], r[i1 + 1], r[i1 + 2])]
     }
 
+    /// The Newton correction du = −K⁻¹ r with the fixed unknowns held, each
+    /// director rotation limited to 0.25 rad.
+    pub fn correction(&self, sys: &mut BandedSystem, r: &mut [f64], du: &mut [f64]) -> Result<(), LinearSolveError> {
+        for &i in &self.fixed {
+            r[i] = 0.0;
+            sys.constrain(i);
+        }
+        sys.factorize()?;
+        for (d, v) in du.iter_mut().zip(r.iter()) {
+            *d = -v;
+        }
+        sys.solve_in_place(du)?;
+        self.rod.limit_rotation_increments(du, 0.25);
+        Ok(())
+    }
+
     /// Largest free residual component relative to the load scale.
     pub fn relative_residual(&self, r: &[f64], scale: f64) -> f64 {
         let mut m: f64 = 0.0;
@@ -278,8 +294,7 @@ fn pseudo_transient(
     let mut acc = vec![0.0; n];
     let mut cfg = initial;
     let scale = prob.force_scale.max(f64::MIN_POSITIVE);
-    let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
-    let floor = 10.0 * rod.stiffness.axial.max(rod.stiffness.shear) * f64::EPSILON * extent / rod.h / scale;
+    let floor = 10.0 * rod.residual_roundoff(&cfg) / scale;
     let tolerance = opts.tolerance.max(floor);
     let d_of = |i: usize| if i % 12 < 6 { 1.0 } else { rod.h * rod.h };
     let mut mu = 10.0 * scale / rod.length;
@@ -320,27 +335,8 @@ fn pseudo_transient(
             }
             iterations += 1;
             newton_its += 1;
-            for &i in &prob.fixed {
-                r[i] = 0.0;
-                sys.constrain(i);
-            }
-            if sys.factorize().is_err() {
+            if prob.correction(&mut sys, &mut r, &mut du).is_err() {
                 break;
-            }
-            for i in 0..n {
-                du[i] = -r[i];
-            }
-            if sys.solve_in_place(&mut du).is_err() {
-                break;
-            }
-            let mut theta_max: f64 = 0.0;
-            for j in 0..rod.n_director_nodes() {
-                let i = Rod::theta_dof(j);
-                theta_max = theta_max.max(V3::new(du[i], du[i + 1], du[i + 2]).norm());
-            }
-            if theta_max > 0.25 {
-                let f = 0.25 / theta_max;
-                du.iter_mut().for_each(|v| *v *= f);
             }
             rod.apply_increment(&mut cfg, &du);
             for i in 0..n {
@@ -393,8 +389,7 @@ fn solve_homotopy(
     let scale = prob.force_scale.max(1e-6 * internal_scale).max(f64::MIN_POSITIVE);
     // The residual cannot be evaluated more precisely than the axial force from
     // r' = (r_b − r_a)/h·…, i.e. EA·ε·|r|/h: never ask for less than 10× that.
-    let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(rod.length);
-    let floor = 10.0 * rod.stiffness.axial.max(rod.stiffness.shear) * f64::EPSILON * extent / rod.h / scale;
+    let floor = 10.0 * rod.residual_roundoff(&cfg) / scale;
     let tolerance = opts.tolerance.max(floor);
     let mut s_done = 0.0f64;
     // far from balance (a coarse mesh on a curved start): approach in steps,
@@ -427,32 +422,11 @@ fn solve_homotopy(
             }
             best = best.min(res);
             iterations += 1;
-            for &i in &prob.fixed {
-                r[i] = 0.0;
-                sys.constrain(i);
-            }
-            if let Err(e) = sys.factorize() {
+            if let Err(e) = prob.correction(&mut sys, &mut r, &mut du) {
                 if matches!(e, LinearSolveError::Singular) && s_try <= s_done + opts.min_continuation_step {
                     return Err(StaticsError::Linear(e));
                 }
                 break;
-            }
-            for i in 0..n {
-                du[i] = -r[i];
-            }
-            if sys.solve_in_place(&mut du).is_err() {
-                break;
-            }
-            // keep each director rotation below 0.5 rad per iteration (the
-            // Cayley map is exact for any angle, Newton's model is not)
-            let mut theta_max: f64 = 0.0;
-            for j in 0..rod.n_director_nodes() {
-                let i = Rod::theta_dof(j);
-                theta_max = theta_max.max(V3::new(du[i], du[i + 1], du[i + 2]).norm());
-            }
-            if theta_max > 0.25 {
-                let f = 0.25 / theta_max;
-                du.iter_mut().for_each(|v| *v *= f);
             }
             rod.apply_increment(&mut cfg, &du);
             if !cfg.is_finite() {
