@@ -154,26 +154,17 @@ impl Integrator {
         while state.time < t_end - 1e-12 * h {
             let hh = sub.min(t_end - state.time);
             let target = motion(state.time + hh);
-            // first the quadratic predictor; if Newton fails from it (it
-            // extrapolates unresolved oscillations too), the linear one at the
-            // same step, then halved steps
-            let first = if level == 0 {
-                self.try_step(state, hh, target, 2)
-            } else {
-                Err(DynamicsError::BadInput(String::new()))
-            };
-            let result = match first {
-                Ok(it) => Ok(it),
-                Err(DynamicsError::BadInput(m)) if !m.is_empty() => return Err(DynamicsError::BadInput(m)),
-                Err(_) => self.try_step(state, hh, target, 1),
-            };
-            match result {
+            // the quadratic predictor (which falls back to the linear one by
+            // itself when it extrapolates an unresolved oscillation); halved
+            // sub-steps, whose history is of another step size, the linear one
+            let order = if level == 0 { 2 } else { 1 };
+            match self.try_step(state, hh, target, order) {
                 Ok(it) => {
                     info.iterations += it;
                     info.substeps += 1;
                 }
                 Err(e) => {
-                    if level >= self.options.max_halvings {
+                    if matches!(e, DynamicsError::BadInput(_)) || level >= self.options.max_halvings {
                         return Err(e);
                     }
                     level += 1;
