@@ -137,6 +137,18 @@ pub struct Instance {
     last_status: Status,
 }
 
+impl Value {
+    /// The value as the scene overrides take it (`--set name=value`).
+    fn to_text(&self) -> String {
+        match self {
+            Value::Real(x) => format!("{x}"),
+            Value::Integer(x) => format!("{x}"),
+            Value::Boolean(b) => format!("{b}"),
+            Value::String(s) => s.clone(),
+        }
+    }
+}
+
 fn parse_start(v: &Variable) -> Value {
     match v.kind {
         Kind::Real => Value::Real(v.start.parse().unwrap_or(0.0)),
@@ -287,13 +299,7 @@ impl Instance {
                 if n == "scene" {
                     continue;
                 }
-                let text = match v {
-                    Value::Real(x) => format!("{x}"),
-                    Value::Integer(x) => format!("{x}"),
-                    Value::Boolean(b) => format!("{b}"),
-                    Value::String(s) => s.clone(),
-                };
-                sets.push(format!("{n}={text}"));
+                sets.push(format!("{n}={}", v.to_text()));
             }
         }
         scene = scene.with_overrides(&sets).map_err(|e| e.to_string())?;
@@ -308,6 +314,20 @@ impl Instance {
 
     /// fmi2ExitInitializationMode: the static state; outputs valid from here.
     pub fn exit_initialization_mode(&mut self) -> Status {
+        let st = self.initialise();
+        if st == Status::Ok {
+            self.mode = StepComplete;
+        }
+        st
+    }
+
+    /// The static state and the run from it, unless already built for the
+    /// current parameters and inputs (outputs asked for during
+    /// initialisation build it early; setting a parameter or an input drops it).
+    fn initialise(&mut self) -> Status {
+        if self.sim.is_some() {
+            return Status::Ok;
+        }
         let scene = match self.build_scene() {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
@@ -342,7 +362,6 @@ impl Instance {
         );
         self.last_successful_time = self.start_time;
         self.sim = Some(sim);
-        self.mode = StepComplete;
         Status::Ok
     }
 
@@ -499,13 +518,12 @@ impl Instance {
         Ok(match v.causality {
             Causality::Input => self.inputs[INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0)],
             Causality::Output => {
-                if self.outputs.is_none() && self.mode == InitializationMode {
+                if self.mode == InitializationMode {
                     // outputs requested during initialisation: the static state now
-                    let st = self.exit_initialization_mode();
+                    let st = self.initialise();
                     if st != Status::Ok {
                         return Err(st);
                     }
-                    self.mode = InitializationMode;
                 }
                 self.output_value(v.name)
             }
@@ -541,6 +559,11 @@ impl Instance {
                 }
                 let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
                 self.inputs[i] = x;
+                if self.mode != StepComplete {
+                    // the start depends on the inputs: rebuild at exit
+                    self.sim = None;
+                    self.outputs = None;
+                }
                 Status::Ok
             }
             Causality::Parameter => self.set_param(vr, Value::Real(x)),
@@ -568,12 +591,7 @@ impl Instance {
         }
         // check the value now, against a scene with this one override
         if v.name != "scene" {
-            let text = match &value {
-                Value::Real(x) => format!("{x}"),
-                Value::Integer(x) => format!("{x}"),
-                Value::Boolean(b) => format!("{b}"),
-                Value::String(s) => s.clone(),
-            };
+            let text = value.to_text();
             let mut probe = Scene::builtin("catenary").expect("built-in scene");
             if let Err(e) = probe.set(v.name, &text) {
                 return self.fail(&e.to_string());
@@ -593,6 +611,7 @@ impl Instance {
             }
         }
         self.params[vr as usize] = Some((value, true));
+        self.sim = None;
         self.outputs = None;
         Status::Ok
     }
