@@ -6,7 +6,6 @@ use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
 use crate::rod::element::{self, ElVec, ElemDofs, Factors};
 use crate::rod::kinematics::V3;
 use crate::rod::model::Rod;
-use crate::rod::shape::GAUSS4;
 
 /// Points of the `shape[k]` output: S = k L / 20, k = 0..=20.
 pub const SHAPE_POINTS: usize = 21;
@@ -147,12 +146,7 @@ impl LineModel {
         let reactions = self.end_reactions(s);
         let t0 = cfg.xp[0].normalize();
         let t1 = cfg.xp[rod.n_el].normalize();
-        let mut min_tension = (-reactions[0].dot(&t0)).min(reactions[1].dot(&t1));
-        for e in 0..rod.n_el {
-            for xi in GAUSS4.xi {
-                min_tension = min_tension.min(rod.axial_force(cfg, e, xi));
-            }
-        }
+        let min_tension = (-reactions[0].dot(&t0)).min(reactions[1].dot(&t1)).min(rod.min_gauss_axial_force(cfg));
         let kinetic = self.kinetic_energy(s);
         let strain = rod.strain_energy(cfg);
         let potential = self.potential_energy(cfg);

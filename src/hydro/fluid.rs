@@ -85,13 +85,6 @@ pub fn element_fluid_force(
             continue;
         }
         let t = p / len;
-        let proj = M3::identity() - t * t.transpose();
-        let mut force = V3::zeros();
-        // derivatives of the force per reference length with respect to x, v, a, p
-        let mut df_dx = M3::zeros();
-        let mut df_dv = M3::zeros();
-        let mut df_da = M3::zeros();
-        let mut df_dp = M3::zeros();
         if k.is_none() && fluid.added_mass == 0.0 {
             // residual only: the force, no derivatives
             if let Some((kd, current)) = &fluid.drag {
@@ -103,6 +96,13 @@ pub fn element_fluid_force(
             }
             continue;
         }
+        let proj = M3::identity() - t * t.transpose();
+        let mut force = V3::zeros();
+        // derivatives of the force per reference length with respect to x, v, a, p
+        let mut df_dx = M3::zeros();
+        let mut df_dv = M3::zeros();
+        let mut df_da = M3::zeros();
+        let mut df_dp = M3::zeros();
         if let Some((kd, current)) = &fluid.drag {
             let (vc, dvc_dz) = current.velocity(s0 + xi * h, x.z);
             let d = drag(kd, &(vc - v), &t);

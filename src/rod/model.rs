@@ -404,6 +404,23 @@ impl Rod {
         n.dot(&t)
     }
 
+    /// Smallest axial force at the Gauss points of all elements, N (with the
+    /// stored reference coefficients; the quantity `min_tension` scans).
+    pub fn min_gauss_axial_force(&self, cfg: &RodConfig) -> f64 {
+        let mut m = f64::INFINITY;
+        for e in 0..self.n_el {
+            let el = ElemDofs::gather(cfg, e);
+            let eps = self.strains_of(&el, e);
+            for (g, xi) in super::shape::GAUSS4.xi.iter().enumerate() {
+                let nds = super::shape::hermite_ds(*xi, self.h);
+                let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
+                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * self.stiff[0];
+                m = m.min(n.dot(&p.normalize()));
+            }
+        }
+        m
+    }
+
     /// Axial force at the end nodes (averaged between the two elements at an interior node).
     pub fn nodal_axial_force(&self, cfg: &RodConfig) -> Vec<f64> {
         let mut t = vec![0.0; self.n_el + 1];

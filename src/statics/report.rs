@@ -56,9 +56,7 @@ impl StaticReport {
         let t1 = cfg.xp[rod.n_el].normalize();
         shape[0].tension = -sol.reactions[0].dot(&t0);
         shape[rod.n_el].tension = sol.reactions[1].dot(&t1);
-        let interior_min = (0..rod.n_el)
-            .flat_map(|e| crate::rod::shape::GAUSS4.xi.map(|xi| rod.axial_force(cfg, e, xi)))
-            .fold(f64::INFINITY, f64::min);
+        let interior_min = rod.min_gauss_axial_force(cfg);
         let min_tension = shape.iter().map(|r| r.tension).fold(interior_min, f64::min);
         StaticReport {
             top_tension: sol.reactions[0].norm(),
