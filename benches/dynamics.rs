@@ -16,7 +16,7 @@ fn one_run(ramp: f64) -> (f64, f64, u64) {
     let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp };
     let motion = move |t: f64| heave.at(t);
     sim.start(heave.at(0.0));
-    let dt = sim.integrator.options.time_step;
+    let dt = sim.integrator.options().time_step;
     let t0 = Instant::now();
     for k in 1..=2000u64 {
         sim.advance_to(k as f64 * dt, &motion).unwrap();

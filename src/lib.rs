@@ -10,6 +10,7 @@
 
 pub use error::RiserError;
 
+pub mod cable;
 pub mod dynamics;
 pub mod error;
 pub mod fmi;

@@ -11,7 +11,7 @@ use riser::statics::report::solve_scene;
 /// Catenary scene without water forces, static state, and a velocity kick.
 fn hamiltonian_setup(n_el: usize, dt: f64) -> (Integrator, State) {
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("n_elements={n_el}")]).unwrap();
-    let (_, report) = solve_scene(&scene).unwrap();
+    let report = solve_scene(&scene).unwrap();
     let mut model = LineModel::from_scene(&scene);
     model.fluid = Fluid::none();
     // energy is conserved to the Newton tolerance: ask for round-off
@@ -119,7 +119,7 @@ fn heaving_catenary(extra: &[&str]) -> (Integrator, State, f64) {
     let mut sets = vec!["n_elements=20".to_string()];
     sets.extend(extra.iter().map(|s| s.to_string()));
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&sets).unwrap();
-    let (_, report) = solve_scene(&scene).unwrap();
+    let report = solve_scene(&scene).unwrap();
     let model = LineModel::from_scene(&scene);
     let opts = DynamicOptions { time_step: 0.05, newton_tolerance: 1e-8, ..Default::default() };
     let integ = Integrator::new(model, opts, scene.hang_off()).unwrap();

@@ -14,42 +14,6 @@ use riser::rod::model::{EndBc, Rod, Stiffness};
 use riser::statics::{StaticLoads, StaticOptions, solve};
 use std::f64::consts::PI;
 
-/// |Σ w_k y_k e^{−2πi f t_k}| with a Hann window.
-fn spectrum(y: &[f64], dt: f64, f: f64) -> f64 {
-    let n = y.len();
-    let mean = y.iter().sum::<f64>() / n as f64;
-    let (mut re, mut im) = (0.0, 0.0);
-    for (k, v) in y.iter().enumerate() {
-        let w = 0.5 - 0.5 * (2.0 * PI * k as f64 / (n - 1) as f64).cos();
-        let a = 2.0 * PI * f * k as f64 * dt;
-        re += w * (v - mean) * a.cos();
-        im -= w * (v - mean) * a.sin();
-    }
-    (re * re + im * im).sqrt()
-}
-
-/// Frequency of the largest spectral peak within ±15 % of `guess`, Hz.
-fn peak_near(y: &[f64], dt: f64, guess: f64) -> f64 {
-    let (mut lo, mut hi) = (0.85 * guess, 1.15 * guess);
-    let mut best = guess;
-    for _ in 0..4 {
-        let m = 200;
-        let mut top = -1.0;
-        for i in 0..=m {
-            let f = lo + (hi - lo) * i as f64 / m as f64;
-            let s = spectrum(y, dt, f);
-            if s > top {
-                top = s;
-                best = f;
-            }
-        }
-        let step = (hi - lo) / m as f64;
-        lo = best - 2.0 * step;
-        hi = best + 2.0 * step;
-    }
-    best
-}
-
 /// Runs free vibration and samples the y-displacement of end node `a`.
 fn record(integ: &mut Integrator, state: &mut State, a: usize, dt: f64, steps: usize) -> Vec<f64> {
     let still = |_t: f64| HangOff::default();
@@ -93,7 +57,7 @@ fn hanging_chain_first_three_frequencies() {
     let zeros = common::reference::bessel_j0_zeros(3);
     for (n, j0n) in zeros.iter().enumerate() {
         let exact = j0n / 2.0 * (g / l).sqrt() / (2.0 * PI);
-        let f = peak_near(&y, dt, exact);
+        let f = common::spectral::peak_near(&y, dt, exact);
         let err = (f - exact) / exact;
         eprintln!(
             "hanging chain mode {}: {f:.5} Hz vs (j0n/2)√(g/L)/2π = {exact:.5} Hz ({:+.3} %)",
@@ -123,7 +87,7 @@ fn cantilever_first_frequency() {
     state.align_director_rates(&integ.model.rod);
     let y = record(&mut integ, &mut state, n_el, dt, 4000);
     let exact = 1.8751f64.powi(2) * (ei / (m * l.powi(4))).sqrt() / (2.0 * PI);
-    let f = peak_near(&y, dt, exact);
+    let f = common::spectral::peak_near(&y, dt, exact);
     let err = (f - exact) / exact;
     eprintln!("cantilever: {f:.5} Hz vs 1.8751²√(EI/mL⁴)/2π = {exact:.5} Hz ({:+.3} %)", 100.0 * err);
     assert!(err.abs() < 0.01);
@@ -164,7 +128,7 @@ fn taut_string_first_three_frequencies() {
     let y = record(&mut integ, &mut state, n_el / 5, dt, 5000);
     for n in 1..=3 {
         let exact = n as f64 / (2.0 * span) * (tension / rho).sqrt();
-        let f = peak_near(&y, dt, exact);
+        let f = common::spectral::peak_near(&y, dt, exact);
         let err = (f - exact) / exact;
         eprintln!("taut string mode {n}: {f:.5} Hz vs (n/2L)√(T/ρ) = {exact:.5} Hz ({:+.3} %)", 100.0 * err);
         assert!(err.abs() < 0.005);

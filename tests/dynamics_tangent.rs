@@ -22,7 +22,7 @@ fn check_tangent(eta: f64) {
         .unwrap()
         .with_overrides(&["n_elements=4", "ca_normal=1.0", "current_direction=40"])
         .unwrap();
-    let (_, report) = solve_scene(&scene).unwrap();
+    let report = solve_scene(&scene).unwrap();
     let model = LineModel::from_scene(&scene);
     let opts = DynamicOptions { structural_damping: eta, ..Default::default() };
     let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();

@@ -23,7 +23,7 @@ fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String 
     let motion = move |t: f64| h.at(t);
     sim.start(h.at(0.0));
     let e0 = sim.initial_energy;
-    let dt = sim.integrator.options.time_step;
+    let dt = sim.integrator.options().time_step;
     let n = (duration / dt).ceil() as u64;
     let mut worst: f64 = 0.0;
     let mut exchanged: f64 = 0.0;

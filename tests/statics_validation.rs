@@ -16,7 +16,7 @@ fn scene(name: &str, sets: &[&str]) -> Scene {
 }
 
 fn statics(name: &str, sets: &[&str]) -> StaticReport {
-    solve_scene(&scene(name, sets)).unwrap().1
+    solve_scene(&scene(name, sets)).unwrap()
 }
 
 /// Clamped–free cantilever with a dead vertical tip load; returns the tip
@@ -66,7 +66,7 @@ fn catenary_w(s: &Scene) -> f64 {
 fn catenary_matches_the_elastic_catenary() {
     // EI, GJ negligible: bending length sqrt(EI/T) below a millimetre
     let sc = scene("catenary", &["bending_stiffness=1e-3", "torsional_stiffness=1e-3"]);
-    let rep = solve_scene(&sc).unwrap().1;
+    let rep = solve_scene(&sc).unwrap();
     let r = elastic_catenary(sc.line.length, catenary_w(&sc), sc.line.axial_stiffness, 60.0, -70.0).unwrap();
     let checks = [
         ("top tension", rep.top_tension, r.top_tension),
@@ -96,7 +96,7 @@ fn catenary_matches_the_elastic_catenary() {
 fn end_reactions_balance_the_applied_load_exactly() {
     for name in ["catenary", "lazy_wave"] {
         let sc = scene(name, &[]);
-        let rep = solve_scene(&sc).unwrap().1;
+        let rep = solve_scene(&sc).unwrap();
         let total = sc.vertical_load().total(sc.line.length);
         // the supports carry the weight: F_top + F_bottom (on the line) + total load = 0
         let f = rep.solution.reactions[0] + rep.solution.reactions[1] + Vector3::new(0.0, 0.0, total);
@@ -185,7 +185,7 @@ fn both_scenes_converge_from_4_to_400_elements() {
     for (scene, coarse_tol, tol) in [("catenary", 1e-3, 2e-4), ("lazy_wave", 3e-2, 2e-3)] {
         let top = |n: usize| {
             let s = Scene::builtin(scene).unwrap().with_overrides(&[format!("n_elements={n}")]).unwrap();
-            let (_, rep) = solve_scene(&s).unwrap_or_else(|e| panic!("{scene}, {n} elements: {e}"));
+            let rep = solve_scene(&s).unwrap_or_else(|e| panic!("{scene}, {n} elements: {e}"));
             rep.top_tension
         };
         let reference = top(400);

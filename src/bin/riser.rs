@@ -110,7 +110,7 @@ fn write_shape_csv(dir: &Path, report: &StaticReport) -> std::io::Result<PathBuf
 fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     let t0 = std::time::Instant::now();
-    let (_rod, rep) = solve_scene(&scene).map_err(|e| e.to_string())?;
+    let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
     let csv = match &out {
         Some(dir) => Some(write_shape_csv(dir, &rep).map_err(|e| format!("cannot write {}: {e}", dir.display()))?),
@@ -234,7 +234,7 @@ fn run(
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
-    sim.integrator.options.max_tangent_age = max_tangent_age;
+    sim.integrator.options_mut().max_tangent_age = max_tangent_age;
     let (amplitude, period) = heave.unwrap_or((0.0, 1.0));
     let motion = Heave { amplitude, period, until: heave_until, ramp };
     let motion_fn = move |t: f64| motion.at(t);
@@ -250,10 +250,10 @@ fn run(
     let mut series: Vec<Outputs> = vec![sim.outputs()];
     let mut shapes: Vec<(f64, Vec<[f64; 4]>)> = Vec::new();
     let mut next_shape = 0;
+    let arc = sim.integrator.node_arc_lengths();
     let record_shape = |sim: &Simulation| {
-        let rod = &sim.integrator.model.rod;
-        let cfg = &sim.state.config;
-        (0..=rod.n_el).map(|a| [rod.s_node(a), cfg.x[a].x, cfg.x[a].y, cfg.x[a].z]).collect::<Vec<_>>()
+        let x = &sim.state.config.x;
+        arc.iter().zip(x).map(|(s, p)| [*s, p.x, p.y, p.z]).collect::<Vec<_>>()
     };
     while next_shape < shape_times.len() && shape_times[next_shape] <= 0.0 {
         shapes.push((0.0, record_shape(&sim)));
@@ -262,7 +262,7 @@ fn run(
     let solve_start = std::time::Instant::now();
     let mut progress = Progress::new(!json);
     let mut failure = None;
-    let dt = sim.integrator.options.time_step;
+    let dt = sim.integrator.options().time_step;
     let n_steps = (duration / dt - 1e-9).ceil().max(1.0) as u64;
     for k in 1..=n_steps {
         let target = if k == n_steps { duration } else { k as f64 * dt };

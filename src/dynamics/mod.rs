@@ -8,13 +8,15 @@
 //! [`Integrator`] the preallocated workspace and the stepping.
 
 pub mod mass;
+pub mod newton;
 pub mod outputs;
 pub mod run;
 pub mod serialize;
 mod step;
 
+pub use newton::{Integrator, SolverLog, StepEquations, StepInfo};
 pub use outputs::Outputs;
-pub use step::{Integrator, SolverLog, StepInfo};
+pub use step::RodWorkspace;
 
 use crate::hydro::fluid::Fluid;
 use crate::hydro::weight::VerticalLoad;
@@ -51,19 +53,8 @@ impl LineModel {
 
     /// The line of a scene: its rod, section, weight, drag, current and added mass.
     pub fn from_scene(scene: &Scene) -> Self {
-        let k = scene.drag_coefficients();
-        let current = scene.current();
-        let drag = if k.is_zero() { None } else { Some((k, current)) };
-        let d = scene.line.outer_diameter;
-        let added_mass = scene.line.ca_normal * scene.environment.water_density * std::f64::consts::PI * d * d / 4.0;
         let j = scene.rotary_inertia();
-        LineModel::new(
-            scene.rod(),
-            scene.line.mass_per_length,
-            [j, j],
-            scene.vertical_load(),
-            Fluid { drag, added_mass },
-        )
+        LineModel::new(scene.rod(), scene.line.mass_per_length, [j, j], scene.vertical_load(), scene.fluid())
     }
 
     /// Consistent nodal vertical load vector.
@@ -216,19 +207,21 @@ impl Clone for State {
 }
 
 impl State {
-    /// A line at rest in `config` at time `time`.
+    /// A line at rest in `config` at time `time` (a cable's configuration
+    /// has node positions only: no slopes, no directors).
     pub fn at_rest(config: RodConfig, time: f64) -> Self {
         let n = config.x.len();
+        let np = config.xp.len();
         let nd = config.d.len();
         State {
             time,
             vel: vec![V3::zeros(); n],
-            slope_vel: vec![V3::zeros(); n],
+            slope_vel: vec![V3::zeros(); np],
             director_vel: vec![M3::zeros(); nd],
             mean_vel: vec![V3::zeros(); n],
-            mean_slope_vel: vec![V3::zeros(); n],
+            mean_slope_vel: vec![V3::zeros(); np],
             prev_mean_vel: vec![V3::zeros(); n],
-            prev_mean_slope_vel: vec![V3::zeros(); n],
+            prev_mean_slope_vel: vec![V3::zeros(); np],
             config,
             ..Default::default()
         }

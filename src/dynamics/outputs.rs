@@ -87,6 +87,38 @@ impl Outputs {
     }
 }
 
+impl Outputs {
+    /// The outputs of state `s` from its end `reactions` (force of the supports
+    /// on the line, N), smallest axial force (N), energies [kinetic, strain,
+    /// potential] (J) and shape points; the work terms are the state's.
+    pub fn of_state(
+        s: &State,
+        reactions: [V3; 2],
+        min_tension: f64,
+        energy: [f64; 3],
+        shape: [V3; SHAPE_POINTS],
+    ) -> Self {
+        let [kinetic, strain, potential] = energy;
+        Outputs {
+            time: s.time,
+            top_tension: reactions[0].norm(),
+            top_force: -reactions[0],
+            bottom_tension: reactions[1].norm(),
+            bottom_force: -reactions[1],
+            min_tension,
+            total_energy: kinetic + strain + potential,
+            kinetic_energy: kinetic,
+            strain_energy: strain,
+            potential_energy: potential,
+            work_top: s.work_top,
+            work_hydro: s.work_hydro,
+            work_anchor: s.work_anchor,
+            dissipated_energy: s.dissipated,
+            shape,
+        }
+    }
+}
+
 impl LineModel {
     /// Force of the supports on the line at S = 0 and S = L in `state`, N:
     /// the end rows of the equations of motion at the state (internal force,
@@ -154,22 +186,6 @@ impl LineModel {
         for (k, p) in shape.iter_mut().enumerate() {
             *p = rod.position_at(cfg, rod.length * k as f64 / (SHAPE_POINTS - 1) as f64);
         }
-        Outputs {
-            time: s.time,
-            top_tension: reactions[0].norm(),
-            top_force: -reactions[0],
-            bottom_tension: reactions[1].norm(),
-            bottom_force: -reactions[1],
-            min_tension,
-            total_energy: kinetic + strain + potential,
-            kinetic_energy: kinetic,
-            strain_energy: strain,
-            potential_energy: potential,
-            work_top: s.work_top,
-            work_hydro: s.work_hydro,
-            work_anchor: s.work_anchor,
-            dissipated_energy: s.dissipated,
-            shape,
-        }
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], shape)
     }
 }

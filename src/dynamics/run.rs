@@ -1,10 +1,11 @@
 //! A dynamic run of a scene, as the CLI and the FMU drive it: the static
 //! state, the integrator with the scene's settings, and hang-off motions.
 
-use super::{DynamicOptions, HangOff, Integrator, LineModel, Outputs, State};
+use super::{DynamicOptions, DynamicsError, HangOff, Integrator, LineModel, Outputs, SolverLog, State, StepInfo};
+use crate::cable::CableModel;
 use crate::error::RiserError;
 use crate::rod::kinematics::V3;
-use crate::scene::Scene;
+use crate::scene::{Model, Scene};
 use crate::statics::report::{StaticReport, solve_scene};
 
 /// Heave of the hang-off, U0 sin(2π t/T), held at its value after `until`
@@ -40,9 +41,96 @@ impl Heave {
     }
 }
 
+/// The time integrator of a scene's line model.
+pub enum Engine {
+    /// The Cosserat director rod.
+    Rod(Box<Integrator<LineModel>>),
+    /// The cable (no bending, no torsion).
+    Cable(Box<Integrator<CableModel>>),
+}
+
+/// `$body` with `$i` bound to the integrator of either model.
+macro_rules! with_integrator {
+    ($engine:expr, $i:ident => $body:expr) => {
+        match $engine {
+            Engine::Rod($i) => $body,
+            Engine::Cable($i) => $body,
+        }
+    };
+}
+
+impl Engine {
+    /// The integrator of the scene's model (`analysis.model`).
+    pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
+        let options = DynamicOptions {
+            time_step: scene.analysis.time_step,
+            newton_tolerance: scene.analysis.newton_tolerance,
+            structural_damping: scene.analysis.structural_damping,
+            ..Default::default()
+        };
+        let origin = scene.hang_off();
+        let engine = match scene.analysis.model {
+            Model::Rod => Integrator::new(LineModel::from_scene(scene), options, origin).map(|i| Engine::Rod(i.into())),
+            Model::Cable => {
+                Integrator::new(CableModel::from_scene(scene), options, origin).map(|i| Engine::Cable(i.into()))
+            }
+        };
+        engine.map_err(|e| RiserError::Unsupported(format!("cannot set up the linear solver: {e}")))
+    }
+
+    pub fn options(&self) -> &DynamicOptions {
+        with_integrator!(self, i => &i.options)
+    }
+
+    pub fn options_mut(&mut self) -> &mut DynamicOptions {
+        with_integrator!(self, i => &mut i.options)
+    }
+
+    /// Sets the sink of the per-iteration solver messages (None: silent).
+    pub fn set_solver_log(&mut self, log: Option<SolverLog>) {
+        with_integrator!(self, i => i.solver_log = log)
+    }
+
+    /// See [`Integrator::invalidate_tangent`].
+    pub fn invalidate_tangent(&mut self) {
+        with_integrator!(self, i => i.invalidate_tangent())
+    }
+
+    /// See [`Integrator::impose_hang_off`].
+    pub fn impose_hang_off(&self, state: &mut State, motion: HangOff) {
+        with_integrator!(self, i => i.impose_hang_off(state, motion))
+    }
+
+    /// See [`Integrator::step`].
+    pub fn step(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        motion: &dyn Fn(f64) -> HangOff,
+    ) -> Result<StepInfo, DynamicsError> {
+        with_integrator!(self, i => i.step(state, h, motion))
+    }
+
+    /// Every output quantity of `state`.
+    pub fn outputs(&self, state: &State) -> Outputs {
+        match self {
+            Engine::Rod(i) => i.model.outputs(state),
+            Engine::Cable(i) => i.model.outputs(state),
+        }
+    }
+
+    /// Reference arc length of every node of `state`, m.
+    pub fn node_arc_lengths(&self) -> Vec<f64> {
+        match self {
+            Engine::Rod(i) => (0..=i.model.rod.n_el).map(|a| i.model.rod.s_node(a)).collect(),
+            Engine::Cable(i) => (0..=i.model.cable.n_el).map(|a| i.model.cable.s_node(a)).collect(),
+        }
+    }
+}
+
 /// A scene set up for a dynamic run, starting from its static equilibrium.
 pub struct Simulation {
-    pub integrator: Integrator,
+    pub integrator: Engine,
     pub state: State,
     /// The static equilibrium the run starts from.
     pub statics: StaticReport,
@@ -51,33 +139,25 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Solves the scene's statics and prepares the integrator with the
-    /// scene's time step and Newton tolerance.
+    /// Solves the scene's statics and prepares the integrator of the scene's
+    /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
-        let (_, statics) = solve_scene(scene)?;
-        let model = LineModel::from_scene(scene);
-        let options = DynamicOptions {
-            time_step: scene.analysis.time_step,
-            newton_tolerance: scene.analysis.newton_tolerance,
-            structural_damping: scene.analysis.structural_damping,
-            ..Default::default()
-        };
-        let integrator = Integrator::new(model, options, scene.hang_off())
-            .map_err(|e| RiserError::Unsupported(format!("cannot set up the linear solver: {e}")))?;
+        let statics = solve_scene(scene)?;
+        let integrator = Engine::from_scene(scene)?;
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
-        let initial_energy = integrator.model.outputs(&state).total_energy;
+        let initial_energy = integrator.outputs(&state).total_energy;
         Ok(Simulation { integrator, state, statics, initial_energy })
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
     pub fn start(&mut self, motion: HangOff) {
         self.integrator.impose_hang_off(&mut self.state, motion);
-        self.initial_energy = self.integrator.model.outputs(&self.state).total_energy;
+        self.initial_energy = self.integrator.outputs(&self.state).total_energy;
     }
 
     /// Outputs of the current state.
     pub fn outputs(&self) -> Outputs {
-        self.integrator.model.outputs(&self.state)
+        self.integrator.outputs(&self.state)
     }
 
     /// Advances to `t_target` in one internal step (split only if Newton

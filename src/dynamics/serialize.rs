@@ -2,15 +2,34 @@
 //! serialized state; loads in another process of the same build).
 //!
 //! Layout (little-endian): magic `RISERST\0`, format version (u32), the
-//! number of end nodes and director nodes (u64 each), then every field in
-//! declaration order (f64 / u64; vectors without lengths, which follow from
-//! the node counts), and an FNV-1a 64 checksum of everything before it.
+//! [`Mesh`] counts (nodes, slope nodes, director nodes; u64 each: a cable has
+//! no slopes and no directors), then every field in declaration order
+//! (f64 / u64; vectors without lengths, which follow from the counts), and an
+//! FNV-1a 64 checksum of everything before it.
 
 use super::{HangOff, State};
 use crate::rod::kinematics::{M3, RodConfig, V3};
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
+
+/// The sizes of a state's vectors: they identify the line model and its mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mesh {
+    pub nodes: usize,
+    pub slopes: usize,
+    pub directors: usize,
+}
+
+impl std::fmt::Display for Mesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.directors == 0 {
+            write!(f, "a cable of {} nodes", self.nodes)
+        } else {
+            write!(f, "a rod of {} nodes", self.nodes)
+        }
+    }
+}
 
 /// Why bytes could not be read back as a state.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,8 +40,8 @@ pub enum StateFormatError {
     BadChecksum,
     /// Node counts differ from the instance's mesh.
     WrongMesh {
-        nodes: usize,
-        expected: usize,
+        found: Mesh,
+        expected: Mesh,
     },
     NonFinite,
 }
@@ -34,8 +53,8 @@ impl std::fmt::Display for StateFormatError {
             StateFormatError::BadMagic => write!(f, "not a riser state (bad magic)"),
             StateFormatError::UnsupportedVersion(v) => write!(f, "serialized state format {v} is not supported"),
             StateFormatError::BadChecksum => write!(f, "serialized state is corrupt (checksum mismatch)"),
-            StateFormatError::WrongMesh { nodes, expected } => {
-                write!(f, "serialized state has {nodes} nodes, this instance {expected}")
+            StateFormatError::WrongMesh { found, expected } => {
+                write!(f, "serialized state is of {found}, this instance has {expected}")
             }
             StateFormatError::NonFinite => write!(f, "serialized state contains non-finite numbers"),
         }
@@ -114,8 +133,10 @@ impl State {
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&VERSION.to_le_bytes());
         let mut w = W(out);
-        w.u(self.config.x.len() as u64);
-        w.u(self.config.d.len() as u64);
+        let mesh = self.mesh();
+        for c in [mesh.nodes, mesh.slopes, mesh.directors] {
+            w.u(c as u64);
+        }
         w.u(extra.len() as u64);
         for v in extra {
             w.f(*v);
@@ -158,9 +179,14 @@ impl State {
         out.extend_from_slice(&sum.to_le_bytes());
     }
 
-    /// Reads a state written by [`State::write_bytes`] for a mesh of `nodes`
-    /// end nodes; returns it with the extra numbers.
-    pub fn read_bytes(bytes: &[u8], nodes: usize) -> Result<(State, Vec<f64>), StateFormatError> {
+    /// The sizes of the state's vectors.
+    pub fn mesh(&self) -> Mesh {
+        Mesh { nodes: self.config.x.len(), slopes: self.config.xp.len(), directors: self.config.d.len() }
+    }
+
+    /// Reads a state written by [`State::write_bytes`] for the line model and
+    /// mesh `expected`; returns it with the extra numbers.
+    pub fn read_bytes(bytes: &[u8], expected: Mesh) -> Result<(State, Vec<f64>), StateFormatError> {
         if bytes.len() < 8 + 4 + 8 {
             return Err(StateFormatError::TooShort);
         }
@@ -176,11 +202,11 @@ impl State {
             return Err(StateFormatError::BadChecksum);
         }
         let mut r = R { b: body, at: 12 };
-        let n = r.u()? as usize;
-        let nd = r.u()? as usize;
-        if n != nodes || nd != 2 * nodes - 1 {
-            return Err(StateFormatError::WrongMesh { nodes: n, expected: nodes });
+        let found = Mesh { nodes: r.u()? as usize, slopes: r.u()? as usize, directors: r.u()? as usize };
+        if found != expected {
+            return Err(StateFormatError::WrongMesh { found, expected });
         }
+        let (n, np, nd) = (found.nodes, found.slopes, found.directors);
         let n_extra = r.u()? as usize;
         if n_extra > 1024 {
             return Err(StateFormatError::TooShort);
@@ -188,15 +214,15 @@ impl State {
         let extra = (0..n_extra).map(|_| r.f()).collect::<Result<Vec<_>, _>>()?;
         let time = r.f()?;
         let x = r.vec3(n)?;
-        let xp = r.vec3(n)?;
+        let xp = r.vec3(np)?;
         let d = (0..nd).map(|_| r.m3()).collect::<Result<Vec<_>, _>>()?;
         let vel = r.vec3(n)?;
-        let slope_vel = r.vec3(n)?;
+        let slope_vel = r.vec3(np)?;
         let director_vel = (0..nd).map(|_| r.m3()).collect::<Result<Vec<_>, _>>()?;
         let mean_vel = r.vec3(n)?;
-        let mean_slope_vel = r.vec3(n)?;
+        let mean_slope_vel = r.vec3(np)?;
         let prev_mean_vel = r.vec3(n)?;
-        let prev_mean_slope_vel = r.vec3(n)?;
+        let prev_mean_slope_vel = r.vec3(np)?;
         let hang_off = HangOff { displacement: r.v3()?, velocity: r.v3()? };
         let (work_top, work_hydro, dissipated, work_anchor) = (r.f()?, r.f()?, r.f()?, r.f()?);
         let mut end_accel = [[V3::zeros(); 4]; 2];
@@ -255,16 +281,23 @@ mod tests {
         s.steps = 42;
         let mut b = Vec::new();
         s.write_bytes(&[1.0, -2.0], &mut b);
-        let (t, extra) = State::read_bytes(&b, n).unwrap();
+        let m = s.mesh();
+        let (t, extra) = State::read_bytes(&b, m).unwrap();
         assert_eq!(t, s);
         assert_eq!(extra, vec![1.0, -2.0]);
         let mut bad = b.clone();
         bad[40] ^= 1;
-        assert_eq!(State::read_bytes(&bad, n).unwrap_err(), StateFormatError::BadChecksum);
-        assert_eq!(State::read_bytes(&b[..10], n).unwrap_err(), StateFormatError::TooShort);
-        assert!(matches!(State::read_bytes(&b, n + 1), Err(StateFormatError::WrongMesh { .. })));
+        assert_eq!(State::read_bytes(&bad, m).unwrap_err(), StateFormatError::BadChecksum);
+        assert_eq!(State::read_bytes(&b[..10], m).unwrap_err(), StateFormatError::TooShort);
+        assert!(matches!(State::read_bytes(&b, Mesh { nodes: n + 1, ..m }), Err(StateFormatError::WrongMesh { .. })));
+        // a cable's state: no slopes, no directors
+        let c = State::at_rest(RodConfig { x: s.config.x.clone(), xp: Vec::new(), d: Vec::new() }, 2.0);
+        let mut bc = Vec::new();
+        c.write_bytes(&[], &mut bc);
+        assert_eq!(State::read_bytes(&bc, c.mesh()).unwrap().0, c);
+        assert!(matches!(State::read_bytes(&bc, m), Err(StateFormatError::WrongMesh { .. })));
         let mut magic = b.clone();
         magic[0] = b'X';
-        assert_eq!(State::read_bytes(&magic, n).unwrap_err(), StateFormatError::BadMagic);
+        assert_eq!(State::read_bytes(&magic, m).unwrap_err(), StateFormatError::BadMagic);
     }
 }

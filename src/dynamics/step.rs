@@ -1,4 +1,5 @@
-//! One time step of the energy–momentum scheme (docs/theory.md §5.2–§5.6).
+//! The director rod's step equations (docs/theory.md §5.2–§5.6), for the
+//! shared Newton iteration of [`super::newton`].
 //!
 //! With h the step, q½ = ½(q_n + q_{n+1}) and the new velocities
 //! v_{n+1} = 2(q_{n+1} − q_n)/h − v_n, the unknown q_{n+1} solves
@@ -8,21 +9,16 @@
 //! average strain). Newton on (Δr, Δr', θ) with the consistent tangent; the
 //! directors are updated by the Cayley transform.
 
-use super::{DynamicOptions, DynamicsError, HangOff, LineModel, State};
+use super::newton::{Integrator, Linear, StepEquations};
+use super::{HangOff, LineModel, State};
 use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
-use crate::linsolve::{BandedSystem, LinearSolveError};
+use crate::linsolve::LinearSolveError;
 use crate::rod::element::{self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Strain, T_OFF};
 use crate::rod::kinematics::{M3, RodConfig, V3, cayley, skew};
 use crate::rod::model::{Rod, RotationBc};
 
-/// A sink for solver messages.
-pub type SolverLog = Box<dyn FnMut(&str) + Send>;
-
-/// Scratch data of a step, allocated once.
-struct Buffers {
-    sys: BandedSystem,
-    r: Vec<f64>,
-    du: Vec<f64>,
+/// Scratch data of a rod step beyond the linear system, allocated once.
+pub struct RodWorkspace {
     /// Global fluid force vector (centreline rows), N.
     fluid: Vec<f64>,
     /// Candidate new centreline velocities.
@@ -48,47 +44,14 @@ struct Buffers {
     theta_step: Vec<V3>,
 }
 
-/// The time integrator: the model, the options and a preallocated workspace.
-pub struct Integrator {
-    pub model: LineModel,
-    pub options: DynamicOptions,
-    /// Position of the hang-off at zero displacement, m.
-    pub origin: V3,
-    buf: Buffers,
-    trial: State,
-    fixed: Vec<usize>,
-    /// Force scale of the convergence test, N.
-    force_scale: f64,
-    /// Receives one line per Newton iteration when set (the FMU's `logSolver`).
-    pub solver_log: Option<SolverLog>,
-    /// Step size the factorised tangent belongs to (NaN: none).
-    factor_h: f64,
-    /// Steps taken since the tangent was factorised.
-    factor_age: u32,
-}
+impl StepEquations for LineModel {
+    type Workspace = RodWorkspace;
 
-/// Outcome of one successful call to [`Integrator::step`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepInfo {
-    /// Newton iterations used.
-    pub iterations: usize,
-    /// Sub-steps taken (1 if the step was not split).
-    pub substeps: usize,
-}
-
-impl Integrator {
-    pub fn new(model: LineModel, options: DynamicOptions, origin: V3) -> Result<Self, LinearSolveError> {
-        let rod = &model.rod;
+    fn workspace(&self) -> Result<(RodWorkspace, Linear), LinearSolveError> {
+        let rod = &self.rod;
         let n = rod.n_dof();
-        let sys = rod.new_system()?;
-        let mut fixed = rod.fixed_dofs();
-        fixed.sort_unstable();
-        let weight: f64 = (0..=rod.n_el).map(|a| model.gravity_vector()[Rod::x_dof(a) + 2].abs()).sum();
-        let force_scale = weight.max(model.total_mass() * 9.81);
-        let buf = Buffers {
-            sys,
-            r: vec![0.0; n],
-            du: vec![0.0; n],
+        let lin = Linear::new(rod.new_system()?, rod.fixed_dofs());
+        let ws = RodWorkspace {
             fluid: vec![0.0; n],
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
@@ -102,237 +65,328 @@ impl Integrator {
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
         };
-        Ok(Integrator {
-            model,
-            options,
-            origin,
-            buf,
-            trial: State::default(),
-            fixed,
-            force_scale,
-            solver_log: None,
-            factor_h: f64::NAN,
-            factor_age: 0,
-        })
+        Ok((ws, lin))
     }
 
-    /// Forgets the factorised tangent: the next step starts with a new one.
-    /// Call it where results must depend on the state alone (an FMU's
-    /// communication step, after a state was restored).
-    pub fn invalidate_tangent(&mut self) {
-        self.factor_h = f64::NAN;
+    fn force_scale(&self) -> f64 {
+        let weight: f64 = (0..=self.rod.n_el).map(|a| self.gravity_vector()[Rod::x_dof(a) + 2].abs()).sum();
+        weight.max(self.total_mass() * 9.81)
     }
 
-    /// Puts the hang-off of `state` on its prescribed motion at the state's time
-    /// (position and velocity), e.g. before the first step.
-    pub fn impose_hang_off(&self, state: &mut State, motion: HangOff) {
-        if self.model.rod.ends[0].position_fixed {
-            state.config.x[0] = self.origin + motion.displacement;
-            state.vel[0] = motion.velocity;
-        }
-        state.hang_off = motion;
+    fn hang_off_prescribed(&self) -> bool {
+        self.rod.ends[0].position_fixed
     }
 
-    /// Advances `state` by one step `h` to the hang-off motion `motion(t)`
-    /// (t absolute). A step whose Newton iteration fails is split in halves,
-    /// down to h/2^max_halvings; if that fails too, `state` is left at the
-    /// last converged sub-step and the error says why.
-    pub fn step(
-        &mut self,
-        state: &mut State,
-        h: f64,
-        motion: &dyn Fn(f64) -> HangOff,
-    ) -> Result<StepInfo, DynamicsError> {
-        if !(h.is_finite() && h > 0.0) {
-            return Err(DynamicsError::BadInput(format!("time step must be positive and finite, got {h}")));
-        }
-        let t_end = state.time + h;
-        let mut sub = h;
-        let mut level = 0u32;
-        let mut info = StepInfo { iterations: 0, substeps: 0 };
-        let mut split = false;
-        while state.time < t_end - 1e-12 * h {
-            let hh = sub.min(t_end - state.time);
-            let target = motion(state.time + hh);
-            // the quadratic predictor (which falls back to the linear one by
-            // itself when it extrapolates an unresolved oscillation); halved
-            // sub-steps, whose history is of another step size, the linear one
-            let order = if level == 0 { 2 } else { 1 };
-            match self.try_step(state, hh, target, order) {
-                Ok(it) => {
-                    info.iterations += it;
-                    info.substeps += 1;
-                }
-                Err(e) => {
-                    if matches!(e, DynamicsError::BadInput(_)) || level >= self.options.max_halvings {
-                        return Err(e);
-                    }
-                    level += 1;
-                    sub *= 0.5;
-                    split = true;
-                }
-            }
-        }
-        state.time = t_end;
-        if split {
-            state.retries += 1;
-        }
-        Ok(info)
-    }
-
-    /// One step of size h without splitting: on success `state` becomes the
-    /// new state; on failure it is untouched.
-    fn try_step(&mut self, state: &mut State, h: f64, target: HangOff, order: u32) -> Result<usize, DynamicsError> {
-        let model = &self.model;
-        let rod = &model.rod;
-        if !(target.displacement.iter().chain(target.velocity.iter()).all(|v| v.is_finite())) {
-            return Err(DynamicsError::BadInput("hang-off motion is not finite".into()));
-        }
-        let trial = &mut self.trial;
-        trial.clone_from(state);
+    fn begin(&self, ws: &mut RodWorkspace, prev: &State, eta: f64) {
+        let rod = &self.rod;
         for e in 0..rod.n_el {
-            self.buf.eps_n[e] = rod.element_strains(&state.config, e);
-            if self.options.structural_damping > 0.0 {
-                self.buf.damp_n[e] =
-                    element::gauss_strains_with(&ElemDofs::gather(&state.config, e), rod.h, element::Shear::Material);
+            ws.eps_n[e] = rod.element_strains(&prev.config, e);
+            if eta > 0.0 {
+                ws.damp_n[e] =
+                    element::gauss_strains_with(&ElemDofs::gather(&prev.config, e), rod.h, element::Shear::Material);
             }
         }
-        predict(model, state, trial, h, self.origin, target, order, &self.buf.twist_nodes, &mut self.buf.theta_step);
-        let n = rod.n_dof();
-        // below 10× the residual's round-off, stop when Newton stagnates
-        let roundoff = rod.residual_roundoff(&state.config);
-        let tol = (self.options.newton_tolerance * self.force_scale).max(roundoff);
-        let mut converged = false;
-        let mut iterations = 0;
-        let mut last = f64::INFINITY;
-        let mut first = f64::INFINITY;
-        let mut last_res = f64::INFINITY;
-        // modified Newton: the factorised tangent is reused across iterations
-        // and steps; it is refreshed when it is older than max_tangent_age
-        // steps, when h changed, or when the residual contracts slowly
-        let same_h = (self.factor_h - h).abs() <= 1e-9 * h; // false for NaN
-        let mut refresh = !same_h || self.factor_age >= self.options.max_tangent_age;
-        // whether the last Newton correction used a tangent of its own iterate
-        let mut solved_fresh = false;
-        // far from the solution (a rough predictor: abrupt inputs, unresolved
-        // oscillations) modified Newton may wander to another root of the
-        // step equations: such steps take full Newton from the start
-        let mut full = false;
-        let mut tried_linear = false;
-        let mut at_start = true;
-        for it in 0..=self.options.max_iterations {
-            if refresh {
-                // assembling overwrites the factorised matrix
-                self.factor_h = f64::NAN;
+    }
+
+    /// Predictor: quadratic (`order` 2) extrapolation of the centreline from the
+    /// last two steps, r_{n+1} = r_n + h (2 v̄_n − v̄_{n−1}) (v̄ the steps' mean
+    /// velocities), or linear (`order` 1), r_{n+1} = r_n + h v̄_n;
+    /// the hang-off on its path, and directors carried along with the predicted
+    /// tangent (no spin about d3 at a twist-held node).
+    fn predict(
+        &self,
+        ws: &mut RodWorkspace,
+        prev: &State,
+        trial: &mut State,
+        h: f64,
+        origin: V3,
+        target: HangOff,
+        order: u32,
+    ) {
+        let model = self;
+        let (twist, theta) = (&ws.twist_nodes, &mut ws.theta_step);
+        let (c1, c0) = if order >= 2 { (2.0, 1.0) } else { (1.0, 0.0) };
+        let rod = &model.rod;
+        for a in 0..=rod.n_el {
+            let fixed = (a == 0 && rod.ends[0].position_fixed) || (a == rod.n_el && rod.ends[1].position_fixed);
+            if !fixed {
+                trial.config.x[a] = prev.config.x[a] + (prev.mean_vel[a] * c1 - prev.prev_mean_vel[a] * c0) * h;
             }
-            assemble(model, state, &trial.config, h, target, self.options.structural_damping, &mut self.buf, refresh);
-            let res = residual_norm(&self.buf.r, &self.fixed, rod.h);
-            if let Some(log) = self.solver_log.as_mut() {
-                log(&format!(
-                    "t = {:.6} s, h = {h:.3e} s, Newton iteration {it}{}: residual {res:.3e} N (tolerance {tol:.3e} N)",
-                    state.time,
-                    if refresh { " (new tangent)" } else { "" }
-                ));
-            }
-            last = res;
-            // converged; or stagnating at round-off after a full Newton correction
-            if res <= tol || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
-                converged = true;
-                break;
-            }
-            if at_start && res > 0.1 * self.force_scale {
-                if order >= 2 && !tried_linear {
-                    // the quadratic predictor extrapolated an unresolved
-                    // oscillation: start again from the linear one
-                    tried_linear = true;
-                    predict(
-                        model,
-                        state,
-                        trial,
-                        h,
-                        self.origin,
-                        target,
-                        1,
-                        &self.buf.twist_nodes,
-                        &mut self.buf.theta_step,
-                    );
-                    continue;
-                }
-                full = true;
-                if !refresh {
-                    refresh = true;
-                    at_start = false;
-                    continue;
-                }
-            }
-            at_start = false;
-            if it == self.options.max_iterations || !res.is_finite() {
-                break;
-            }
-            if it == 0 {
-                first = res;
-            }
-            if res > 1e8 * first {
-                break;
-            }
-            let slow = res > 0.5 * last_res;
-            last_res = res;
-            iterations += 1;
-            let buf = &mut self.buf;
-            for &i in &self.fixed {
-                buf.r[i] = 0.0;
-            }
-            if refresh {
-                for &i in &self.fixed {
-                    buf.sys.constrain(i);
-                }
-                if let Err(error) = buf.sys.factorize() {
-                    self.factor_h = f64::NAN;
-                    return Err(DynamicsError::Linear { time: state.time, step: h, error });
-                }
-                self.factor_h = h;
-                self.factor_age = 0;
-            }
-            // the contraction just observed is that of the previous correction:
-            // slow after a stale tangent, renew it once; slow after a fresh
-            // one, the step is strongly nonlinear: full Newton from here
-            let prev_fresh = solved_fresh;
-            solved_fresh = refresh;
-            if slow && it > 0 && prev_fresh {
-                full = true;
-            }
-            refresh = full || (slow && it > 0);
-            for i in 0..n {
-                buf.du[i] = -buf.r[i];
-            }
-            if let Err(error) = buf.sys.solve_in_place(&mut buf.du) {
-                self.factor_h = f64::NAN;
-                return Err(DynamicsError::Linear { time: state.time, step: h, error });
-            }
-            rod.limit_rotation_increments(&mut buf.du, 0.5);
-            apply_increment(rod, &state.config, &mut trial.config, &buf.du, &buf.twist_nodes, &mut buf.theta_step);
-            if !trial.config.is_finite() {
-                break;
+            trial.config.xp[a] =
+                prev.config.xp[a] + (prev.mean_slope_vel[a] * c1 - prev.prev_mean_slope_vel[a] * c0) * h;
+        }
+        if rod.ends[0].position_fixed {
+            trial.config.x[0] = origin + target.displacement;
+        }
+        // directors: the smallest rotation that turns d3 onto the predicted
+        // centreline tangent (the director rates of the scheme carry the
+        // unresolved shear oscillation and predict badly at large steps)
+        for j in 0..rod.n_director_nodes() {
+            let d = prev.config.d[j];
+            let a = slope_at_director_node(rod, &prev.config, j).normalize();
+            let b = slope_at_director_node(rod, &trial.config, j).normalize();
+            // Cayley vector of the smallest rotation a → b: 2 (a × b)/(1 + a·b)
+            let theta_pred = if 1.0 + a.dot(&b) > 1e-6 { a.cross(&b) * (2.0 / (1.0 + a.dot(&b))) } else { V3::zeros() };
+            if let Some(k) = twist.iter().position(|&t| t == j) {
+                let d3: V3 = d.column(2).into();
+                theta[k] = theta_pred - d3 * d3.dot(&theta_pred);
+                trial.config.d[j] = cayley(&theta[k]) * d;
+            } else {
+                trial.config.d[j] = cayley(&theta_pred) * d;
             }
         }
-        if !converged {
-            // the next attempt (a smaller sub-step) starts from a new tangent
-            self.factor_h = f64::NAN;
-            return Err(DynamicsError::NotConverged {
-                time: state.time,
-                step: h,
-                iterations,
-                residual: last / self.force_scale,
-            });
+    }
+
+    fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
+        self.rod.residual_roundoff(cfg)
+    }
+
+    /// The midpoint residual (5.3) at the trial configuration `cfg` and, if
+    /// asked, its tangent with respect to (Δr, Δr', θ) of q_{n+1}; `eta` the
+    /// Kelvin–Voigt damping time, s.
+    fn assemble(
+        &self,
+        ws: &mut RodWorkspace,
+        lin: &mut Linear,
+        prev: &State,
+        cfg: &RodConfig,
+        h: f64,
+        target: HangOff,
+        eta: f64,
+        tangent: bool,
+    ) {
+        let (model, buf, want_k) = (self, ws, tangent);
+        let damping = Factors { config: 0.5, stress: eta / h };
+        let rod = &model.rod;
+        let n_el = rod.n_el;
+        let mass = &model.mass;
+        lin.r.iter_mut().for_each(|v| *v = 0.0);
+        buf.fluid.iter_mut().for_each(|v| *v = 0.0);
+        if want_k {
+            lin.sys.clear();
         }
+        buf.end_inertia = [V3::zeros(); 2];
+        // new velocities v_{n+1} = 2Δq/h − v_n; the hang-off follows its prescribed velocity
+        for a in 0..=n_el {
+            buf.vnew[a] = (cfg.x[a] - prev.config.x[a]) * (2.0 / h) - prev.vel[a];
+            buf.vpnew[a] = (cfg.xp[a] - prev.config.xp[a]) * (2.0 / h) - prev.slope_vel[a];
+        }
+        if rod.ends[0].position_fixed {
+            buf.vnew[0] = target.velocity;
+        }
+        if rod.ends[1].position_fixed {
+            buf.vnew[n_el] = V3::zeros();
+        }
+        let k_inertia = 2.0 / (h * h);
+        let fluid_active = !model.fluid.is_inert();
+        let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
+        let mut re = ElVec::zeros();
+        let mut ke = ElMat::zeros();
+        for e in 0..n_el {
+            re.fill(0.0);
+            if want_k {
+                ke.fill(0.0);
+            }
+            let el1 = ElemDofs::gather(cfg, e);
+            let eln = ElemDofs::gather(&prev.config, e);
+            let elm = ElemDofs::average(&eln, &el1);
+            // internal force: discrete gradient (§5.2)
+            let eps1 = rod.strains_of(&el1, e);
+            let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
+            element::internal_force(
+                &elm,
+                &el1,
+                &s,
+                rod.stiff(),
+                Factors::MIDPOINT,
+                rod.h,
+                element::Shear::Spatial(rod.reference_penalty(e)),
+                &mut re,
+                if want_k { Some(&mut ke) } else { None },
+            );
+            // Kelvin–Voigt damping on the objective material strains (§5.9)
+            if eta > 0.0 {
+                let d1 = element::gauss_strains_with(&el1, rod.h, element::Shear::Material);
+                buf.damp_1[e] = d1;
+                let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
+                element::internal_force(
+                    &elm,
+                    &el1,
+                    &sd,
+                    rod.stiff(),
+                    damping,
+                    rod.h,
+                    element::Shear::Material,
+                    &mut re,
+                    if want_k { Some(&mut ke) } else { None },
+                );
+            }
+            // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
+            let vn = prev.hermite_velocity(e);
+            let v1 = [buf.vnew[e], buf.vpnew[e], buf.vnew[e + 1], buf.vpnew[e + 1]];
+            let mut acc = [V3::zeros(); 4];
+            for k in 0..4 {
+                acc[k] = (v1[k] - vn[k]) / h;
+            }
+            for k in 0..4 {
+                let mut f = V3::zeros();
+                for m in 0..4 {
+                    f += acc[m] * mass.centre[k][m];
+                }
+                for c in 0..3 {
+                    re[C_OFF[k] + c] += f[c];
+                }
+                if e == 0 && k == 0 {
+                    buf.end_inertia[0] += f;
+                }
+                if e == n_el - 1 && k == 2 {
+                    buf.end_inertia[1] += f;
+                }
+                if want_k {
+                    for m in 0..4 {
+                        let v = k_inertia * mass.centre[k][m];
+                        for c in 0..3 {
+                            ke[(C_OFF[k] + c, C_OFF[m] + c)] += v;
+                        }
+                    }
+                }
+            }
+            if e == 0 {
+                buf.end_accel[0] = acc;
+            }
+            if e == n_el - 1 {
+                buf.end_accel[1] = acc;
+            }
+            // water: drag at the midpoint with v½ = Δr/h, added mass with the step's acceleration (§5.4)
+            if fluid_active {
+                let mut vm = [V3::zeros(); 4];
+                for k in 0..4 {
+                    vm[k] = (el1.c[k] - eln.c[k]) / h;
+                }
+                let mut ff = [V3::zeros(); 4];
+                let mut kf = [[M3::zeros(); 4]; 4];
+                element_fluid_force(
+                    &model.fluid,
+                    FluidFields { c: &elm.c, v: &vm, a: &acc },
+                    rod.s_node(e),
+                    rod.h,
+                    fac,
+                    &mut ff,
+                    if want_k { Some(&mut kf) } else { None },
+                );
+                let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
+                for k in 0..4 {
+                    for c in 0..3 {
+                        re[C_OFF[k] + c] -= ff[k][c];
+                        buf.fluid[gdof[k] + c] += ff[k][c];
+                    }
+                    if want_k {
+                        for m in 0..4 {
+                            let mut blk = ke.fixed_view_mut::<3, 3>(C_OFF[k], C_OFF[m]);
+                            blk += kf[k][m];
+                        }
+                    }
+                }
+            }
+            // director inertia, reduced by the midpoint frames: m_A = Σ_i d_iA,½ × a_iA (§5.3)
+            let ddn = prev.director_rates(e);
+            let mut dd1 = [M3::zeros(); 3];
+            for b in 0..3 {
+                dd1[b] = (el1.d[b] - eln.d[b]) * (2.0 / h) - ddn[b];
+            }
+            for a in 0..3 {
+                let mut m = V3::zeros();
+                let mut geo = M3::zeros();
+                for i in 0..2 {
+                    let ji = mass.rotary[i];
+                    if ji == 0.0 {
+                        continue;
+                    }
+                    let mut acc_i = V3::zeros();
+                    for b in 0..3 {
+                        acc_i += (dd1[b].column(i) - ddn[b].column(i)) * (mass.director[a][b] * ji / h);
+                    }
+                    let dmid: V3 = elm.d[a].column(i).into();
+                    m += dmid.cross(&acc_i);
+                    if want_k {
+                        let d1a: V3 = el1.d[a].column(i).into();
+                        geo += skew(&acc_i) * skew(&d1a) * 0.5;
+                        for b in 0..3 {
+                            let d1b: V3 = el1.d[b].column(i).into();
+                            let blk = skew(&dmid) * skew(&d1b) * (-k_inertia * mass.director[a][b] * ji);
+                            let mut view = ke.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[b]);
+                            view += blk;
+                        }
+                    }
+                }
+                for c in 0..3 {
+                    re[T_OFF[a] + c] += m[c];
+                }
+                if want_k {
+                    let mut view = ke.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[a]);
+                    view += geo;
+                }
+            }
+            let off = STRIDE * e;
+            for i in 0..NDOF_EL {
+                lin.r[off + i] += re[i];
+            }
+            if want_k {
+                lin.sys.add_block(e, |i, j| ke[(i, j)]);
+            }
+        }
+        for (ri, fi) in lin.r.iter_mut().zip(model.gravity_vector()) {
+            *ri -= fi;
+        }
+        let i0 = Rod::x_dof(0);
+        let i1 = Rod::x_dof(n_el);
+        buf.reaction =
+            [V3::new(lin.r[i0], lin.r[i0 + 1], lin.r[i0 + 2]), V3::new(lin.r[i1], lin.r[i1 + 1], lin.r[i1 + 2])];
+        let it = Rod::theta_dof(2 * n_el);
+        buf.anchor_moment = V3::new(lin.r[it], lin.r[it + 1], lin.r[it + 2]);
+        // twist-held nodes: unknowns θ_loc with θ = D_n θ_loc, spatial increment
+        // w = T(θ) D_n δθ_loc, T(θ) = 4/(4 + |θ|²) (I + ½θ̂) (the Cayley differential)
+        for (k, &j) in buf.twist_nodes.iter().enumerate() {
+            let i0 = Rod::theta_dof(j);
+            let m = V3::new(lin.r[i0], lin.r[i0 + 1], lin.r[i0 + 2]);
+            let th = buf.theta_step[k];
+            let dn = prev.config.d[j];
+            let f = 4.0 / (4.0 + th.norm_squared());
+            let p = (M3::identity() + skew(&th) * 0.5) * dn * f;
+            let ml = p.transpose() * m;
+            lin.r[i0..i0 + 3].copy_from_slice(ml.as_slice());
+            if want_k {
+                lin.sys.transform_dofs(i0, &p);
+                // ∂(Pᵀ m)/∂θ at fixed m, times D_n
+                let tm = m + m.cross(&th) * 0.5;
+                let extra = dn.transpose() * (tm * th.transpose() * (-0.5 * f * f) + skew(&m) * (0.5 * f)) * dn;
+                for a in 0..3 {
+                    for b in 0..3 {
+                        lin.sys.add(i0 + a, i0 + b, extra[(a, b)]);
+                    }
+                }
+            }
+        }
+    }
+
+    fn residual_norm(&self, lin: &Linear) -> f64 {
+        residual_norm(&lin.r, &lin.fixed, self.rod.h)
+    }
+
+    fn apply_increment(&self, ws: &mut RodWorkspace, lin: &mut Linear, prev: &State, cfg: &mut RodConfig) {
+        self.rod.limit_rotation_increments(&mut lin.du, 0.5);
+        apply_increment(&self.rod, &prev.config, cfg, &lin.du, &ws.twist_nodes, &mut ws.theta_step);
+    }
+
+    fn finish(&self, ws: &RodWorkspace, _lin: &Linear, state: &State, trial: &mut State, h: f64, eta: f64) {
         // velocities, work and bookkeeping of the converged step (§5.5)
-        let buf = &self.buf;
+        let rod = &self.rod;
         let cfg0 = &state.config;
         let cfg1 = &trial.config;
         let mut w_hydro = 0.0;
         for a in 0..=rod.n_el {
-            trial.vel[a] = buf.vnew[a];
-            trial.slope_vel[a] = buf.vpnew[a];
+            trial.vel[a] = ws.vnew[a];
+            trial.slope_vel[a] = ws.vpnew[a];
             let dx = cfg1.x[a] - cfg0.x[a];
             let dp = cfg1.xp[a] - cfg0.xp[a];
             trial.prev_mean_vel[a] = state.mean_vel[a];
@@ -340,7 +394,7 @@ impl Integrator {
             trial.mean_vel[a] = dx / h;
             trial.mean_slope_vel[a] = dp / h;
             for c in 0..3 {
-                w_hydro += dx[c] * buf.fluid[Rod::x_dof(a) + c] + dp[c] * buf.fluid[Rod::xp_dof(a) + c];
+                w_hydro += dx[c] * ws.fluid[Rod::x_dof(a) + c] + dp[c] * ws.fluid[Rod::xp_dof(a) + c];
             }
         }
         for j in 0..rod.n_director_nodes() {
@@ -348,83 +402,35 @@ impl Integrator {
         }
         let dx0 = cfg1.x[0] - cfg0.x[0];
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
-        trial.work_top += dx0.dot(&buf.reaction[0]) + (vbar0 * h - dx0).dot(&buf.end_inertia[0]);
+        trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
         trial.work_hydro += w_hydro;
-        let eta = self.options.structural_damping;
         if eta > 0.0 {
             for e in 0..rod.n_el {
-                trial.dissipated += rod.damping_dissipation(&buf.damp_n[e], &buf.damp_1[e], eta / h);
+                trial.dissipated += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], eta / h);
             }
         }
         if rod.ends[1].rotation == RotationBc::TwistFixed {
             let j = 2 * rod.n_el;
-            trial.work_anchor += cayley_vector(&(cfg1.d[j] * cfg0.d[j].transpose())).dot(&buf.anchor_moment);
+            trial.work_anchor += cayley_vector(&(cfg1.d[j] * cfg0.d[j].transpose())).dot(&ws.anchor_moment);
         }
-        trial.end_accel = buf.end_accel;
-        trial.mid_reaction = buf.reaction;
-        trial.hang_off = target;
-        trial.time = state.time + h;
-        trial.steps += 1;
-        self.factor_age += 1;
-        trial.newton_iterations += iterations as u64;
-        std::mem::swap(state, trial);
-        Ok(iterations)
+        trial.end_accel = ws.end_accel;
+        trial.mid_reaction = ws.reaction;
     }
 }
 
-/// Access to the step equations for verification (tests compare the tangent
-/// with finite differences of the residual).
-impl Integrator {
-    /// Starts a step from `prev` to the hang-off motion `target`: returns the
-    /// predicted configuration q_{n+1} (and sets the twist-held nodes' step rotations).
-    pub fn begin_step(&mut self, prev: &State, h: f64, target: HangOff) -> RodConfig {
-        let model = &self.model;
-        for e in 0..model.rod.n_el {
-            self.buf.eps_n[e] = model.rod.element_strains(&prev.config, e);
-            self.buf.damp_n[e] =
-                element::gauss_strains_with(&ElemDofs::gather(&prev.config, e), model.rod.h, element::Shear::Material);
-        }
-        let mut trial = prev.clone();
-        predict(model, prev, &mut trial, h, self.origin, target, 2, &self.buf.twist_nodes, &mut self.buf.theta_step);
-        trial.config
-    }
-
-    /// Residual of the step equations (5.3) at `cfg` (reduced, twist-held
-    /// nodes in their step basis; rows of fixed unknowns included), and the
-    /// tangent entry accessor if `want_tangent`.
-    pub fn step_residual(
-        &mut self,
-        prev: &State,
-        cfg: &RodConfig,
-        h: f64,
-        target: HangOff,
-        want_tangent: bool,
-    ) -> Vec<f64> {
-        assemble(&self.model, prev, cfg, h, target, self.options.structural_damping, &mut self.buf, want_tangent);
-        self.buf.r.clone()
-    }
-
-    /// Entry (i, j) of the tangent from the last [`Integrator::step_residual`].
-    pub fn tangent_entry(&self, i: usize, j: usize) -> f64 {
-        self.buf.sys.get(i, j)
-    }
-
-    /// q_{n+1} ⊕ Δu, as Newton applies it.
-    pub fn apply_step_increment(&mut self, prev: &State, cfg: &mut RodConfig, du: &[f64]) {
-        apply_increment(&self.model.rod, &prev.config, cfg, du, &self.buf.twist_nodes, &mut self.buf.theta_step);
-    }
-
+/// The rod's twist-held nodes, for verification (tests probe the step
+/// equations and restore the step rotations after a probe).
+impl Integrator<LineModel> {
     /// The step rotations of the twist-held nodes (to restore after a probe).
     pub fn twist_state(&self) -> Vec<V3> {
-        self.buf.theta_step.clone()
+        self.ws.theta_step.clone()
     }
 
     pub fn set_twist_state(&mut self, theta: &[V3]) {
-        self.buf.theta_step.copy_from_slice(theta);
+        self.ws.theta_step.copy_from_slice(theta);
     }
 }
 
-/// The Cayley vector θ of a rotation Q = cay(θ): θ = 2 vee(Q − Qᵀ)/(1 + tr Q).
 fn cayley_vector(q: &M3) -> V3 {
     let f = 2.0 / (1.0 + q.trace());
     V3::new(q[(2, 1)] - q[(1, 2)], q[(0, 2)] - q[(2, 0)], q[(1, 0)] - q[(0, 1)]) * f
@@ -453,54 +459,6 @@ fn apply_increment(rod: &Rod, prev: &RodConfig, cfg: &mut RodConfig, du: &[f64],
     }
 }
 
-/// Predictor: quadratic (`order` 2) extrapolation of the centreline from the
-/// last two steps, r_{n+1} = r_n + h (2 v̄_n − v̄_{n−1}) (v̄ the steps' mean
-/// velocities), or linear (`order` 1), r_{n+1} = r_n + h v̄_n;
-/// the hang-off on its path, and directors carried along with the predicted
-/// tangent (no spin about d3 at a twist-held node).
-#[allow(clippy::too_many_arguments)]
-fn predict(
-    model: &LineModel,
-    prev: &State,
-    trial: &mut State,
-    h: f64,
-    origin: V3,
-    target: HangOff,
-    order: u32,
-    twist: &[usize],
-    theta: &mut [V3],
-) {
-    let (c1, c0) = if order >= 2 { (2.0, 1.0) } else { (1.0, 0.0) };
-    let rod = &model.rod;
-    for a in 0..=rod.n_el {
-        let fixed = (a == 0 && rod.ends[0].position_fixed) || (a == rod.n_el && rod.ends[1].position_fixed);
-        if !fixed {
-            trial.config.x[a] = prev.config.x[a] + (prev.mean_vel[a] * c1 - prev.prev_mean_vel[a] * c0) * h;
-        }
-        trial.config.xp[a] = prev.config.xp[a] + (prev.mean_slope_vel[a] * c1 - prev.prev_mean_slope_vel[a] * c0) * h;
-    }
-    if rod.ends[0].position_fixed {
-        trial.config.x[0] = origin + target.displacement;
-    }
-    // directors: the smallest rotation that turns d3 onto the predicted
-    // centreline tangent (the director rates of the scheme carry the
-    // unresolved shear oscillation and predict badly at large steps)
-    for j in 0..rod.n_director_nodes() {
-        let d = prev.config.d[j];
-        let a = slope_at_director_node(rod, &prev.config, j).normalize();
-        let b = slope_at_director_node(rod, &trial.config, j).normalize();
-        // Cayley vector of the smallest rotation a → b: 2 (a × b)/(1 + a·b)
-        let theta_pred = if 1.0 + a.dot(&b) > 1e-6 { a.cross(&b) * (2.0 / (1.0 + a.dot(&b))) } else { V3::zeros() };
-        if let Some(k) = twist.iter().position(|&t| t == j) {
-            let d3: V3 = d.column(2).into();
-            theta[k] = theta_pred - d3 * d3.dot(&theta_pred);
-            trial.config.d[j] = cayley(&theta[k]) * d;
-        } else {
-            trial.config.d[j] = cayley(&theta_pred) * d;
-        }
-    }
-}
-
 /// Centreline slope r' at director node j (an end node, or the middle of an element).
 fn slope_at_director_node(rod: &Rod, c: &RodConfig, j: usize) -> V3 {
     if j % 2 == 0 {
@@ -525,230 +483,4 @@ fn residual_norm(r: &[f64], fixed: &[usize], h: f64) -> f64 {
         m = m.max((v * w).abs());
     }
     if m.is_nan() { f64::INFINITY } else { m }
-}
-
-/// Assembles the midpoint residual (5.3) at the trial configuration `cfg`
-/// and, if asked, its tangent with respect to (Δr, Δr', θ) of q_{n+1};
-/// `eta` the Kelvin–Voigt damping time, s.
-#[allow(clippy::too_many_arguments)]
-fn assemble(
-    model: &LineModel,
-    prev: &State,
-    cfg: &RodConfig,
-    h: f64,
-    target: HangOff,
-    eta: f64,
-    buf: &mut Buffers,
-    want_k: bool,
-) {
-    let damping = Factors { config: 0.5, stress: eta / h };
-    let rod = &model.rod;
-    let n_el = rod.n_el;
-    let mass = &model.mass;
-    buf.r.iter_mut().for_each(|v| *v = 0.0);
-    buf.fluid.iter_mut().for_each(|v| *v = 0.0);
-    if want_k {
-        buf.sys.clear();
-    }
-    buf.end_inertia = [V3::zeros(); 2];
-    // new velocities v_{n+1} = 2Δq/h − v_n; the hang-off follows its prescribed velocity
-    for a in 0..=n_el {
-        buf.vnew[a] = (cfg.x[a] - prev.config.x[a]) * (2.0 / h) - prev.vel[a];
-        buf.vpnew[a] = (cfg.xp[a] - prev.config.xp[a]) * (2.0 / h) - prev.slope_vel[a];
-    }
-    if rod.ends[0].position_fixed {
-        buf.vnew[0] = target.velocity;
-    }
-    if rod.ends[1].position_fixed {
-        buf.vnew[n_el] = V3::zeros();
-    }
-    let k_inertia = 2.0 / (h * h);
-    let fluid_active = !model.fluid.is_inert();
-    let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
-    let mut re = ElVec::zeros();
-    let mut ke = ElMat::zeros();
-    for e in 0..n_el {
-        re.fill(0.0);
-        if want_k {
-            ke.fill(0.0);
-        }
-        let el1 = ElemDofs::gather(cfg, e);
-        let eln = ElemDofs::gather(&prev.config, e);
-        let elm = ElemDofs::average(&eln, &el1);
-        // internal force: discrete gradient (§5.2)
-        let eps1 = rod.strains_of(&el1, e);
-        let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
-        element::internal_force(
-            &elm,
-            &el1,
-            &s,
-            rod.stiff(),
-            Factors::MIDPOINT,
-            rod.h,
-            element::Shear::Spatial(rod.reference_penalty(e)),
-            &mut re,
-            if want_k { Some(&mut ke) } else { None },
-        );
-        // Kelvin–Voigt damping on the objective material strains (§5.9)
-        if eta > 0.0 {
-            let d1 = element::gauss_strains_with(&el1, rod.h, element::Shear::Material);
-            buf.damp_1[e] = d1;
-            let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
-            element::internal_force(
-                &elm,
-                &el1,
-                &sd,
-                rod.stiff(),
-                damping,
-                rod.h,
-                element::Shear::Material,
-                &mut re,
-                if want_k { Some(&mut ke) } else { None },
-            );
-        }
-        // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
-        let vn = prev.hermite_velocity(e);
-        let v1 = [buf.vnew[e], buf.vpnew[e], buf.vnew[e + 1], buf.vpnew[e + 1]];
-        let mut acc = [V3::zeros(); 4];
-        for k in 0..4 {
-            acc[k] = (v1[k] - vn[k]) / h;
-        }
-        for k in 0..4 {
-            let mut f = V3::zeros();
-            for m in 0..4 {
-                f += acc[m] * mass.centre[k][m];
-            }
-            for c in 0..3 {
-                re[C_OFF[k] + c] += f[c];
-            }
-            if e == 0 && k == 0 {
-                buf.end_inertia[0] += f;
-            }
-            if e == n_el - 1 && k == 2 {
-                buf.end_inertia[1] += f;
-            }
-            if want_k {
-                for m in 0..4 {
-                    let v = k_inertia * mass.centre[k][m];
-                    for c in 0..3 {
-                        ke[(C_OFF[k] + c, C_OFF[m] + c)] += v;
-                    }
-                }
-            }
-        }
-        if e == 0 {
-            buf.end_accel[0] = acc;
-        }
-        if e == n_el - 1 {
-            buf.end_accel[1] = acc;
-        }
-        // water: drag at the midpoint with v½ = Δr/h, added mass with the step's acceleration (§5.4)
-        if fluid_active {
-            let mut vm = [V3::zeros(); 4];
-            for k in 0..4 {
-                vm[k] = (el1.c[k] - eln.c[k]) / h;
-            }
-            let mut ff = [V3::zeros(); 4];
-            let mut kf = [[M3::zeros(); 4]; 4];
-            element_fluid_force(
-                &model.fluid,
-                FluidFields { c: &elm.c, v: &vm, a: &acc },
-                rod.s_node(e),
-                rod.h,
-                fac,
-                &mut ff,
-                if want_k { Some(&mut kf) } else { None },
-            );
-            let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
-            for k in 0..4 {
-                for c in 0..3 {
-                    re[C_OFF[k] + c] -= ff[k][c];
-                    buf.fluid[gdof[k] + c] += ff[k][c];
-                }
-                if want_k {
-                    for m in 0..4 {
-                        let mut blk = ke.fixed_view_mut::<3, 3>(C_OFF[k], C_OFF[m]);
-                        blk += kf[k][m];
-                    }
-                }
-            }
-        }
-        // director inertia, reduced by the midpoint frames: m_A = Σ_i d_iA,½ × a_iA (§5.3)
-        let ddn = prev.director_rates(e);
-        let mut dd1 = [M3::zeros(); 3];
-        for b in 0..3 {
-            dd1[b] = (el1.d[b] - eln.d[b]) * (2.0 / h) - ddn[b];
-        }
-        for a in 0..3 {
-            let mut m = V3::zeros();
-            let mut geo = M3::zeros();
-            for i in 0..2 {
-                let ji = mass.rotary[i];
-                if ji == 0.0 {
-                    continue;
-                }
-                let mut acc_i = V3::zeros();
-                for b in 0..3 {
-                    acc_i += (dd1[b].column(i) - ddn[b].column(i)) * (mass.director[a][b] * ji / h);
-                }
-                let dmid: V3 = elm.d[a].column(i).into();
-                m += dmid.cross(&acc_i);
-                if want_k {
-                    let d1a: V3 = el1.d[a].column(i).into();
-                    geo += skew(&acc_i) * skew(&d1a) * 0.5;
-                    for b in 0..3 {
-                        let d1b: V3 = el1.d[b].column(i).into();
-                        let blk = skew(&dmid) * skew(&d1b) * (-k_inertia * mass.director[a][b] * ji);
-                        let mut view = ke.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[b]);
-                        view += blk;
-                    }
-                }
-            }
-            for c in 0..3 {
-                re[T_OFF[a] + c] += m[c];
-            }
-            if want_k {
-                let mut view = ke.fixed_view_mut::<3, 3>(T_OFF[a], T_OFF[a]);
-                view += geo;
-            }
-        }
-        let off = STRIDE * e;
-        for i in 0..NDOF_EL {
-            buf.r[off + i] += re[i];
-        }
-        if want_k {
-            buf.sys.add_block(e, |i, j| ke[(i, j)]);
-        }
-    }
-    for (ri, fi) in buf.r.iter_mut().zip(model.gravity_vector()) {
-        *ri -= fi;
-    }
-    let i0 = Rod::x_dof(0);
-    let i1 = Rod::x_dof(n_el);
-    buf.reaction = [V3::new(buf.r[i0], buf.r[i0 + 1], buf.r[i0 + 2]), V3::new(buf.r[i1], buf.r[i1 + 1], buf.r[i1 + 2])];
-    let it = Rod::theta_dof(2 * n_el);
-    buf.anchor_moment = V3::new(buf.r[it], buf.r[it + 1], buf.r[it + 2]);
-    // twist-held nodes: unknowns θ_loc with θ = D_n θ_loc, spatial increment
-    // w = T(θ) D_n δθ_loc, T(θ) = 4/(4 + |θ|²) (I + ½θ̂) (the Cayley differential)
-    for (k, &j) in buf.twist_nodes.iter().enumerate() {
-        let i0 = Rod::theta_dof(j);
-        let m = V3::new(buf.r[i0], buf.r[i0 + 1], buf.r[i0 + 2]);
-        let th = buf.theta_step[k];
-        let dn = prev.config.d[j];
-        let f = 4.0 / (4.0 + th.norm_squared());
-        let p = (M3::identity() + skew(&th) * 0.5) * dn * f;
-        let ml = p.transpose() * m;
-        buf.r[i0..i0 + 3].copy_from_slice(ml.as_slice());
-        if want_k {
-            buf.sys.transform_dofs(i0, &p);
-            // ∂(Pᵀ m)/∂θ at fixed m, times D_n
-            let tm = m + m.cross(&th) * 0.5;
-            let extra = dn.transpose() * (tm * th.transpose() * (-0.5 * f * f) + skew(&m) * (0.5 * f)) * dn;
-            for a in 0..3 {
-                for b in 0..3 {
-                    buf.sys.add(i0 + a, i0 + b, extra[(a, b)]);
-                }
-            }
-        }
-    }
 }

@@ -419,15 +419,15 @@ impl Instance {
         let logger = self.logger.clone();
         let sim = self.sim.as_mut().unwrap();
         // logSolver: one message per Newton iteration, straight to the master's logger
-        sim.integrator.solver_log = if solver_log {
+        sim.integrator.set_solver_log(if solver_log {
             Some(Box::new(move |m: &str| logger(Status::Ok, Category::Solver.name(), m)))
         } else {
             None
-        };
+        });
         // every communication step starts from a new tangent, so that results
         // depend on the state alone (a restored state continues bit for bit)
         sim.integrator.invalidate_tangent();
-        let dt = sim.integrator.options.time_step;
+        let dt = sim.integrator.options().time_step;
         let n = ((h / dt) - 1e-9).ceil().max(1.0) as u64;
         let mut result = Ok(());
         for k in 1..=n {
@@ -650,7 +650,7 @@ impl Instance {
         let Some(sim) = self.sim.as_mut() else {
             return self.fail("fmi2SetFMUstate before initialisation");
         };
-        if s.state.config.x.len() != sim.state.config.x.len() {
+        if s.state.mesh() != sim.state.mesh() {
             return self.fail("the FMU state has another mesh");
         }
         sim.state.clone_from(&s.state);
@@ -686,8 +686,7 @@ impl Instance {
         let Some(sim) = self.sim.as_ref() else {
             return Err(self.fail("fmi2DeSerializeFMUstate before initialisation"));
         };
-        let nodes = sim.state.config.x.len();
-        match State::read_bytes(bytes, nodes) {
+        match State::read_bytes(bytes, sim.state.mesh()) {
             Ok((state, extra)) if extra.len() == 15 => {
                 let mut inputs = [0.0; 6];
                 let mut step_inputs = [0.0; 6];

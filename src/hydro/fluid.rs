@@ -1,4 +1,5 @@
-//! Consistent nodal forces of the water on one element: Morison drag (paper
+//! Consistent nodal forces of the water on one element (a Hermite element of
+//! the rod or a two-node segment of the cable): Morison drag (paper
 //! eqs. 13–17) and normal added mass, with their derivatives with respect to
 //! the element's Hermite unknowns (docs/theory.md §5.4).
 //!
@@ -55,8 +56,9 @@ pub struct FluidFields<'a> {
     pub a: &'a [V3; 4],
 }
 
-/// Adds the consistent nodal fluid forces of an element to `f` (N) and, if
-/// asked, −∂F/∂c (the contribution to the tangent of a residual r = … − F) to `k`.
+/// Adds the consistent nodal fluid forces of a Hermite element of the rod
+/// to `f` (N) and, if asked, −∂F/∂c (the contribution to the tangent of a
+/// residual r = … − F) to `k`.
 #[allow(clippy::too_many_arguments)]
 pub fn element_fluid_force(
     fluid: &Fluid,
@@ -65,20 +67,57 @@ pub fn element_fluid_force(
     h: f64,
     fac: FluidFactors,
     f: &mut [V3; 4],
-    mut k: Option<&mut [[M3; 4]; 4]>,
+    k: Option<&mut [[M3; 4]; 4]>,
+) {
+    let shape = |xi: f64| (hermite(xi, h), hermite_ds(xi, h));
+    interpolated_fluid_force(fluid, fields.c, fields.v, fields.a, shape, s0, h, fac, f, k);
+}
+
+/// The same for a straight two-node segment of the cable (linear
+/// interpolation; `x`, `v`, `a` the nodal positions, velocities and
+/// accelerations, `l` the reference length).
+#[allow(clippy::too_many_arguments)]
+pub fn segment_fluid_force(
+    fluid: &Fluid,
+    x: &[V3; 2],
+    v: &[V3; 2],
+    a: &[V3; 2],
+    s0: f64,
+    l: f64,
+    fac: FluidFactors,
+    f: &mut [V3; 2],
+    k: Option<&mut [[M3; 2]; 2]>,
+) {
+    let shape = |xi: f64| ([1.0 - xi, xi], [-1.0 / l, 1.0 / l]);
+    interpolated_fluid_force(fluid, x, v, a, shape, s0, l, fac, f, k);
+}
+
+/// ∫ N_k f dS over an element whose fields are interpolated by `shape(ξ)` =
+/// (N(ξ), N'(ξ)) from the dofs `c` (position), `v`, `a` (4-point Gauss).
+#[allow(clippy::too_many_arguments)]
+fn interpolated_fluid_force<const K: usize>(
+    fluid: &Fluid,
+    c: &[V3; K],
+    vel: &[V3; K],
+    acc: &[V3; K],
+    shape: impl Fn(f64) -> ([f64; K], [f64; K]),
+    s0: f64,
+    h: f64,
+    fac: FluidFactors,
+    f: &mut [V3; K],
+    mut k: Option<&mut [[M3; K]; K]>,
 ) {
     for g in 0..4 {
         let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
-        let n = hermite(xi, h);
-        let nd = hermite_ds(xi, h);
+        let (n, nd) = shape(xi);
         let mut x = V3::zeros();
         let mut p = V3::zeros();
         let mut v = V3::zeros();
-        for j in 0..4 {
-            x += fields.c[j] * n[j];
-            p += fields.c[j] * nd[j];
-            v += fields.v[j] * n[j];
+        for j in 0..K {
+            x += c[j] * n[j];
+            p += c[j] * nd[j];
+            v += vel[j] * n[j];
         }
         let len = p.norm();
         if len == 0.0 {
@@ -90,7 +129,7 @@ pub fn element_fluid_force(
             if let Some((kd, current)) = &fluid.drag {
                 let (vc, _) = current.velocity(s0 + xi * h, x.z);
                 let force = drag_force(kd, &(vc - v), &t) * len;
-                for i in 0..4 {
+                for i in 0..K {
                     f[i] += force * (wg * n[i]);
                 }
             }
@@ -113,8 +152,8 @@ pub fn element_fluid_force(
         }
         if fluid.added_mass > 0.0 {
             let mut a = V3::zeros();
-            for j in 0..4 {
-                a += fields.a[j] * n[j];
+            for j in 0..K {
+                a += acc[j] * n[j];
             }
             let ma = fluid.added_mass;
             force -= proj * a * ma;
@@ -122,14 +161,14 @@ pub fn element_fluid_force(
             // ∂(−m_a (I − t tᵀ) a)/∂t = m_a ((t·a) I + t aᵀ), ∂t/∂p = (I − t tᵀ)/|p|
             df_dp += (M3::identity() * t.dot(&a) + t * a.transpose()) * proj * (ma / len);
         }
-        for i in 0..4 {
+        for i in 0..K {
             f[i] += force * (wg * n[i]);
         }
         if let Some(k) = k.as_deref_mut() {
             let by_value = df_dx * fac.position + df_dv * fac.velocity + df_da * fac.acceleration;
             let by_slope = df_dp * fac.position;
-            for i in 0..4 {
-                for j in 0..4 {
+            for i in 0..K {
+                for j in 0..K {
                     k[i][j] -= (by_value * n[j] + by_slope * nd[j]) * (wg * n[i]);
                 }
             }

@@ -10,6 +10,7 @@ pub use overrides::PARAMETER_NAMES;
 pub use validate::FieldError;
 
 use crate::hydro::current::{Current, CurrentProfile};
+use crate::hydro::fluid::Fluid;
 use crate::hydro::morison::DragCoefficients;
 use crate::hydro::weight::{BuoyancySection, VerticalLoad};
 use crate::rod::kinematics::V3;
@@ -368,6 +369,15 @@ impl Scene {
             self.line.cd_normal,
             self.line.cd_tangential,
         )
+    }
+
+    /// Drag (with the current) and normal added mass of the line.
+    pub fn fluid(&self) -> Fluid {
+        let k = self.drag_coefficients();
+        let drag = if k.is_zero() { None } else { Some((k, self.current())) };
+        let d = self.line.outer_diameter;
+        let added_mass = self.line.ca_normal * self.environment.water_density * std::f64::consts::PI * d * d / 4.0;
+        Fluid { drag, added_mass }
     }
 
     /// The current profile.

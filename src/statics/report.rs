@@ -2,6 +2,8 @@
 //! the line, the shape.
 
 use super::{StaticLoads, StaticOptions, StaticSolution, catenary_start, solve};
+use crate::cable::statics::CableStatics;
+use crate::cable::{Cable, CableModel};
 use crate::error::RiserError;
 use crate::rod::kinematics::V3;
 use crate::rod::model::Rod;
@@ -42,6 +44,22 @@ pub struct StaticReport {
 }
 
 impl StaticReport {
+    /// The report of `sol` with its shape rows and smallest axial force (N).
+    fn of_solution(sol: StaticSolution, shape: Vec<ShapeRow>, min_tension: f64) -> Self {
+        StaticReport {
+            top_tension: sol.reactions[0].norm(),
+            bottom_tension: sol.reactions[1].norm(),
+            top_force: -sol.reactions[0],
+            bottom_force: -sol.reactions[1],
+            min_tension,
+            iterations: sol.iterations,
+            continuation_steps: sol.continuation_steps,
+            residual: sol.residual,
+            shape,
+            solution: sol,
+        }
+    }
+
     pub fn new(rod: &Rod, sol: StaticSolution) -> Self {
         let cfg = &sol.config;
         let tension = rod.nodal_axial_force(cfg);
@@ -58,18 +76,27 @@ impl StaticReport {
         shape[rod.n_el].tension = sol.reactions[1].dot(&t1);
         let interior_min = rod.min_gauss_axial_force(cfg);
         let min_tension = shape.iter().map(|r| r.tension).fold(interior_min, f64::min);
-        StaticReport {
-            top_tension: sol.reactions[0].norm(),
-            bottom_tension: sol.reactions[1].norm(),
-            top_force: -sol.reactions[0],
-            bottom_force: -sol.reactions[1],
-            min_tension,
-            iterations: sol.iterations,
-            continuation_steps: sol.continuation_steps,
-            residual: sol.residual,
-            shape,
-            solution: sol,
-        }
+        StaticReport::of_solution(sol, shape, min_tension)
+    }
+}
+
+impl StaticReport {
+    /// The report of a cable's equilibrium: node rows with the mean tension
+    /// of the adjacent segments, the reactions along the end segments at the ends.
+    pub fn of_cable(cable: &Cable, sol: StaticSolution) -> Self {
+        let x = &sol.config.x;
+        let n = cable.n_el;
+        let seg: Vec<f64> = (0..n).map(|e| cable.tension(x, e)).collect();
+        let mut shape: Vec<ShapeRow> = (0..=n)
+            .map(|a| {
+                let t = if a == 0 || a == n { 0.0 } else { 0.5 * (seg[a - 1] + seg[a]) };
+                ShapeRow { s: cable.s_node(a), x: x[a].x, y: x[a].y, z: x[a].z, tension: t }
+            })
+            .collect();
+        shape[0].tension = -sol.reactions[0].dot(&(x[1] - x[0]).normalize());
+        shape[n].tension = sol.reactions[1].dot(&(x[n] - x[n - 1]).normalize());
+        let min_tension = shape.iter().map(|r| r.tension).chain(seg.iter().copied()).fold(f64::INFINITY, f64::min);
+        StaticReport::of_solution(sol, shape, min_tension)
     }
 }
 
@@ -85,16 +112,18 @@ pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
     loads
 }
 
-/// Solves the static equilibrium of a scene.
-pub fn solve_scene(scene: &Scene) -> Result<(Rod, StaticReport), RiserError> {
-    if scene.analysis.model == Model::Cable {
-        return Err(RiserError::Unsupported("model = \"cable\" is not available yet; use model = \"rod\"".to_string()));
-    }
+/// Solves the static equilibrium of a scene (with its line model).
+pub fn solve_scene(scene: &Scene) -> Result<StaticReport, RiserError> {
     let rod = scene.rod();
     let loads = scene_static_loads(scene);
     let start = catenary_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor());
-    let opts = StaticOptions { tolerance: scene.analysis.newton_tolerance.min(1e-10), ..Default::default() };
+    let tolerance = scene.analysis.newton_tolerance.min(1e-10);
+    if scene.analysis.model == Model::Cable {
+        let model = CableModel::from_scene(scene);
+        let sol = CableStatics::new(&model, loads.drag.is_some()).solve(start.x, tolerance)?;
+        return Ok(StaticReport::of_cable(&model.cable, sol));
+    }
+    let opts = StaticOptions { tolerance, ..Default::default() };
     let sol = solve(&rod, &loads, start, &opts)?;
-    let report = StaticReport::new(&rod, sol);
-    Ok((rod, report))
+    Ok(StaticReport::new(&rod, sol))
 }
