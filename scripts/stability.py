@@ -41,6 +41,22 @@ CELLS.append(("combined", "EI = 0, heave 10 m / 3 s, current 3 m/s", "catenary",
 CELLS.append(("combined", "EA = 1e11, dt = 1 s, heave 10 m / 3 s", "catenary",
               ["axial_stiffness=1e11", "time_step=1"], (10.0, 3.0), 1.0))
 
+# the cable model (model = "cable") over the same extremes
+for label, scene, sets, heave in [
+    ("dt = 1e-3 s", "catenary", ["time_step=1e-3"], (2.5, 20.0)),
+    ("dt = 1 s", "catenary", ["time_step=1"], (2.5, 20.0)),
+    ("4 elements", "catenary", ["n_elements=4"], (2.5, 20.0)),
+    ("400 elements", "catenary", ["n_elements=400"], (2.5, 20.0)),
+    ("EA = 1e6 N", "catenary", ["axial_stiffness=1e6"], (2.5, 20.0)),
+    ("EA = 1e11 N", "catenary", ["axial_stiffness=1e11"], (2.5, 20.0)),
+    ("heave 10 m / 3 s (slack, snap)", "catenary", [], (10.0, 3.0)),
+    ("current -3 m/s", "catenary", ["current_top=-3", "current_bottom=-3"], (2.5, 20.0)),
+    ("current 3 m/s", "catenary", ["current_top=3", "current_bottom=3"], (2.5, 20.0)),
+    ("lazy wave, buoyancy doubled", "lazy_wave", ["buoyancy_load=1340"], (2.5, 30.0)),
+    ("EA = 1e11, dt = 1 s, heave 10 m / 3 s", "catenary", ["axial_stiffness=1e11", "time_step=1"], (10.0, 3.0)),
+]:
+    CELLS.append(("cable", label, scene, ["model=cable"] + sets, heave, 0.05 if "1e-3" in label else 1.0))
+
 
 def main():
     ap = argparse.ArgumentParser()
@@ -88,7 +104,8 @@ def main():
         f.write("# Stability at the extremes\n\n")
         f.write("Made by `python scripts/stability.py` (`make stability`). From the catenary scene (heave 2.5 m / "
                 f"20 s, current 0.8 m/s, 60 elements, dt 0.05 s), one axis at a time, {args.duration:g} s each "
-                "(dt = 1e-4 s: 1 s), the paper's abrupt start, no structural damping. Outcome: *completes* = every "
+                "(dt = 1e-4 s: 1 s), the paper's abrupt start, no structural damping; the *cable* rows repeat the "
+                "extremes with `model = cable`. Outcome: *completes* = every "
                 "output finite and the energy balance closed to ≤ 1e-6 of the energy exchanged; *clean stop* = "
                 "the run stopped with a typed error and the state kept (the message is the reason). A crash, a "
                 "hang or a NaN would be a failure of the cell. The cheap cells run in `make test` "

@@ -83,3 +83,27 @@ fn lazy_wave_with_doubled_buoyancy() {
     let r = cell("lazy_wave", &["buoyancy_load=1340"], (2.5, 30.0), 1.0);
     eprintln!("lazy wave, buoyancy doubled: {r}");
 }
+
+#[test]
+fn the_cable_model_at_the_extremes() {
+    // slack and snap (violent heave, the tension-only law), the stiffest and
+    // softest lines, the largest step, the coarsest and finest meshes, the
+    // strongest currents, and the floating lazy wave
+    let cells: [(&str, &[&str], (f64, f64), f64); 9] = [
+        ("catenary", &["time_step=1"], (2.5, 20.0), 4.0),
+        ("catenary", &["n_elements=4"], (2.5, 20.0), 2.0),
+        ("catenary", &["n_elements=400"], (2.5, 20.0), 0.5),
+        ("catenary", &["axial_stiffness=1e6"], (2.5, 20.0), 1.0),
+        ("catenary", &["axial_stiffness=1e11"], (2.5, 20.0), 1.0),
+        ("catenary", &[], (10.0, 3.0), 3.0),
+        ("catenary", &["current_top=3", "current_bottom=3"], (2.5, 20.0), 1.0),
+        ("catenary", &["current_top=-3", "current_bottom=-3"], (2.5, 20.0), 1.0),
+        ("lazy_wave", &["buoyancy_load=1340"], (2.5, 30.0), 1.0),
+    ];
+    for (scene, sets, heave, duration) in cells {
+        let mut all = vec!["model=cable"];
+        all.extend_from_slice(sets);
+        let r = cell(scene, &all, heave, duration);
+        eprintln!("cable, {scene} {sets:?}, heave {heave:?}: {r}");
+    }
+}
