@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Speed against accuracy (issue 5): `riser run` over elements x time step x
-Newton tolerance on the catenary and lazy-wave scenes. Wall time and the
-error of the top tension (max and RMS over the last three periods), and of
-the shape (max distance of the 21 shape points at the end), against a
-converged reference (whose convergence is shown). Writes CSV, a
-work-precision plot and docs/study.md.
+"""Speed against accuracy (issue 5): `riser run` over model (rod, cable) x
+elements x time step x Newton tolerance on the catenary and lazy-wave scenes.
+Wall time and the error of the top tension (max and RMS over the last three
+periods), and of the shape (max distance of the 21 shape points at the end),
+against a converged reference of the rod (whose convergence is shown): the
+cable's error includes what it leaves out (bending, torsion). Writes CSV, a
+work-precision plot, docs/study.md (every cell) and the summary section of
+docs/performance.md (between its `study` markers).
 
 All runs: 100 s, heave 2.5 m with the scene's period, grown over one period
 (a smooth start: an abrupt one rings the undamped axial waves chaotically, and
@@ -29,12 +31,15 @@ SCENES = {"catenary": 20.0, "lazy_wave": 30.0}
 ELEMENTS = [10, 20, 40, 60, 120, 240]
 STEPS = [0.2, 0.1, 0.05, 0.02, 0.01]
 DURATION = 100.0
+MODELS = ["rod", "cable"]
+MARK_BEGIN = "<!-- study:begin (scripts/study.py writes this section) -->"
+MARK_END = "<!-- study:end -->"
 
 
-def run(bin_, scene, n, dt, tol, out):
+def run(bin_, scene, model, n, dt, tol, out):
     period = SCENES[scene]
     cmd = [bin_, "run", scene, "--heave", f"2.5,{period}", "--ramp", str(period), "--duration", str(DURATION),
-           "--json", "--out", str(out), "--shape-times", str(DURATION),
+           "--json", "--out", str(out), "--shape-times", str(DURATION), "--set", f"model={model}",
            "--set", f"n_elements={n}", "--set", f"time_step={dt}", "--set", f"newton_tolerance={tol}",
            "--set", "structural_damping=0.002"]
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -62,6 +67,18 @@ def errors(r, ref, period):
             np.max(np.linalg.norm(r["shape"] - ref["shape"], axis=1)))
 
 
+def cheapest(rows, scene, model, target):
+    ok = [r for r in rows if r[0] == scene and (model is None or r[1] == model) and r[5] and r[6] <= target]
+    return min(ok, key=lambda r: r[5]) if ok else None
+
+
+def describe(b):
+    if b is None:
+        return "none of the settings tried"
+    return (f"{b[1]}, {b[2]} el., dt {b[3]} s, tol {b[4]:g}: {b[5]:.2f} s ({DURATION / b[5]:.0f}× real time), "
+            f"error {b[6]:.1e}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin", default="target/release/riser")
@@ -75,76 +92,117 @@ def main():
     rows = []
     notes = []
     for scene, period in SCENES.items():
-        ref = run(args.bin, scene, 240, 0.005, 1e-10, out / scene / "ref")
-        check = run(args.bin, scene, 120, 0.005, 1e-10, out / scene / "check")
-        check2 = run(args.bin, scene, 240, 0.01, 1e-10, out / scene / "check2")
-        e1, e2 = errors(check, ref, period), errors(check2, ref, period)
-        notes.append(f"{scene}: reference 240 elements, dt 0.005 s, tolerance 1e-10; against it 120 elements give "
-                     f"{e1[0]:.1e} (max) / {e1[1]:.1e} (RMS) top-tension error and {e1[2]:.1e} m shape error, "
-                     f"dt 0.01 s gives {e2[0]:.1e} / {e2[1]:.1e} and {e2[2]:.1e} m: the reference is converged "
-                     "well below the errors tabulated.")
-        for n in elements:
-            for dt in steps:
-                for tol in ([1e-8, 1e-6] if n == 60 else [1e-8]):
-                    r = run(args.bin, scene, n, dt, tol, out / scene / f"{n}_{dt}_{tol}")
-                    if r is None:
-                        rows.append((scene, n, dt, tol, None, None, None, None, None))
-                        continue
-                    emax, erms, eshape = errors(r, ref, period)
-                    rows.append((scene, n, dt, tol, r["wall"], emax, erms, eshape, r["iters"]))
-                    print(scene, n, dt, tol, f"{r['wall']:.2f} s", f"{emax:.2e}", flush=True)
+        ref = run(args.bin, scene, "rod", 240, 0.005, 1e-10, out / scene / "ref")
+        check = run(args.bin, scene, "rod", 120, 0.005, 1e-10, out / scene / "check")
+        check2 = run(args.bin, scene, "rod", 240, 0.01, 1e-10, out / scene / "check2")
+        cable_ref = run(args.bin, scene, "cable", 240, 0.005, 1e-10, out / scene / "cable_ref")
+        e1, e2, ec = errors(check, ref, period), errors(check2, ref, period), errors(cable_ref, ref, period)
+        notes.append(f"{scene}: reference the rod with 240 elements, dt 0.005 s, tolerance 1e-10; against it 120 "
+                     f"elements give {e1[0]:.1e} (max) / {e1[1]:.1e} (RMS) top-tension error and {e1[2]:.1e} m "
+                     f"shape error, dt 0.01 s gives {e2[0]:.1e} / {e2[1]:.1e} and {e2[2]:.1e} m: the reference is "
+                     f"converged well below the errors tabulated. The cable at the same resolution differs from it "
+                     f"by {ec[0]:.1e} / {ec[1]:.1e} and {ec[2]:.1e} m: the error of leaving out bending and "
+                     "torsion, the floor of the cable's errors below.")
+        for model in MODELS:
+            for n in elements:
+                for dt in steps:
+                    for tol in ([1e-8, 1e-6] if n == 60 else [1e-8]):
+                        r = run(args.bin, scene, model, n, dt, tol, out / scene / f"{model}_{n}_{dt}_{tol}")
+                        if r is None:
+                            rows.append((scene, model, n, dt, tol, None, None, None, None, None))
+                            continue
+                        emax, erms, eshape = errors(r, ref, period)
+                        rows.append((scene, model, n, dt, tol, r["wall"], emax, erms, eshape, r["iters"]))
+                        print(scene, model, n, dt, tol, f"{r['wall']:.2f} s", f"{emax:.2e}", flush=True)
+    out.mkdir(parents=True, exist_ok=True)
     with open(out / "study.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["scene", "n_elements", "time_step", "newton_tolerance", "wall_s", "top_tension_err_max",
+        w.writerow(["scene", "model", "n_elements", "time_step", "newton_tolerance", "wall_s", "top_tension_err_max",
                     "top_tension_err_rms", "shape_err_m", "newton_per_step"])
         w.writerows(rows)
-    figs = Path(args.docs) / "figures"
+    docs = Path(args.docs)
+    figs = docs / "figures"
     figs.mkdir(parents=True, exist_ok=True)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for ax, scene in zip(axes, SCENES):
-        for n in elements:
-            pts = [(r[4], r[5]) for r in rows if r[0] == scene and r[1] == n and r[3] == 1e-8 and r[4]]
-            if pts:
-                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"{n} el.")
+        for model, style in [("rod", "o-"), ("cable", "s--")]:
+            for i, n in enumerate(elements):
+                pts = [(r[5], r[6]) for r in rows
+                       if r[0] == scene and r[1] == model and r[2] == n and r[4] == 1e-8 and r[5]]
+                if pts:
+                    ax.loglog([p[0] for p in pts], [p[1] for p in pts], style, color=colors[i % len(colors)],
+                              label=f"{model} {n} el.", markersize=4)
         ax.set_xlabel("wall time for 100 s (s)")
         ax.set_ylabel("top tension error, max over 3 periods (relative)")
-        ax.set_title(f"{scene}: work-precision (time steps 0.2 → 0.01 s along each line)")
+        ax.set_title(f"{scene}: time steps 0.2 → 0.01 s along each line")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     fig.savefig(figs / "work_precision.png", dpi=110)
-    with open(Path(args.docs) / "study.md", "w") as f:
-        f.write("# Speed against accuracy\n\n")
-        f.write("Made by `python scripts/study.py` (`make study`). Every run: 100 s, heave 2.5 m at the scene's "
-                "period grown over one period, structural damping 2 ms, the rod model (the cable model is not "
-                "built yet). Errors of the top tension over the last three periods, relative to its maximum; "
-                "shape error = largest distance of the 21 shape points at t = 100 s. Wall time of the time "
-                "stepping on one core.\n\n")
+
+    with open(docs / "study.md", "w") as f:
+        f.write("# Speed against accuracy: every cell\n\n")
+        f.write("Made by `python scripts/study.py` (`make study`); the summary is in "
+                "[performance.md](performance.md#speed-against-accuracy). Every run: 100 s, heave 2.5 m at the "
+                "scene's period grown over one period, structural damping 2 ms. Errors of the top tension over "
+                "the last three periods, relative to its maximum; shape error = largest distance of the 21 shape "
+                "points at t = 100 s. Wall time of the time stepping on one core.\n\n")
         for n in notes:
             f.write(f"* {n}\n")
         f.write("\n![work-precision](figures/work_precision.png)\n\n")
         for scene in SCENES:
-            f.write(f"## {scene}\n\n| elements | dt (s) | tolerance | wall (s) | real-time factor | "
-                    "top T error max | RMS | shape error (m) | Newton/step |\n|---|---|---|---|---|---|---|---|---|\n")
+            f.write(f"## {scene}\n\n| model | elements | dt (s) | tolerance | wall (s) | real-time factor | "
+                    "top T error max | RMS | shape error (m) | Newton/step |\n|---|---|---|---|---|---|---|---|---|---|\n")
             for r in rows:
                 if r[0] != scene:
                     continue
-                if r[4] is None:
-                    f.write(f"| {r[1]} | {r[2]} | {r[3]:g} | failed | | | | | |\n")
+                if r[5] is None:
+                    f.write(f"| {r[1]} | {r[2]} | {r[3]} | {r[4]:g} | failed | | | | | |\n")
                     continue
-                f.write(f"| {r[1]} | {r[2]} | {r[3]:g} | {r[4]:.2f} | {DURATION / r[4]:.0f} | {r[5]:.1e} | "
-                        f"{r[6]:.1e} | {r[7]:.1e} | {r[8]:.2f} |\n")
-            f.write("\nCheapest settings (tolerance 1e-8) for a top-tension error (max) below:\n\n")
-            for target in [0.1, 0.01, 0.001]:
-                ok = [r for r in rows if r[0] == scene and r[4] and r[5] <= target and r[3] == 1e-8]
-                if ok:
-                    b = min(ok, key=lambda r: r[4])
-                    f.write(f"* {target:g}: {b[1]} elements, dt {b[2]} s — {b[4]:.2f} s wall "
-                            f"({DURATION / b[4]:.0f}× real time), error {b[5]:.1e}\n")
-                else:
-                    f.write(f"* {target:g}: none of the settings tried\n")
+                f.write(f"| {r[1]} | {r[2]} | {r[3]} | {r[4]:g} | {r[5]:.2f} | {DURATION / r[5]:.0f} | {r[6]:.1e} | "
+                        f"{r[7]:.1e} | {r[8]:.1e} | {r[9]:.2f} |\n")
             f.write("\n")
-    print("wrote", Path(args.docs) / "study.md")
+
+    # the summary section of performance.md
+    sec = ["## Speed against accuracy", "",
+           "Made by `make study` (`scripts/study.py`, about 20 minutes; run it on a quiet machine): the rod and the "
+           "cable model on both scenes over elements {10, 20, 40, 60, 120, 240} × time step {0.2, 0.1, 0.05, "
+           "0.02, 0.01} s × Newton tolerance {1e-8; 1e-6 at 60 elements}, 100 s of heave 2.5 m grown over one "
+           "period, structural damping 2 ms. Error: the top tension's largest deviation over the last three "
+           "periods from a converged rod reference, relative to its maximum. Every cell, the CSV "
+           "(`out/study/study.csv`) and the shape errors: [study.md](study.md).", ""]
+    sec += [f"* {n}" for n in notes] + ["", "![work-precision](figures/work_precision.png)", ""]
+    sec += ["Cheapest settings for a top-tension error below 10 %, 1 % and 0.1 % (wall time of 100 s on one core):",
+            "", "| scene | error below | any model | rod | cable |", "|---|---|---|---|---|"]
+    for scene in SCENES:
+        for target in [0.1, 0.01, 0.001]:
+            sec.append(f"| {scene} | {target:g} | {describe(cheapest(rows, scene, None, target))} | "
+                       f"{describe(cheapest(rows, scene, 'rod', target))} | "
+                       f"{describe(cheapest(rows, scene, 'cable', target))} |")
+    sec += ["", "Rod against cable at equal settings (tolerance 1e-8): speed gained and accuracy lost.", "",
+            "| scene | elements | dt (s) | rod wall (s) | cable wall (s) | speed-up | rod error | cable error |",
+            "|---|---|---|---|---|---|---|---|"]
+    for scene in SCENES:
+        for n in [10, 20, 60, 240]:
+            for dt in [0.1, 0.05]:
+                a = [r for r in rows if r[0] == scene and r[1] == "rod" and r[2] == n and r[3] == dt and r[4] == 1e-8]
+                b = [r for r in rows if r[0] == scene and r[1] == "cable" and r[2] == n and r[3] == dt and r[4] == 1e-8]
+                if a and b and a[0][5] and b[0][5]:
+                    a, b = a[0], b[0]
+                    sec.append(f"| {scene} | {n} | {dt} | {a[5]:.2f} | {b[5]:.2f} | {a[5] / b[5]:.1f}× | "
+                               f"{a[6]:.1e} | {b[6]:.1e} |")
+    perf = docs / "performance.md"
+    text = perf.read_text()
+    block = MARK_BEGIN + "\n" + "\n".join(sec) + "\n" + MARK_END
+    if MARK_BEGIN in text:
+        a = text.index(MARK_BEGIN)
+        b = text.index(MARK_END) + len(MARK_END)
+        text = text[:a] + block + text[b:]
+    else:
+        text = text.rstrip() + "\n\n" + block + "\n"
+    perf.write_text(text)
+    print("wrote", docs / "study.md", "and the study section of", perf)
 
 
 if __name__ == "__main__":

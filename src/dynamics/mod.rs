@@ -336,6 +336,9 @@ pub enum DynamicsError {
     NotConverged { time: f64, step: f64, iterations: usize, residual: f64 },
     /// The tangent could not be factorised even with the smallest sub-step.
     Linear { time: f64, step: f64, error: LinearSolveError },
+    /// Newton converged to a spurious root (a director turned by more than
+    /// 90° in one step) even with the smallest sub-step.
+    Inadmissible { time: f64, step: f64 },
     /// A bad request (non-finite input, non-positive step).
     BadInput(String),
 }
@@ -353,6 +356,12 @@ impl std::fmt::Display for DynamicsError {
                 f,
                 "time step from t = {time:.6} s failed with sub-step {step:.3e} s: {error}; the state is kept \
                  at t = {time:.6} s"
+            ),
+            DynamicsError::Inadmissible { time, step } => write!(
+                f,
+                "time step from t = {time:.6} s failed: even with sub-step {step:.3e} s Newton only finds a \
+                 solution that turns a director by more than 90° in one step; the state is kept at \
+                 t = {time:.6} s (try a smaller time_step or a gentler motion)"
             ),
             DynamicsError::BadInput(m) => write!(f, "bad input: {m}"),
         }

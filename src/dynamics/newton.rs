@@ -77,6 +77,11 @@ pub trait StepEquations {
     fn residual_norm(&self, lin: &Linear) -> f64;
     /// cfg ← cfg ⊕ `lin.du` (limited where the model needs it).
     fn apply_increment(&self, ws: &mut Self::Workspace, lin: &mut Linear, prev: &State, cfg: &mut RodConfig);
+    /// Whether a converged step from `prev` to `cfg` is one the scheme's
+    /// properties hold for (default: every converged step).
+    fn step_is_admissible(&self, _prev: &State, _cfg: &RodConfig) -> bool {
+        true
+    }
     /// Velocities, work and end data of the converged step into `trial`.
     fn finish(&self, ws: &Self::Workspace, lin: &Linear, prev: &State, trial: &mut State, h: f64, eta: f64);
 }
@@ -317,6 +322,11 @@ impl<M: StepEquations> Integrator<M> {
                 iterations,
                 residual: last / self.force_scale,
             });
+        }
+        if !model.step_is_admissible(state, &trial.config) {
+            // a spurious root of the step equations (theory §5.7): smaller steps
+            self.factor_h = f64::NAN;
+            return Err(DynamicsError::Inadmissible { time: state.time, step: h });
         }
         model.finish(&self.ws, &self.lin, state, trial, h, eta);
         trial.hang_off = target;

@@ -378,6 +378,15 @@ impl StepEquations for LineModel {
         apply_increment(&self.rod, &prev.config, cfg, &lin.du, &ws.twist_nodes, &mut ws.theta_step);
     }
 
+    /// A director may turn by at most 90° in one step: the reduced moment
+    /// equations (5.3) control the step's energy error only through θ·m,
+    /// |θ| = 2 tan(φ/2) for a turn φ, which is unbounded as φ → π. Newton can
+    /// find such a spurious root when an abrupt motion meets a stiff line.
+    fn step_is_admissible(&self, prev: &State, cfg: &RodConfig) -> bool {
+        // cos φ = (tr(d_{n+1} d_nᵀ) − 1)/2 ≥ 0
+        prev.config.d.iter().zip(&cfg.d).all(|(a, b)| a.component_mul(b).sum() >= 1.0)
+    }
+
     fn finish(&self, ws: &RodWorkspace, _lin: &Linear, state: &State, trial: &mut State, h: f64, eta: f64) {
         // velocities, work and bookkeeping of the converged step (§5.5)
         let rod = &self.rod;
