@@ -10,7 +10,7 @@ use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::Scene;
 use std::time::Instant;
 
-fn one_run(ramp: f64) -> (f64, f64, u64) {
+fn one_run(ramp: f64) -> (f64, f64, u64, f64) {
     let scene = Scene::builtin("catenary").unwrap();
     let mut sim = Simulation::from_scene(&scene).unwrap();
     let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp };
@@ -23,7 +23,8 @@ fn one_run(ramp: f64) -> (f64, f64, u64) {
     }
     let wall = t0.elapsed().as_secs_f64();
     let st = &sim.state;
-    (wall, st.newton_iterations as f64 / st.steps as f64, st.retries)
+    let tangents = sim.integrator.factorizations() as f64 / st.steps as f64;
+    (wall, st.newton_iterations as f64 / st.steps as f64, st.retries, tangents)
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -34,18 +35,23 @@ fn median(v: &mut [f64]) -> f64 {
 fn main() {
     let runs: usize = std::env::var("RISER_BENCH_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(5);
     println!("catenary, 60 elements, dt 0.05 s, 100 s simulated, {runs} runs (median)");
-    println!("{:<28} {:>10} {:>12} {:>10} {:>8}", "start", "wall (s)", "Newton/step", "RTF", "splits");
+    println!(
+        "{:<28} {:>10} {:>12} {:>13} {:>10} {:>8}",
+        "start", "wall (s)", "Newton/step", "tangents/step", "RTF", "splits"
+    );
     for (name, ramp) in [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)] {
         let mut walls = Vec::new();
         let mut its = 0.0;
         let mut splits = 0;
+        let mut tangents = 0.0;
         for _ in 0..runs {
-            let (w, i, s) = one_run(ramp);
+            let (w, i, s, t) = one_run(ramp);
             walls.push(w);
             its = i;
             splits = s;
+            tangents = t;
         }
         let w = median(&mut walls);
-        println!("{:<28} {:>10.3} {:>12.2} {:>10.1} {:>8}", name, w, its, 100.0 / w, splits);
+        println!("{:<28} {:>10.3} {:>12.2} {:>13.3} {:>10.1} {:>8}", name, w, its, tangents, 100.0 / w, splits);
     }
 }

@@ -103,6 +103,8 @@ pub struct Integrator<M: StepEquations = super::LineModel> {
     factor_h: f64,
     /// Steps taken since the tangent was factorised.
     factor_age: u32,
+    /// Tangents factorised since construction (for benchmarks).
+    pub factorizations: u64,
 }
 
 /// Outcome of one successful call to [`Integrator::step`].
@@ -129,6 +131,7 @@ impl<M: StepEquations> Integrator<M> {
             solver_log: None,
             factor_h: f64::NAN,
             factor_age: 0,
+            factorizations: 0,
         })
     }
 
@@ -291,6 +294,7 @@ impl<M: StepEquations> Integrator<M> {
                 }
                 self.factor_h = h;
                 self.factor_age = 0;
+                self.factorizations += 1;
             }
             // the contraction just observed is that of the previous correction:
             // slow after a stale tangent, renew it once; slow after a fresh

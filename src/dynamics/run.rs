@@ -91,6 +91,11 @@ impl Engine {
         with_integrator!(self, i => i.solver_log = log)
     }
 
+    /// Tangents factorised so far.
+    pub fn factorizations(&self) -> u64 {
+        with_integrator!(self, i => i.factorizations)
+    }
+
     /// See [`Integrator::invalidate_tangent`].
     pub fn invalidate_tangent(&mut self) {
         with_integrator!(self, i => i.invalidate_tangent())
