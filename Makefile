@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn
 
 all: build
 
@@ -41,6 +41,17 @@ paper: build venv
 # (tens of minutes; run it on a quiet machine, it measures wall time).
 study: build venv
 	$(PY) scripts/study.py
+
+# Tension noise of the conserving scheme, with and without the dissipative
+# option (issue 5): the noise section of docs/performance.md (a few minutes).
+noise: build venv
+	$(PY) scripts/tension_noise.py
+
+# MoorDyn side by side on the catenary scene (issue 5): docs/moordyn.md and
+# docs/figures/moordyn_compare.png (installs the pinned moordyn; ~15 minutes).
+moordyn: build venv
+	$(PY) -m pip install --quiet -r requirements-peers.txt
+	$(PY) scripts/moordyn_compare.py --bin $(BIN) --out out/moordyn --docs docs
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv
