@@ -241,6 +241,9 @@ impl State {
     pub fn set_rigid_velocity(&mut self, v: V3, omega: V3, x0: V3) {
         for a in 0..self.vel.len() {
             self.vel[a] = v + omega.cross(&(self.config.x[a] - x0));
+        }
+        // (a cable's state has no slopes and no directors)
+        for a in 0..self.slope_vel.len() {
             self.slope_vel[a] = omega.cross(&self.config.xp[a]);
         }
         self.mean_vel.clone_from(&self.vel);
