@@ -343,3 +343,18 @@ fn rod_and_cable_agree_on_the_catenary_scene() {
     // difference alone is 8.0e-4); asserted with that error and a margin
     assert!(diff < 1.5e-3, "{diff:e}");
 }
+
+#[test]
+fn the_hanging_chain_start_is_the_discrete_equilibrium() {
+    // the shot chain satisfies the cable's static equations for vertical
+    // loads: Newton has at most a round-off correction left, and no
+    // continuation (from nodes on the continuous catenary, slack chords made
+    // the tangent singular: 16–19 continuation steps at 10–60 segments)
+    for scene_name in ["catenary", "lazy_wave"] {
+        for n in [4, 10, 60, 400] {
+            let rep = solve_scene(&scene(scene_name, &[&format!("n_elements={n}")])).unwrap();
+            println!("{scene_name}, {n} segments: {} Newton iterations", rep.iterations);
+            assert!(rep.iterations <= 1 && rep.continuation_steps == 0, "{scene_name} {n}: {rep:?}");
+        }
+    }
+}

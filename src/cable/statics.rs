@@ -7,7 +7,78 @@ use super::{CableModel, NODE_DOF};
 use crate::hydro::fluid::{Fluid, FluidFactors, segment_fluid_force};
 use crate::linsolve::BandedSystem;
 use crate::rod::kinematics::{M3, RodConfig, V3};
+use crate::statics::catenary::Catenary;
 use crate::statics::{StaticSolution, StaticsError};
+
+/// The start of the cable's statics (docs/theory.md §6.3): the discrete
+/// chain itself hanging under its nodal loads f_a, shot from the hang-off so
+/// that it closes on the anchor. With segment 0 carrying n_0 = (H, N) in the
+/// vertical plane through both ends, n_e = n_{e−1} − f_e e_z and the chords
+/// d_e = l (1 + |n_e|/EA) n_e/|n_e| satisfy the static equations exactly for
+/// vertical loads; Newton on (H, N) closes the chain, started from the
+/// continuous elastic catenary. (Nodes placed *on* the continuous catenary
+/// would not do: a chord is shorter than its arc by about κ²l²/24, which can
+/// exceed the strain T/EA and leave segments slack, with no stiffness.)
+/// None if the chain cannot be closed (then the caller starts elsewhere).
+pub fn hanging_chain_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3>> {
+    let c = &model.cable;
+    let chord = anchor - top;
+    let horiz = V3::new(chord.x, chord.y, 0.0);
+    let span = horiz.norm();
+    if span <= 1e-9 * c.length {
+        return None;
+    }
+    let eh = horiz / span;
+    let cat = Catenary::solve(c.length, &model.vertical, c.axial_stiffness, span, chord.z)?;
+    let f = model.gravity_vector();
+    // the chain from (H, N): node positions in the plane (along eh, z)
+    let chain = |u: [f64; 2]| -> Option<Vec<[f64; 2]>> {
+        let mut p = vec![[0.0, 0.0]; c.n_el + 1];
+        let (h, mut nz) = (u[0], u[1]);
+        for e in 0..c.n_el {
+            if e > 0 {
+                nz -= f[e];
+            }
+            let t = h.hypot(nz);
+            if !(t > 0.0 && t.is_finite()) {
+                return None;
+            }
+            let len = c.l * (1.0 + t / c.axial_stiffness);
+            p[e + 1] = [p[e][0] + len * h / t, p[e][1] + len * nz / t];
+        }
+        Some(p)
+    };
+    let closure = |u: [f64; 2]| chain(u).map(|p| [p[c.n_el][0] - span, p[c.n_el][1] - chord.z]);
+    let mut u = [cat.h, cat.v0 - f[0]];
+    let mut r = closure(u)?;
+    for _ in 0..50 {
+        if r[0].hypot(r[1]) <= 1e-12 * c.length {
+            let p = chain(u)?;
+            let mut x: Vec<V3> = p.iter().map(|q| top + eh * q[0] + V3::z() * q[1]).collect();
+            x[c.n_el] = anchor;
+            return Some(x);
+        }
+        // finite-difference Jacobian of this 2 × 2 shooting problem
+        let scale = u[0].hypot(u[1]);
+        let mut jac = [[0.0; 2]; 2];
+        for j in 0..2 {
+            let mut up = u;
+            up[j] += 1e-7 * scale;
+            let rp = closure(up)?;
+            for i in 0..2 {
+                jac[i][j] = (rp[i] - r[i]) / (1e-7 * scale);
+            }
+        }
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        u[0] -= (jac[1][1] * r[0] - jac[0][1] * r[1]) / det;
+        u[1] -= (jac[0][0] * r[1] - jac[1][0] * r[0]) / det;
+        r = closure(u)?;
+    }
+    None
+}
 
 /// The static problem of a cable: internal force, the vertical load and,
 /// if given, the drag of a steady current on the motionless line.

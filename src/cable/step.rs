@@ -229,7 +229,7 @@ impl StepEquations for CableModel {
         }
     }
 
-    fn finish(&self, ws: &CableWorkspace, _lin: &Linear, state: &State, trial: &mut State, h: f64, eta: f64) {
+    fn finish(&self, ws: &CableWorkspace, state: &State, trial: &mut State, h: f64, eta: f64) {
         // velocities, work and bookkeeping of the converged step (§5.5)
         let (x0, x1) = (&state.config.x, &trial.config.x);
         let mut w_hydro = 0.0;

@@ -83,7 +83,7 @@ pub trait StepEquations {
         true
     }
     /// Velocities, work and end data of the converged step into `trial`.
-    fn finish(&self, ws: &Self::Workspace, lin: &Linear, prev: &State, trial: &mut State, h: f64, eta: f64);
+    fn finish(&self, ws: &Self::Workspace, prev: &State, trial: &mut State, h: f64, eta: f64);
 }
 
 /// The time integrator: a line model, the options and a preallocated workspace.
@@ -332,7 +332,7 @@ impl<M: StepEquations> Integrator<M> {
             self.factor_h = f64::NAN;
             return Err(DynamicsError::Inadmissible { time: state.time, step: h });
         }
-        model.finish(&self.ws, &self.lin, state, trial, h, eta);
+        model.finish(&self.ws, state, trial, h, eta);
         trial.hang_off = target;
         trial.time = state.time + h;
         trial.steps += 1;
@@ -347,9 +347,9 @@ impl<M: StepEquations> Integrator<M> {
 /// with finite differences of the residual).
 impl<M: StepEquations> Integrator<M> {
     /// Starts a step from `prev` to the hang-off motion `target`: returns the
-    /// predicted configuration q_{n+1} (with the damping's data of q_n).
+    /// predicted configuration q_{n+1}.
     pub fn begin_step(&mut self, prev: &State, h: f64, target: HangOff) -> RodConfig {
-        self.model.begin(&mut self.ws, prev, 1.0);
+        self.model.begin(&mut self.ws, prev, self.options.structural_damping);
         let mut trial = prev.clone();
         self.model.predict(&mut self.ws, prev, &mut trial, h, self.origin, target, 2);
         trial.config

@@ -387,7 +387,7 @@ impl StepEquations for LineModel {
         prev.config.d.iter().zip(&cfg.d).all(|(a, b)| a.component_mul(b).sum() >= 1.0)
     }
 
-    fn finish(&self, ws: &RodWorkspace, _lin: &Linear, state: &State, trial: &mut State, h: f64, eta: f64) {
+    fn finish(&self, ws: &RodWorkspace, state: &State, trial: &mut State, h: f64, eta: f64) {
         // velocities, work and bookkeeping of the converged step (§5.5)
         let rod = &self.rod;
         let cfg0 = &state.config;

@@ -2,7 +2,7 @@
 //! the line, the shape.
 
 use super::{StaticLoads, StaticOptions, StaticSolution, catenary_start, solve};
-use crate::cable::statics::CableStatics;
+use crate::cable::statics::{CableStatics, hanging_chain_start};
 use crate::cable::{Cable, CableModel};
 use crate::error::RiserError;
 use crate::rod::kinematics::V3;
@@ -120,7 +120,8 @@ pub fn solve_scene(scene: &Scene) -> Result<StaticReport, RiserError> {
     let tolerance = scene.analysis.newton_tolerance.min(1e-10);
     if scene.analysis.model == Model::Cable {
         let model = CableModel::from_scene(scene);
-        let sol = CableStatics::new(&model, loads.drag.is_some()).solve(start.x, tolerance)?;
+        let x0 = hanging_chain_start(&model, scene.hang_off(), scene.anchor()).unwrap_or(start.x);
+        let sol = CableStatics::new(&model, loads.drag.is_some()).solve(x0, tolerance)?;
         return Ok(StaticReport::of_cable(&model.cable, sol));
     }
     let opts = StaticOptions { tolerance, ..Default::default() };
