@@ -1,14 +1,14 @@
 //! Static equilibrium of the cable (docs/theory.md §6.3): Newton on
-//! f_int(x) − f_grav − f_drag(x) = 0 from the elastic catenary, and, if that
-//! fails (a slack start, buoyancy modules far from the catenary), pseudo-
-//! transient continuation R(x) + μ (x − x_k) = 0 with μ → 0, as for the rod.
+//! f_int(x) − f_grav − f_drag(x) = 0 from the shot hanging chain (exact for
+//! vertical loads), and, if that fails, the rod's pseudo-transient
+//! continuation R(x) + μ (x − x_k) = 0 with μ → 0.
 
 use super::{CableModel, NODE_DOF};
 use crate::hydro::fluid::{Fluid, FluidFactors, segment_fluid_force};
-use crate::linsolve::BandedSystem;
+use crate::linsolve::{BandedSystem, LinearSolveError};
 use crate::rod::kinematics::{M3, RodConfig, V3};
 use crate::statics::catenary::Catenary;
-use crate::statics::{StaticSolution, StaticsError};
+use crate::statics::{Relaxation, StaticSolution, StaticsError, pseudo_transient};
 
 /// The start of the cable's statics (docs/theory.md §6.3): the discrete
 /// chain itself hanging under its nodal loads f_a, shot from the hang-off so
@@ -87,6 +87,8 @@ pub struct CableStatics<'a> {
     /// The water's static action (drag of the current; no added mass).
     water: Fluid,
     scale: f64,
+    /// Fixed unknowns (the ends).
+    fixed: Vec<usize>,
 }
 
 impl<'a> CableStatics<'a> {
@@ -94,7 +96,7 @@ impl<'a> CableStatics<'a> {
     pub fn new(model: &'a CableModel, with_current: bool) -> Self {
         let water = Fluid { drag: if with_current { model.fluid.drag.clone() } else { None }, added_mass: 0.0 };
         let scale = crate::dynamics::StepEquations::force_scale(model);
-        CableStatics { model, water, scale }
+        CableStatics { model, water, scale, fixed: model.cable.fixed_dofs() }
     }
 
     /// R(x) into `r` and, if given, ∂R/∂x into `sys`.
@@ -138,87 +140,77 @@ impl<'a> CableStatics<'a> {
         }
     }
 
+    /// The equilibrium from `start` (node positions; the ends stay where
+    /// they are): Newton, with pseudo-transient continuation if Newton alone
+    /// fails (the rod's, [`pseudo_transient`]).
+    pub fn solve(&self, start: Vec<V3>, tolerance: f64) -> Result<StaticSolution, StaticsError> {
+        pseudo_transient(self, start, tolerance, 0, 0.0)
+    }
+}
+
+impl Relaxation for CableStatics<'_> {
+    type Config = Vec<V3>;
+
+    fn n_dof(&self) -> usize {
+        self.model.cable.n_dof()
+    }
+
+    fn new_system(&self) -> Result<BandedSystem, LinearSolveError> {
+        self.model.cable.new_system()
+    }
+
+    fn residual(&self, x: &Vec<V3>, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+        CableStatics::residual(self, x, r, sys)
+    }
+
     /// Largest free residual component relative to the weight.
-    fn relative(&self, r: &[f64], fixed: &[usize]) -> f64 {
-        let m = r.iter().enumerate().filter(|(i, _)| !fixed.contains(i)).fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+    fn relative(&self, r: &[f64]) -> f64 {
+        let m = r.iter().enumerate().filter(|(i, _)| !self.fixed.contains(i)).fold(0.0f64, |m, (_, v)| m.max(v.abs()));
         if m.is_nan() { f64::INFINITY } else { m / self.scale }
     }
 
-    /// The equilibrium from `start` (node positions; the ends stay where they are).
-    pub fn solve(&self, start: Vec<V3>, tolerance: f64) -> Result<StaticSolution, StaticsError> {
-        let c = &self.model.cable;
-        let n = c.n_dof();
-        let fixed = c.fixed_dofs();
-        let mut sys = c.new_system().map_err(StaticsError::Linear)?;
-        let mut r = vec![0.0; n];
-        let mut du = vec![0.0; n];
-        let floor = 10.0 * c.residual_roundoff(&start) / self.scale;
-        let tolerance = tolerance.max(floor);
-        let mut x = start;
-        let mut iterations = 0;
-        let mut steps = 0;
-        // μ = 0: plain Newton; μ > 0: a pseudo-time step x_k → x
-        let mut mu = 0.0;
-        let mu0 = 10.0 * self.scale / c.length;
-        let mut last = f64::INFINITY;
-        for _ in 0..2000 {
-            let saved = x.clone();
-            let mut ok = false;
-            let mut its = 0;
-            for _ in 0..if mu == 0.0 { 30 } else { 12 } {
-                self.residual(&x, &mut r, Some(&mut sys));
-                last = self.relative(&r, &fixed);
-                if mu == 0.0 && last <= tolerance {
-                    let node = |a: usize| V3::new(r[3 * a], r[3 * a + 1], r[3 * a + 2]);
-                    return Ok(StaticSolution {
-                        reactions: [node(0), node(c.n_el)],
-                        config: RodConfig { x, xp: Vec::new(), d: Vec::new() },
-                        iterations,
-                        continuation_steps: steps,
-                        residual: last,
-                    });
-                }
-                for (i, ri) in r.iter_mut().enumerate() {
-                    *ri += mu * (x[i / 3][i % 3] - saved[i / 3][i % 3]);
-                    sys.add(i, i, mu);
-                }
-                if mu > 0.0 && self.relative(&r, &fixed) <= tolerance.max(1e-8) {
-                    ok = true;
-                    break;
-                }
-                if !last.is_finite() {
-                    break;
-                }
-                for &i in &fixed {
-                    r[i] = 0.0;
-                    sys.constrain(i);
-                }
-                iterations += 1;
-                its += 1;
-                for (d, v) in du.iter_mut().zip(&r) {
-                    *d = -v;
-                }
-                if sys.factorize().is_err() || sys.solve_in_place(&mut du).is_err() {
-                    break;
-                }
-                for (a, p) in x.iter_mut().enumerate() {
-                    *p += V3::new(du[3 * a], du[3 * a + 1], du[3 * a + 2]);
-                }
-            }
-            if ok {
-                steps += 1;
-                mu *= if its <= 3 { 0.2 } else { 0.6 };
-                if mu < 1e-9 * mu0 {
-                    mu = 0.0;
-                }
-            } else {
-                x = saved;
-                mu = if mu == 0.0 { mu0 } else { mu * 4.0 };
-                if mu > 1e12 * mu0 {
-                    break;
-                }
-            }
+    fn correction(&self, sys: &mut BandedSystem, r: &mut [f64], du: &mut [f64]) -> Result<(), LinearSolveError> {
+        for &i in &self.fixed {
+            r[i] = 0.0;
+            sys.constrain(i);
         }
-        Err(StaticsError::NotConverged { iterations, residual: last, continuation: 1.0 })
+        sys.factorize()?;
+        for (d, v) in du.iter_mut().zip(r.iter()) {
+            *d = -v;
+        }
+        sys.solve_in_place(du)
+    }
+
+    fn apply_increment(&self, x: &mut Vec<V3>, du: &[f64]) {
+        for (a, p) in x.iter_mut().enumerate() {
+            *p += V3::new(du[3 * a], du[3 * a + 1], du[3 * a + 2]);
+        }
+    }
+
+    fn is_finite(x: &Vec<V3>) -> bool {
+        x.iter().all(|p| p.iter().all(|c| c.is_finite()))
+    }
+
+    fn pseudo_mass(&self, _i: usize) -> f64 {
+        1.0
+    }
+
+    fn mu_unit(&self) -> f64 {
+        self.scale / self.model.cable.length
+    }
+
+    fn roundoff(&self, x: &Vec<V3>) -> f64 {
+        self.model.cable.residual_roundoff(x) / self.scale
+    }
+
+    fn solution(&self, x: Vec<V3>, r: &[f64], iterations: usize, steps: usize, residual: f64) -> StaticSolution {
+        let node = |a: usize| V3::new(r[3 * a], r[3 * a + 1], r[3 * a + 2]);
+        StaticSolution {
+            reactions: [node(0), node(self.model.cable.n_el)],
+            config: RodConfig { x, xp: Vec::new(), d: Vec::new() },
+            iterations,
+            continuation_steps: steps,
+            residual,
+        }
     }
 }

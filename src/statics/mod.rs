@@ -263,42 +263,60 @@ pub fn solve(
 ) -> Result<StaticSolution, StaticsError> {
     match solve_homotopy(rod, loads, initial.clone(), opts) {
         Ok(s) => Ok(s),
-        Err(StaticsError::NotConverged { iterations, .. }) => pseudo_transient(rod, loads, initial, opts, iterations)
-            .map_err(|e| match e {
-                StaticsError::NotConverged { iterations: i, residual, .. } => {
-                    StaticsError::NotConverged { iterations: i, residual, continuation: 1.0 }
-                }
-                other => other,
-            }),
+        Err(StaticsError::NotConverged { iterations, .. }) => {
+            pseudo_transient(&StaticProblem::new(rod, loads), initial, opts.tolerance, iterations, 10.0)
+        }
         Err(e) => Err(e),
     }
+}
+
+/// A static problem that pseudo-transient continuation can drive: the rod
+/// ([`StaticProblem`]) and the cable ([`crate::cable::statics::CableStatics`]).
+pub trait Relaxation {
+    type Config: Clone;
+    fn n_dof(&self) -> usize;
+    fn new_system(&self) -> Result<BandedSystem, LinearSolveError>;
+    /// R(q) into `r` and, if given, ∂R/∂q into `sys`.
+    fn residual(&self, cfg: &Self::Config, r: &mut [f64], sys: Option<&mut BandedSystem>);
+    /// Largest free residual component relative to the force scale.
+    fn relative(&self, r: &[f64]) -> f64;
+    /// The Newton correction du = −K⁻¹ r with the fixed unknowns held.
+    fn correction(&self, sys: &mut BandedSystem, r: &mut [f64], du: &mut [f64]) -> Result<(), LinearSolveError>;
+    fn apply_increment(&self, cfg: &mut Self::Config, du: &[f64]);
+    fn is_finite(cfg: &Self::Config) -> bool;
+    /// Weight D_i of unknown i in the regularisation μ D (q − q_k).
+    fn pseudo_mass(&self, i: usize) -> f64;
+    /// Unit of μ: force scale over length, N/m.
+    fn mu_unit(&self) -> f64;
+    /// Round-off of the relative residual at `cfg`.
+    fn roundoff(&self, cfg: &Self::Config) -> f64;
+    /// The converged state with its residual `r`.
+    fn solution(&self, cfg: Self::Config, r: &[f64], iterations: usize, steps: usize, residual: f64) -> StaticSolution;
 }
 
 /// Pseudo-transient continuation (docs/theory.md §4): a sequence of
 /// regularised problems R(q) + μ D (q − q_k) = 0, each started from the last,
 /// with μ decreased while Newton converges easily and increased when it does
-/// not; ends with Newton on R(q) = 0 alone. D is 1 on position and slope
-/// unknowns and h² on rotations. Robust where the homotopy path turns.
-fn pseudo_transient(
-    rod: &Rod,
-    loads: &StaticLoads,
-    initial: RodConfig,
-    opts: &StaticOptions,
+/// not; ends with Newton on R(q) = 0 alone. Robust where the homotopy path
+/// turns, or from a start with no stiffness. `mu_start` in units of
+/// [`Relaxation::mu_unit`] (0: plain Newton first).
+pub fn pseudo_transient<P: Relaxation>(
+    p: &P,
+    initial: P::Config,
+    tolerance: f64,
     prior_iterations: usize,
+    mu_start: f64,
 ) -> Result<StaticSolution, StaticsError> {
-    let prob = StaticProblem::new(rod, loads);
-    let n = rod.n_dof();
-    let mut sys = rod.new_system().map_err(StaticsError::Linear)?;
+    let n = p.n_dof();
+    let mut sys = p.new_system().map_err(StaticsError::Linear)?;
     let mut r = vec![0.0; n];
     let mut du = vec![0.0; n];
     let mut acc = vec![0.0; n];
     let mut cfg = initial;
-    let scale = prob.force_scale.max(f64::MIN_POSITIVE);
-    let floor = 10.0 * rod.residual_roundoff(&cfg) / scale;
-    let tolerance = opts.tolerance.max(floor);
-    let d_of = |i: usize| if i % 12 < 6 { 1.0 } else { rod.h * rod.h };
-    let mut mu = 10.0 * scale / rod.length;
-    let mu_max = 1e12 * mu;
+    let tolerance = tolerance.max(10.0 * p.roundoff(&cfg));
+    let unit = p.mu_unit();
+    let mut mu = mu_start * unit;
+    let mu_max = 1e13 * unit;
     let mut iterations = prior_iterations;
     let mut steps = 0;
     let mut last_res = f64::INFINITY;
@@ -308,24 +326,18 @@ fn pseudo_transient(
         let mut ok = false;
         let mut newton_its = 0;
         for _ in 0..12 {
-            prob.residual(&cfg, &mut r, Some(&mut sys));
-            let res_plain = prob.relative_residual(&r, scale);
+            p.residual(&cfg, &mut r, Some(&mut sys));
+            let res_plain = p.relative(&r);
             last_res = res_plain;
             if mu == 0.0 && res_plain <= tolerance {
-                let reactions = prob.reactions(&r);
-                return Ok(StaticSolution {
-                    config: cfg,
-                    iterations,
-                    continuation_steps: steps,
-                    residual: res_plain,
-                    reactions,
-                });
+                return Ok(p.solution(cfg, &r, iterations, steps, res_plain));
             }
             for i in 0..n {
-                r[i] += mu * d_of(i) * acc[i];
-                sys.add(i, i, mu * d_of(i));
+                let d = p.pseudo_mass(i);
+                r[i] += mu * d * acc[i];
+                sys.add(i, i, mu * d);
             }
-            let res = prob.relative_residual(&r, scale);
+            let res = p.relative(&r);
             if !res.is_finite() {
                 break;
             }
@@ -335,14 +347,14 @@ fn pseudo_transient(
             }
             iterations += 1;
             newton_its += 1;
-            if prob.correction(&mut sys, &mut r, &mut du).is_err() {
+            if p.correction(&mut sys, &mut r, &mut du).is_err() {
                 break;
             }
-            rod.apply_increment(&mut cfg, &du);
+            p.apply_increment(&mut cfg, &du);
             for i in 0..n {
                 acc[i] += du[i];
             }
-            if !cfg.is_finite() {
+            if !P::is_finite(&cfg) {
                 break;
             }
         }
@@ -351,13 +363,15 @@ fn pseudo_transient(
             // an easy pseudo-step: lighten the regularisation; below a
             // threshold, drop it and finish with plain Newton
             mu *= if newton_its <= 3 { 0.2 } else { 0.6 };
-            if mu < 1e-9 * scale / rod.length {
+            if mu < 1e-9 * unit {
                 mu = 0.0;
             }
         } else {
             cfg = saved;
             if mu == 0.0 {
-                mu = 1e-6 * scale / rod.length;
+                // plain Newton failed: from the start, the full regularisation;
+                // near the end of the continuation, a slight one
+                mu = if steps == 0 { 10.0 * unit } else { 1e-6 * unit };
             } else {
                 mu *= 4.0;
             }
@@ -367,6 +381,55 @@ fn pseudo_transient(
         }
     }
     Err(StaticsError::NotConverged { iterations, residual: last_res, continuation: 1.0 })
+}
+
+impl Relaxation for StaticProblem<'_> {
+    type Config = RodConfig;
+
+    fn n_dof(&self) -> usize {
+        self.rod.n_dof()
+    }
+
+    fn new_system(&self) -> Result<BandedSystem, LinearSolveError> {
+        self.rod.new_system()
+    }
+
+    fn residual(&self, cfg: &RodConfig, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+        StaticProblem::residual(self, cfg, r, sys)
+    }
+
+    fn relative(&self, r: &[f64]) -> f64 {
+        self.relative_residual(r, self.force_scale.max(f64::MIN_POSITIVE))
+    }
+
+    fn correction(&self, sys: &mut BandedSystem, r: &mut [f64], du: &mut [f64]) -> Result<(), LinearSolveError> {
+        StaticProblem::correction(self, sys, r, du)
+    }
+
+    fn apply_increment(&self, cfg: &mut RodConfig, du: &[f64]) {
+        self.rod.apply_increment(cfg, du)
+    }
+
+    fn is_finite(cfg: &RodConfig) -> bool {
+        cfg.is_finite()
+    }
+
+    /// 1 on position and slope unknowns, h² on rotations.
+    fn pseudo_mass(&self, i: usize) -> f64 {
+        if i % 12 < 6 { 1.0 } else { self.rod.h * self.rod.h }
+    }
+
+    fn mu_unit(&self) -> f64 {
+        self.force_scale.max(f64::MIN_POSITIVE) / self.rod.length
+    }
+
+    fn roundoff(&self, cfg: &RodConfig) -> f64 {
+        self.rod.residual_roundoff(cfg) / self.force_scale.max(f64::MIN_POSITIVE)
+    }
+
+    fn solution(&self, cfg: RodConfig, r: &[f64], iterations: usize, steps: usize, residual: f64) -> StaticSolution {
+        StaticSolution { config: cfg, iterations, continuation_steps: steps, residual, reactions: self.reactions(r) }
+    }
 }
 
 /// The homotopy continuation R(q) − (1 − s) R(q₀) = 0, s: 0 → 1.
