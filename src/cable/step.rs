@@ -5,6 +5,7 @@
 //! Kelvin–Voigt damping (6.5), and the water at the midpoint as for the rod.
 
 use super::{CableModel, NODE_DOF};
+use crate::dynamics::DynamicOptions;
 use crate::dynamics::newton::{Linear, StepEquations};
 use crate::dynamics::outputs::{Outputs, SHAPE_POINTS};
 use crate::dynamics::{HangOff, State};
@@ -61,7 +62,7 @@ impl StepEquations for CableModel {
         self.cable.ends_fixed[0]
     }
 
-    fn begin(&self, ws: &mut CableWorkspace, prev: &State, _eta: f64) {
+    fn begin(&self, ws: &mut CableWorkspace, prev: &State, _options: &DynamicOptions) {
         for e in 0..self.cable.n_el {
             ws.lam_n[e] = self.cable.stretch(&prev.config.x, e);
         }

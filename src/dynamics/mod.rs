@@ -317,6 +317,10 @@ pub struct DynamicOptions {
     /// Steps a factorised tangent may be reused for (modified Newton; 0: a
     /// new tangent at every step, 1 per step and on slow convergence).
     pub max_tangent_age: u32,
+    /// Express the Newton unknowns of each node in its current director
+    /// frame, so that a reused tangent turns with the line (docs/theory.md
+    /// §5.7); false: the global frame.
+    pub corotated_tangent: bool,
 }
 
 impl Default for DynamicOptions {
@@ -328,6 +332,7 @@ impl Default for DynamicOptions {
             max_halvings: 6,
             structural_damping: 0.0,
             max_tangent_age: 20,
+            corotated_tangent: true,
         }
     }
 }

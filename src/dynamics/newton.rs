@@ -9,6 +9,10 @@ use super::{DynamicOptions, DynamicsError, HangOff, State};
 use crate::linsolve::{BandedSystem, LinearSolveError};
 use crate::rod::kinematics::{RodConfig, V3};
 
+/// Corrections a reused tangent may still need at its observed contraction
+/// rate before it is renewed.
+const MAX_LINEAR_ITERATIONS: f64 = 15.0;
+
 /// A sink for solver messages.
 pub type SolverLog = Box<dyn FnMut(&str) + Send>;
 
@@ -43,7 +47,7 @@ pub trait StepEquations {
     /// True if the hang-off end (S = 0) follows a prescribed motion.
     fn hang_off_prescribed(&self) -> bool;
     /// Prepares a step from `prev`: quantities of q_n the residual needs.
-    fn begin(&self, ws: &mut Self::Workspace, prev: &State, eta: f64);
+    fn begin(&self, ws: &mut Self::Workspace, prev: &State, options: &DynamicOptions);
     /// Predicted q_{n+1} in `trial` (`order` 2: quadratic, 1: linear), the
     /// hang-off at `origin + target.displacement`.
     #[allow(clippy::too_many_arguments)]
@@ -82,6 +86,11 @@ pub trait StepEquations {
     fn step_is_admissible(&self, _prev: &State, _cfg: &RodConfig) -> bool {
         true
     }
+    /// The Newton correction `v` (a right-hand side, spatial components)
+    /// into the basis the tangent is assembled in at `cfg` (default: the same).
+    fn to_tangent_basis(&self, _ws: &Self::Workspace, _cfg: &RodConfig, _v: &mut [f64]) {}
+    /// The inverse of [`StepEquations::to_tangent_basis`]: back to spatial components.
+    fn to_spatial_basis(&self, _ws: &Self::Workspace, _cfg: &RodConfig, _v: &mut [f64]) {}
     /// Velocities, work and end data of the converged step into `trial`.
     fn finish(&self, ws: &Self::Workspace, prev: &State, trial: &mut State, h: f64, eta: f64);
 }
@@ -209,11 +218,15 @@ impl<M: StepEquations> Integrator<M> {
         let eta = self.options.structural_damping;
         let trial = &mut self.trial;
         trial.clone_from(state);
-        model.begin(&mut self.ws, state, eta);
+        model.begin(&mut self.ws, state, &self.options);
         model.predict(&mut self.ws, state, trial, h, self.origin, target, order);
         // below 10× the residual's round-off, stop when Newton stagnates
         let roundoff = model.residual_roundoff(&state.config);
-        let tol = (self.options.newton_tolerance * self.force_scale).max(roundoff);
+        let asked = self.options.newton_tolerance * self.force_scale;
+        let tol = asked.max(roundoff);
+        // asked for round-off: iterate until the residual stops falling, so
+        // that no systematic part of a linearly converging iteration is left
+        let to_roundoff = asked < roundoff;
         let mut converged = false;
         let mut iterations = 0;
         let mut last = f64::INFINITY;
@@ -226,9 +239,7 @@ impl<M: StepEquations> Integrator<M> {
         let mut refresh = !same_h || self.factor_age >= self.options.max_tangent_age;
         // whether the last Newton correction used a tangent of its own iterate
         let mut solved_fresh = false;
-        // far from the solution (a rough predictor: abrupt inputs, unresolved
-        // oscillations) modified Newton may wander to another root of the
-        // step equations: such steps take full Newton from the start
+        // set when a fresh tangent still contracts slowly: full Newton from there
         let mut full = false;
         let mut tried_linear = false;
         let mut at_start = true;
@@ -248,24 +259,17 @@ impl<M: StepEquations> Integrator<M> {
             }
             last = res;
             // converged; or stagnating at round-off after a full Newton correction
-            if res <= tol || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
+            let at_tol = res <= tol && (!to_roundoff || res > 0.25 * last_res || res <= 0.1 * roundoff);
+            if at_tol || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
                 converged = true;
                 break;
             }
-            if at_start && res > 0.1 * self.force_scale {
-                if order >= 2 && !tried_linear {
-                    // the quadratic predictor extrapolated an unresolved
-                    // oscillation: start again from the linear one
-                    tried_linear = true;
-                    model.predict(&mut self.ws, state, trial, h, self.origin, target, 1);
-                    continue;
-                }
-                full = true;
-                if !refresh {
-                    refresh = true;
-                    at_start = false;
-                    continue;
-                }
+            if at_start && res > 0.1 * self.force_scale && order >= 2 && !tried_linear {
+                // the quadratic predictor extrapolated an unresolved
+                // oscillation: start again from the linear one
+                tried_linear = true;
+                model.predict(&mut self.ws, state, trial, h, self.origin, target, 1);
+                continue;
             }
             at_start = false;
             if it == self.options.max_iterations || !res.is_finite() {
@@ -277,7 +281,12 @@ impl<M: StepEquations> Integrator<M> {
             if res > 1e8 * first {
                 break;
             }
-            let slow = res > 0.5 * last_res;
+            // slow: the residual contracts by less than half per correction, or
+            // at a rate that would need more than `MAX_LINEAR_ITERATIONS` more
+            // corrections to reach the tolerance (a new tangent costs about
+            // as much as ten residuals)
+            let rate = res / last_res;
+            let slow = rate > 0.5 || (rate > 0.0 && (tol / res).ln() / rate.ln() > MAX_LINEAR_ITERATIONS);
             last_res = res;
             iterations += 1;
             let lin = &mut self.lin;
@@ -308,10 +317,12 @@ impl<M: StepEquations> Integrator<M> {
             for (d, r) in lin.du.iter_mut().zip(&lin.r) {
                 *d = -r;
             }
+            model.to_tangent_basis(&self.ws, &trial.config, &mut lin.du);
             if let Err(error) = lin.sys.solve_in_place(&mut lin.du) {
                 self.factor_h = f64::NAN;
                 return Err(DynamicsError::Linear { time: state.time, step: h, error });
             }
+            model.to_spatial_basis(&self.ws, &trial.config, &mut lin.du);
             model.apply_increment(&mut self.ws, lin, state, &mut trial.config);
             if !trial.config.is_finite() {
                 break;
@@ -349,7 +360,7 @@ impl<M: StepEquations> Integrator<M> {
     /// Starts a step from `prev` to the hang-off motion `target`: returns the
     /// predicted configuration q_{n+1}.
     pub fn begin_step(&mut self, prev: &State, h: f64, target: HangOff) -> RodConfig {
-        self.model.begin(&mut self.ws, prev, self.options.structural_damping);
+        self.model.begin(&mut self.ws, prev, &self.options);
         let mut trial = prev.clone();
         self.model.predict(&mut self.ws, prev, &mut trial, h, self.origin, target, 2);
         trial.config
@@ -379,6 +390,16 @@ impl<M: StepEquations> Integrator<M> {
     pub fn apply_step_increment(&mut self, prev: &State, cfg: &mut RodConfig, du: &[f64]) {
         self.lin.du.copy_from_slice(du);
         self.model.apply_increment(&mut self.ws, &mut self.lin, prev, cfg);
+    }
+
+    /// `v` (spatial components) into the basis the tangent is assembled in at `cfg`.
+    pub fn to_tangent_basis(&self, cfg: &RodConfig, v: &mut [f64]) {
+        self.model.to_tangent_basis(&self.ws, cfg, v);
+    }
+
+    /// The inverse of [`Integrator::to_tangent_basis`].
+    pub fn to_spatial_basis(&self, cfg: &RodConfig, v: &mut [f64]) {
+        self.model.to_spatial_basis(&self.ws, cfg, v);
     }
 
     /// Unknowns of the step equations.

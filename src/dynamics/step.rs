@@ -10,7 +10,7 @@
 //! directors are updated by the Cayley transform.
 
 use super::newton::{Integrator, Linear, StepEquations};
-use super::{HangOff, LineModel, State};
+use super::{DynamicOptions, HangOff, LineModel, State};
 use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
 use crate::linsolve::LinearSolveError;
 use crate::rod::element::{self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Strain, T_OFF};
@@ -42,6 +42,8 @@ pub struct RodWorkspace {
     /// their step rotation, d_{n+1} = cay(θ) d_n with θ·d3_n = 0.
     twist_nodes: Vec<usize>,
     theta_step: Vec<V3>,
+    /// Whether the tangent is assembled in the nodes' director frames (§5.7).
+    corotated: bool,
 }
 
 impl StepEquations for LineModel {
@@ -64,6 +66,7 @@ impl StepEquations for LineModel {
             anchor_moment: V3::zeros(),
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
+            corotated: true,
         };
         Ok((ws, lin))
     }
@@ -77,8 +80,10 @@ impl StepEquations for LineModel {
         self.rod.ends[0].position_fixed
     }
 
-    fn begin(&self, ws: &mut RodWorkspace, prev: &State, eta: f64) {
+    fn begin(&self, ws: &mut RodWorkspace, prev: &State, options: &DynamicOptions) {
         let rod = &self.rod;
+        let eta = options.structural_damping;
+        ws.corotated = options.corotated_tangent;
         for e in 0..rod.n_el {
             ws.eps_n[e] = rod.element_strains(&prev.config, e);
             if eta > 0.0 {
@@ -331,6 +336,9 @@ impl StepEquations for LineModel {
             for i in 0..NDOF_EL {
                 lin.r[off + i] += re[i];
             }
+            if want_k && buf.corotated {
+                corotate(&mut ke, &element_frames(cfg, e, &buf.twist_nodes));
+            }
             if want_k {
                 lin.sys.add_block(e, |i, j| ke[(i, j)]);
             }
@@ -366,6 +374,21 @@ impl StepEquations for LineModel {
                     }
                 }
             }
+        }
+    }
+
+    /// Spatial components → components in the director frame of each node
+    /// at `cfg` (positions and slopes of end node a in d_{2a}, the rotation
+    /// of director node j in d_j; twist-held nodes keep their own basis).
+    fn to_tangent_basis(&self, ws: &RodWorkspace, cfg: &RodConfig, v: &mut [f64]) {
+        if ws.corotated {
+            self.rotate_nodal(ws, cfg, v, true);
+        }
+    }
+
+    fn to_spatial_basis(&self, ws: &RodWorkspace, cfg: &RodConfig, v: &mut [f64]) {
+        if ws.corotated {
+            self.rotate_nodal(ws, cfg, v, false);
         }
     }
 
@@ -424,6 +447,49 @@ impl StepEquations for LineModel {
         }
         trial.end_accel = ws.end_accel;
         trial.mid_reaction = ws.reaction;
+    }
+}
+
+impl LineModel {
+    /// v ← Fᵀ v (`to_local`) or F v per nodal triple, F the director frame of
+    /// the triple's node at `cfg` (see [`StepEquations::to_tangent_basis`]).
+    fn rotate_nodal(&self, ws: &RodWorkspace, cfg: &RodConfig, v: &mut [f64], to_local: bool) {
+        let apply = |v: &mut [f64], i: usize, f: &M3| {
+            let x = V3::new(v[i], v[i + 1], v[i + 2]);
+            let y = if to_local { f.tr_mul(&x) } else { f * x };
+            v[i..i + 3].copy_from_slice(y.as_slice());
+        };
+        for a in 0..=self.rod.n_el {
+            let f = &cfg.d[2 * a];
+            apply(v, Rod::x_dof(a), f);
+            apply(v, Rod::xp_dof(a), f);
+        }
+        for j in 0..self.rod.n_director_nodes() {
+            if !ws.twist_nodes.contains(&j) {
+                apply(v, Rod::theta_dof(j), &cfg.d[j]);
+            }
+        }
+    }
+}
+
+/// Director frames of the element's seven unknown triples (in the order of
+/// [`ElemDofs`]: r_a, r'_a, θ_a, θ_mid, r_b, r'_b, θ_b); identity for the
+/// rotation of a twist-held node, which has a basis of its own (§5.6).
+fn element_frames(cfg: &RodConfig, e: usize, twist: &[usize]) -> [M3; 7] {
+    let frame = |j: usize| cfg.d[j];
+    let rot = |j: usize| if twist.contains(&j) { M3::identity() } else { cfg.d[j] };
+    let (a, m, b) = (2 * e, 2 * e + 1, 2 * e + 2);
+    [frame(a), frame(a), rot(a), rot(m), frame(b), frame(b), rot(b)]
+}
+
+/// k ← Fᵀ k F with F = diag(frames) in 3 × 3 blocks: the element tangent
+/// with respect to unknowns in the nodes' director frames (§5.7).
+fn corotate(k: &mut ElMat, frames: &[M3; 7]) {
+    for (bi, fi) in frames.iter().enumerate() {
+        for (bj, fj) in frames.iter().enumerate() {
+            let blk: M3 = k.fixed_view::<3, 3>(3 * bi, 3 * bj).into_owned();
+            k.fixed_view_mut::<3, 3>(3 * bi, 3 * bj).copy_from(&(fi.transpose() * blk * fj));
+        }
     }
 }
 
