@@ -13,7 +13,9 @@ use super::newton::{Integrator, Linear, StepEquations};
 use super::{DynamicOptions, HangOff, LineModel, State};
 use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
 use crate::linsolve::LinearSolveError;
-use crate::rod::element::{self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Strain, T_OFF};
+use crate::rod::element::{
+    self, C_OFF, ElMat, ElVec, ElemDofs, Factors, GpKin, NDOF_EL, NGP, STRIDE, Shear, Strain, T_OFF,
+};
 use crate::rod::kinematics::{M3, RodConfig, V3, cayley, skew};
 use crate::rod::model::{Rod, RotationBc};
 
@@ -26,6 +28,8 @@ pub struct RodWorkspace {
     vpnew: Vec<V3>,
     /// Strains of q_n at the Gauss points.
     eps_n: Vec<[Strain; NGP]>,
+    /// Interpolated fields of q_n at the Gauss points.
+    kin_n: Vec<[GpKin; NGP]>,
     /// Material strains (Γ_i = d_i·r' − δ_i3, K) of q_n and of the trial
     /// q_{n+1}, for the structural damping.
     damp_n: Vec<[Strain; NGP]>,
@@ -58,6 +62,7 @@ impl StepEquations for LineModel {
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
             eps_n: vec![[[0.0; 6]; NGP]; rod.n_el],
+            kin_n: vec![[GpKin::default(); NGP]; rod.n_el],
             damp_n: vec![[[0.0; 6]; NGP]; rod.n_el],
             damp_1: vec![[[0.0; 6]; NGP]; rod.n_el],
             reaction: [V3::zeros(); 2],
@@ -85,11 +90,12 @@ impl StepEquations for LineModel {
         let eta = options.structural_damping;
         ws.corotated = options.corotated_tangent;
         for e in 0..rod.n_el {
-            ws.eps_n[e] = rod.element_strains(&prev.config, e);
+            let kin = element::gauss_kin(&ElemDofs::gather(&prev.config, e), rod.h);
+            ws.eps_n[e] = element::strains_from_kin(&kin, Shear::Spatial(rod.reference_penalty(e)));
             if eta > 0.0 {
-                ws.damp_n[e] =
-                    element::gauss_strains_with(&ElemDofs::gather(&prev.config, e), rod.h, element::Shear::Material);
+                ws.damp_n[e] = element::strains_from_kin(&kin, Shear::Material);
             }
+            ws.kin_n[e] = kin;
         }
     }
 
@@ -196,35 +202,32 @@ impl StepEquations for LineModel {
             let eln = ElemDofs::gather(&prev.config, e);
             let elm = ElemDofs::average(&eln, &el1);
             // internal force: discrete gradient (§5.2)
-            let eps1 = rod.strains_of(&el1, e);
+            let k1 = element::gauss_kin(&el1, rod.h);
+            let shear = Shear::Spatial(rod.reference_penalty(e));
+            let eps1 = element::strains_from_kin(&k1, shear);
             let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
-            element::internal_force(
-                &elm,
-                &el1,
-                &s,
-                rod.stiff(),
-                Factors::MIDPOINT,
-                rod.h,
-                element::Shear::Spatial(rod.reference_penalty(e)),
-                &mut re,
-                if want_k { Some(&mut ke) } else { None },
-            );
+            // the fields of q½ (residual path; the tangent path forms its own)
+            let mut km = [GpKin::default(); NGP];
+            if !want_k {
+                for g in 0..NGP {
+                    km[g] = GpKin::average(&buf.kin_n[e][g], &k1[g]);
+                }
+                element::residual_with_kin(&elm, &km, &s, rod.h, shear, &mut re);
+            } else {
+                let k = Some(&mut ke);
+                element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
+            }
             // Kelvin–Voigt damping on the objective material strains (§5.9)
             if eta > 0.0 {
-                let d1 = element::gauss_strains_with(&el1, rod.h, element::Shear::Material);
+                let d1 = element::strains_from_kin(&k1, Shear::Material);
                 buf.damp_1[e] = d1;
                 let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
-                element::internal_force(
-                    &elm,
-                    &el1,
-                    &sd,
-                    rod.stiff(),
-                    damping,
-                    rod.h,
-                    element::Shear::Material,
-                    &mut re,
-                    if want_k { Some(&mut ke) } else { None },
-                );
+                if !want_k {
+                    element::residual_with_kin(&elm, &km, &sd, rod.h, Shear::Material, &mut re);
+                } else {
+                    let (stiff, k) = (rod.stiff(), Some(&mut ke));
+                    element::internal_force(&elm, &el1, &sd, stiff, damping, rod.h, Shear::Material, &mut re, k);
+                }
             }
             // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
             let vn = prev.hermite_velocity(e);

@@ -124,14 +124,23 @@ fn interpolated_fluid_force<const K: usize>(
             continue;
         }
         let t = p / len;
-        if k.is_none() && fluid.added_mass == 0.0 {
+        if k.is_none() {
             // residual only: the force, no derivatives
+            let mut force = V3::zeros();
             if let Some((kd, current)) = &fluid.drag {
                 let (vc, _) = current.velocity(s0 + xi * h, x.z);
-                let force = drag_force(kd, &(vc - v), &t) * len;
-                for i in 0..K {
-                    f[i] += force * (wg * n[i]);
+                force += drag_force(kd, &(vc - v), &t) * len;
+            }
+            if fluid.added_mass > 0.0 {
+                let mut a = V3::zeros();
+                for j in 0..K {
+                    a += acc[j] * n[j];
                 }
+                // −m_a (I − t tᵀ) a
+                force -= (a - t * t.dot(&a)) * fluid.added_mass;
+            }
+            for i in 0..K {
+                f[i] += force * (wg * n[i]);
             }
             continue;
         }

@@ -85,8 +85,10 @@ impl ElemDofs {
     }
 }
 
-/// Interpolated fields at one Gauss point.
-struct GpKin {
+/// Interpolated fields at one Gauss point (linear in the element's dofs, so
+/// the fields of q½ are the average of those of q_n and q_{n+1}).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct GpKin {
     /// r'
     p: V3,
     /// d_i
@@ -98,6 +100,42 @@ struct GpKin {
     /// Lagrange L_A and L'_A
     l: [f64; 3],
     dl: [f64; 3],
+}
+
+impl GpKin {
+    /// ½(a + b): the fields of the average configuration.
+    #[inline]
+    pub fn average(a: &GpKin, b: &GpKin) -> GpKin {
+        let mut m = *a;
+        m.p = 0.5 * (a.p + b.p);
+        for i in 0..3 {
+            m.di[i] = 0.5 * (a.di[i] + b.di[i]);
+            m.dpi[i] = 0.5 * (a.dpi[i] + b.dpi[i]);
+        }
+        m
+    }
+}
+
+/// The fields at the element's Gauss points.
+pub fn gauss_kin(e: &ElemDofs, h: f64) -> [GpKin; NGP] {
+    let mut out = [GpKin::default(); NGP];
+    for (g, o) in out.iter_mut().enumerate() {
+        *o = kin(e, GAUSS4.xi[g], h);
+    }
+    out
+}
+
+/// Strains at the Gauss points from their fields (see [`gauss_strains_with`]).
+pub fn strains_from_kin(k: &[GpKin; NGP], shear: Shear<'_>) -> [Strain; NGP] {
+    let mut out = [[0.0; 6]; NGP];
+    for (g, o) in out.iter_mut().enumerate() {
+        let g0 = match shear {
+            Shear::Spatial(g0) => Some(&g0[g]),
+            Shear::Material => None,
+        };
+        *o = strains_of(&k[g], g0);
+    }
+    out
 }
 
 #[inline]
@@ -242,27 +280,42 @@ fn b_matrix(e: &ElemDofs, k: &GpKin, g0: Option<&V3>) -> SMatrix<f64, 6, NDOF_EL
 /// The internal force B̃ᵀ s without forming B̃ (the residual-only path of
 /// [`internal_force`]; the same products written out, ≈ 2× cheaper).
 fn residual_only(eb: &ElemDofs, stress: &[Strain; NGP], h: f64, shear: Shear<'_>, r: &mut ElVec) {
+    residual_with_kin(eb, &gauss_kin(eb, h), stress, h, shear, r);
+}
+
+/// [`internal_force`] without its tangent, with the Gauss-point fields `kb`
+/// of q_B given (see [`GpKin::average`]).
+pub fn residual_with_kin(
+    eb: &ElemDofs,
+    kb: &[GpKin; NGP],
+    stress: &[Strain; NGP],
+    h: f64,
+    shear: Shear<'_>,
+    r: &mut ElVec,
+) {
     for g in 0..NGP {
-        let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
         let s = &stress[g];
-        let k = kin(eb, xi, h);
+        let k = &kb[g];
         // shear/extension rows
-        let (fc, ft): (V3, [V3; 3]) = match shear {
+        let mut ft = [V3::zeros(); 3];
+        let fc = match shear {
             Shear::Spatial(g0) => {
                 // ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×  ⇒  N'_k n and L_A n × w_A
                 let n = V3::new(s[0], s[1], s[2]);
-                let ft = std::array::from_fn(|a| n.cross(&(eb.d[a] * (V3::z() + g0[g]))) * k.l[a]);
-                (n, ft)
+                let w = V3::z() + g0[g];
+                for a in 0..3 {
+                    ft[a] = n.cross(&(eb.d[a] * w)) * k.l[a];
+                }
+                n
             }
             Shear::Material => {
                 // ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
-                let n = k.di[0] * s[0] + k.di[1] * s[1] + k.di[2] * s[2];
-                let ft = std::array::from_fn(|a| {
-                    let m: V3 = eb.d[a] * V3::new(s[0], s[1], s[2]);
-                    m.cross(&k.p) * k.l[a]
-                });
-                (n, ft)
+                let sv = V3::new(s[0], s[1], s[2]);
+                for a in 0..3 {
+                    ft[a] = (eb.d[a] * sv).cross(&k.p) * k.l[a];
+                }
+                k.di[0] * s[0] + k.di[1] * s[1] + k.di[2] * s[2]
             }
         };
         for (kk, &off) in C_OFF.iter().enumerate() {
@@ -271,18 +324,23 @@ fn residual_only(eb: &ElemDofs, stress: &[Strain; NGP], h: f64, shear: Shear<'_>
             r[off + 1] += f.y;
             r[off + 2] += f.z;
         }
+        // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)],
+        // gathered by director column: Σ_c d_cA × (L_A u_c + L'_A w_c) with
+        // u_k += ½s_Ki d_j', u_j −= ½s_Ki d_k', w_j += ½s_Ki d_k, w_k −= ½s_Ki d_j
+        let mut u = [V3::zeros(); 3];
+        let mut w = [V3::zeros(); 3];
+        for &(i, j, kk) in &CYC {
+            let sk = 0.5 * s[3 + i];
+            u[kk] += k.dpi[j] * sk;
+            u[j] -= k.dpi[kk] * sk;
+            w[j] += k.di[kk] * sk;
+            w[kk] -= k.di[j] * sk;
+        }
         for (a, &off) in T_OFF.iter().enumerate() {
-            // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)]
             let mut m = ft[a];
-            for &(i, j, kk) in &CYC {
-                let sk = 0.5 * s[3 + i];
-                if sk == 0.0 {
-                    continue;
-                }
-                let dja: V3 = eb.d[a].column(j).into();
-                let dka: V3 = eb.d[a].column(kk).into();
-                m += (dka.cross(&k.dpi[j]) - dja.cross(&k.dpi[kk])) * (sk * k.l[a])
-                    + (dja.cross(&k.di[kk]) - dka.cross(&k.di[j])) * (sk * k.dl[a]);
+            for c in 0..3 {
+                let dca: V3 = eb.d[a].column(c).into();
+                m += dca.cross(&(u[c] * k.l[a] + w[c] * k.dl[a]));
             }
             let m = m * wg;
             r[off] += m.x;
