@@ -192,15 +192,7 @@ pub fn gauss_strains(e: &ElemDofs, h: f64, g0: &[V3; NGP]) -> [Strain; NGP] {
 
 /// Strains at the element's Gauss points with the chosen shear measure.
 pub fn gauss_strains_with(e: &ElemDofs, h: f64, shear: Shear<'_>) -> [Strain; NGP] {
-    let mut out = [[0.0; 6]; NGP];
-    for (g, o) in out.iter_mut().enumerate() {
-        let g0 = match shear {
-            Shear::Spatial(g0) => Some(&g0[g]),
-            Shear::Material => None,
-        };
-        *o = strains_of(&kin(e, GAUSS4.xi[g], h), g0);
-    }
-    out
+    strains_from_kin(&gauss_kin(e, h), shear)
 }
 
 /// Reference penalty coefficients at ξ: g⁰ = D⁰(ξ)⁻¹ (r'⁰ − d3⁰)(ξ) with D⁰ the
