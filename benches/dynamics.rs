@@ -4,7 +4,8 @@
 //! step and the real-time factor, median of several runs, for the paper's
 //! abrupt start and for a one-period smooth start.
 //!
-//! Run: `cargo bench --bench dynamics` (RISER_BENCH_RUNS sets the run count).
+//! Run: `cargo bench --bench dynamics` (RISER_BENCH_RUNS sets the run count,
+//! RISER_BENCH_ONLY=smooth or =abrupt runs one start only).
 
 use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::Scene;
@@ -39,7 +40,11 @@ fn main() {
         "{:<28} {:>10} {:>12} {:>13} {:>10} {:>8}",
         "start", "wall (s)", "Newton/step", "tangents/step", "RTF", "splits"
     );
+    let only = std::env::var("RISER_BENCH_ONLY").unwrap_or_default();
     for (name, ramp) in [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)] {
+        if !name.starts_with(only.as_str()) {
+            continue;
+        }
         let mut walls = Vec::new();
         let mut its = 0.0;
         let mut splits = 0;

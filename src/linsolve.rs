@@ -61,12 +61,18 @@ struct BandLu {
     ld: usize,
     ab: Vec<f64>,
     ipiv: Vec<usize>,
+    /// Per column of the factors: rows of L below the diagonal up to the last
+    /// nonzero, and rows of U above it from the first nonzero (the solves
+    /// skip the band's structural zeros: a block band fills far less than
+    /// kl + ku above the diagonal).
+    l_len: Vec<usize>,
+    u_len: Vec<usize>,
 }
 
 impl BandLu {
     fn new(n: usize, kl: usize, ku: usize) -> Self {
         let ld = 2 * kl + ku + 1;
-        BandLu { kl, ku, ld, ab: vec![0.0; ld * n], ipiv: vec![0; n] }
+        BandLu { kl, ku, ld, ab: vec![0.0; ld * n], ipiv: vec![0; n], l_len: vec![0; n], u_len: vec![0; n] }
     }
 
     #[inline]
@@ -121,14 +127,28 @@ impl BandLu {
                 }
             }
         }
+        self.find_extents(n);
         Ok(())
+    }
+
+    /// The nonzero extents of the factors' columns, [`BandLu::l_len`] and [`BandLu::u_len`].
+    fn find_extents(&mut self, n: usize) {
+        let kv = self.kl + self.ku;
+        for j in 0..n {
+            let d = self.at(j, j);
+            let km = self.kl.min(n - 1 - j);
+            let below = &self.ab[d + 1..=d + km];
+            self.l_len[j] = below.iter().rposition(|&v| v != 0.0).map_or(0, |r| r + 1);
+            let up = j.min(kv);
+            let above = &self.ab[d - up..d];
+            self.u_len[j] = above.iter().position(|&v| v != 0.0).map_or(0, |r| up - r);
+        }
     }
 
     /// Solves A x = b in place with the factors (dgbtrs).
     fn solve(&self, n: usize, b: &mut [f64]) {
-        let kv = self.kl + self.ku;
         for j in 0..n {
-            let km = self.kl.min(n - 1 - j);
+            let km = self.l_len[j];
             let p = self.ipiv[j];
             if p != j {
                 b.swap(p, j);
@@ -145,7 +165,7 @@ impl BandLu {
             let d = self.at(j, j);
             b[j] /= self.ab[d];
             let bj = b[j];
-            let lo = j.saturating_sub(kv);
+            let lo = j - self.u_len[j];
             if bj != 0.0 {
                 let col = &self.ab[d - (j - lo)..d];
                 for (x, u) in b[lo..j].iter_mut().zip(col) {

@@ -62,7 +62,7 @@ impl StepEquations for LineModel {
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
             eps_n: vec![[[0.0; 6]; NGP]; rod.n_el],
-            kin_n: vec![[GpKin::default(); NGP]; rod.n_el],
+            kin_n: vec![GpKin::at_gauss_points(rod.h); rod.n_el],
             damp_n: vec![[[0.0; 6]; NGP]; rod.n_el],
             damp_1: vec![[[0.0; 6]; NGP]; rod.n_el],
             reaction: [V3::zeros(); 2],
@@ -90,12 +90,16 @@ impl StepEquations for LineModel {
         let eta = options.structural_damping;
         ws.corotated = options.corotated_tangent;
         for e in 0..rod.n_el {
-            let kin = element::gauss_kin(&ElemDofs::gather(&prev.config, e), rod.h);
-            ws.eps_n[e] = element::strains_from_kin(&kin, Shear::Spatial(rod.reference_penalty(e)));
-            if eta > 0.0 {
-                ws.damp_n[e] = element::strains_from_kin(&kin, Shear::Material);
+            // the shape values in kin_n were set at construction
+            let el = ElemDofs::gather(&prev.config, e);
+            let kin = &mut ws.kin_n[e];
+            for k in kin.iter_mut() {
+                k.refresh(&el);
             }
-            ws.kin_n[e] = kin;
+            ws.eps_n[e] = element::strains_from_kin(kin, Shear::Spatial(rod.reference_penalty(e)));
+            if eta > 0.0 {
+                ws.damp_n[e] = element::strains_from_kin(kin, Shear::Material);
+            }
         }
     }
 
@@ -193,6 +197,12 @@ impl StepEquations for LineModel {
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut re = ElVec::zeros();
         let mut ke = ElMat::zeros();
+        // element fluid tangent (zeroed per element only when a tangent is asked)
+        let mut kf = [[M3::zeros(); 4]; 4];
+        // Gauss-point fields of q_{n+1} and of q½, refreshed in place per
+        // element (their shape values are those of every element)
+        let mut k1 = buf.kin_n[0];
+        let mut km = buf.kin_n[0];
         for e in 0..n_el {
             re.fill(0.0);
             if want_k {
@@ -202,15 +212,16 @@ impl StepEquations for LineModel {
             let eln = ElemDofs::gather(&prev.config, e);
             let elm = ElemDofs::average(&eln, &el1);
             // internal force: discrete gradient (§5.2)
-            let k1 = element::gauss_kin(&el1, rod.h);
+            for k in &mut k1 {
+                k.refresh(&el1);
+            }
             let shear = Shear::Spatial(rod.reference_penalty(e));
             let eps1 = element::strains_from_kin(&k1, shear);
             let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
             // the fields of q½ (residual path; the tangent path forms its own)
-            let mut km = [GpKin::default(); NGP];
             if !want_k {
                 for g in 0..NGP {
-                    km[g] = GpKin::average(&buf.kin_n[e][g], &k1[g]);
+                    km[g].set_average(&buf.kin_n[e][g], &k1[g]);
                 }
                 element::residual_with_kin(&elm, &km, &s, rod.h, shear, &mut re);
             } else {
@@ -272,7 +283,9 @@ impl StepEquations for LineModel {
                     vm[k] = (el1.c[k] - eln.c[k]) / h;
                 }
                 let mut ff = [V3::zeros(); 4];
-                let mut kf = [[M3::zeros(); 4]; 4];
+                if want_k {
+                    kf = [[M3::zeros(); 4]; 4];
+                }
                 element_fluid_force(
                     &model.fluid,
                     FluidFields { c: &elm.c, v: &vm, a: &acc },

@@ -92,6 +92,64 @@ pub fn segment_fluid_force(
     interpolated_fluid_force(fluid, x, v, a, shape, s0, l, fac, f, k);
 }
 
+/// The force alone (no derivatives) of [`interpolated_fluid_force`]: the same
+/// sums, written Gauss point by Gauss point in phases so that the four
+/// points' square roots and divisions overlap (the residual is evaluated
+/// several times per step, the tangent rarely).
+#[allow(clippy::too_many_arguments)]
+fn interpolated_fluid_residual<const K: usize>(
+    fluid: &Fluid,
+    c: &[V3; K],
+    vel: &[V3; K],
+    acc: &[V3; K],
+    shape: impl Fn(f64) -> ([f64; K], [f64; K]),
+    s0: f64,
+    h: f64,
+    f: &mut [V3; K],
+) {
+    let shapes: [([f64; K], [f64; K]); 4] =
+        [shape(GAUSS4.xi[0]), shape(GAUSS4.xi[1]), shape(GAUSS4.xi[2]), shape(GAUSS4.xi[3])];
+    let mut x = [V3::zeros(); 4];
+    let mut p = [V3::zeros(); 4];
+    let mut v = [V3::zeros(); 4];
+    for g in 0..4 {
+        let (n, nd) = &shapes[g];
+        for j in 0..K {
+            x[g] += c[j] * n[j];
+            p[g] += c[j] * nd[j];
+            v[g] += vel[j] * n[j];
+        }
+    }
+    let len: [f64; 4] = std::array::from_fn(|g| p[g].norm());
+    // unit tangents (a degenerate point, |p| = 0, feels nothing)
+    let t: [V3; 4] = std::array::from_fn(|g| if len[g] > 0.0 { p[g] / len[g] } else { V3::zeros() });
+    let mut force = [V3::zeros(); 4];
+    if let Some((kd, current)) = &fluid.drag {
+        for g in 0..4 {
+            let (vc, _) = current.velocity(s0 + GAUSS4.xi[g] * h, x[g].z);
+            force[g] = drag_force(kd, &(vc - v[g]), &t[g]) * len[g];
+        }
+    }
+    if fluid.added_mass > 0.0 {
+        for g in 0..4 {
+            let (n, _) = &shapes[g];
+            let mut a = V3::zeros();
+            for j in 0..K {
+                a += acc[j] * n[j];
+            }
+            // −m_a (I − t tᵀ) a
+            force[g] -= (a - t[g] * t[g].dot(&a)) * fluid.added_mass;
+        }
+    }
+    for g in 0..4 {
+        let (n, _) = &shapes[g];
+        let wg = GAUSS4.w[g] * h;
+        for i in 0..K {
+            f[i] += force[g] * (wg * n[i]);
+        }
+    }
+}
+
 /// ∫ N_k f dS over an element whose fields are interpolated by `shape(ξ)` =
 /// (N(ξ), N'(ξ)) from the dofs `c` (position), `v`, `a` (4-point Gauss).
 #[allow(clippy::too_many_arguments)]
@@ -107,6 +165,9 @@ fn interpolated_fluid_force<const K: usize>(
     f: &mut [V3; K],
     mut k: Option<&mut [[M3; K]; K]>,
 ) {
+    if k.is_none() {
+        return interpolated_fluid_residual(fluid, c, vel, acc, shape, s0, h, f);
+    }
     for g in 0..4 {
         let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
@@ -124,26 +185,6 @@ fn interpolated_fluid_force<const K: usize>(
             continue;
         }
         let t = p / len;
-        if k.is_none() {
-            // residual only: the force, no derivatives
-            let mut force = V3::zeros();
-            if let Some((kd, current)) = &fluid.drag {
-                let (vc, _) = current.velocity(s0 + xi * h, x.z);
-                force += drag_force(kd, &(vc - v), &t) * len;
-            }
-            if fluid.added_mass > 0.0 {
-                let mut a = V3::zeros();
-                for j in 0..K {
-                    a += acc[j] * n[j];
-                }
-                // −m_a (I − t tᵀ) a
-                force -= (a - t * t.dot(&a)) * fluid.added_mass;
-            }
-            for i in 0..K {
-                f[i] += force * (wg * n[i]);
-            }
-            continue;
-        }
         let proj = M3::identity() - t * t.transpose();
         let mut force = V3::zeros();
         // derivatives of the force per reference length with respect to x, v, a, p

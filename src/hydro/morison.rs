@@ -44,10 +44,12 @@ fn abs_times(a: &V3) -> (V3, M3) {
 }
 
 /// The drag force alone (no derivatives), for residual-only evaluations.
+/// `t` must be a unit vector (|v_rt| is taken as |v_r·t|).
 pub fn drag_force(k: &DragCoefficients, vrel: &V3, t: &V3) -> V3 {
-    let vrt = t * t.dot(vrel);
+    let vt = t.dot(vrel);
+    let vrt = t * vt;
     let vrn = vrel - vrt;
-    vrn * (vrn.norm() * k.normal) + vrt * (vrt.norm() * k.tangential)
+    vrn * (vrn.norm() * k.normal) + vrt * (vt.abs() * k.tangential)
 }
 
 /// Morison drag for relative velocity `vrel` = v_current − v_line and unit tangent `t`.

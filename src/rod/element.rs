@@ -103,16 +103,47 @@ pub struct GpKin {
 }
 
 impl GpKin {
+    /// The shape values at the Gauss points of an element of length `h` (m),
+    /// with zero fields (see [`GpKin::refresh`]).
+    pub fn at_gauss_points(h: f64) -> [GpKin; NGP] {
+        GAUSS4.xi.map(|xi| GpKin {
+            nds: hermite_ds(xi, h),
+            l: lagrange(xi),
+            dl: lagrange_ds(xi, h),
+            ..GpKin::default()
+        })
+    }
+
     /// ½(a + b): the fields of the average configuration.
     #[inline]
     pub fn average(a: &GpKin, b: &GpKin) -> GpKin {
         let mut m = *a;
-        m.p = 0.5 * (a.p + b.p);
-        for i in 0..3 {
-            m.di[i] = 0.5 * (a.di[i] + b.di[i]);
-            m.dpi[i] = 0.5 * (a.dpi[i] + b.dpi[i]);
-        }
+        m.set_average(a, b);
         m
+    }
+
+    /// The fields ← ½(a + b), keeping this point's shape values (the three
+    /// must belong to the same Gauss point of elements of the same length).
+    #[inline]
+    pub fn set_average(&mut self, a: &GpKin, b: &GpKin) {
+        self.p = 0.5 * (a.p + b.p);
+        for i in 0..3 {
+            self.di[i] = 0.5 * (a.di[i] + b.di[i]);
+            self.dpi[i] = 0.5 * (a.dpi[i] + b.dpi[i]);
+        }
+    }
+
+    /// Recomputes the fields r', d_i, d_i' of element `e` with this point's
+    /// shape values (no copy of the shape values, no division).
+    #[inline]
+    pub fn refresh(&mut self, e: &ElemDofs) {
+        let nds = &self.nds;
+        self.p = e.c[0] * nds[0] + e.c[1] * nds[1] + e.c[2] * nds[2] + e.c[3] * nds[3];
+        for i in 0..3 {
+            let (c0, c1, c2) = (e.d[0].column(i), e.d[1].column(i), e.d[2].column(i));
+            self.di[i] = c0 * self.l[0] + c1 * self.l[1] + c2 * self.l[2];
+            self.dpi[i] = c0 * self.dl[0] + c1 * self.dl[1] + c2 * self.dl[2];
+        }
     }
 }
 
@@ -140,20 +171,9 @@ pub fn strains_from_kin(k: &[GpKin; NGP], shear: Shear<'_>) -> [Strain; NGP] {
 
 #[inline]
 fn kin(e: &ElemDofs, xi: f64, h: f64) -> GpKin {
-    let nds = hermite_ds(xi, h);
-    let l = lagrange(xi);
-    let dl = lagrange_ds(xi, h);
-    let p = e.c[0] * nds[0] + e.c[1] * nds[1] + e.c[2] * nds[2] + e.c[3] * nds[3];
-    let mut di = [V3::zeros(); 3];
-    let mut dpi = [V3::zeros(); 3];
-    for i in 0..3 {
-        for a in 0..3 {
-            let col = e.d[a].column(i);
-            di[i] += col * l[a];
-            dpi[i] += col * dl[a];
-        }
-    }
-    GpKin { p, di, dpi, nds, l, dl }
+    let mut k = GpKin { nds: hermite_ds(xi, h), l: lagrange(xi), dl: lagrange_ds(xi, h), ..GpKin::default() };
+    k.refresh(e);
+    k
 }
 
 #[inline]
@@ -285,39 +305,18 @@ pub fn residual_with_kin(
     shear: Shear<'_>,
     r: &mut ElVec,
 ) {
+    // Every rotation row is a sum of d_cA × (vector) with the director
+    // columns d_cA of node A, which do not depend on the Gauss point: the
+    // vectors are summed over the Gauss points first, mom[A][c], and crossed
+    // with d_cA once per element (9 cross products per element).
+    let mut mom = [[V3::zeros(); 3]; 3];
+    let mut fcs = [V3::zeros(); 4];
     for g in 0..NGP {
         let wg = GAUSS4.w[g] * h;
         let s = &stress[g];
         let k = &kb[g];
-        // shear/extension rows
-        let mut ft = [V3::zeros(); 3];
-        let fc = match shear {
-            Shear::Spatial(g0) => {
-                // ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×  ⇒  N'_k n and L_A n × w_A
-                let n = V3::new(s[0], s[1], s[2]);
-                let w = V3::z() + g0[g];
-                for a in 0..3 {
-                    ft[a] = n.cross(&(eb.d[a] * w)) * k.l[a];
-                }
-                n
-            }
-            Shear::Material => {
-                // ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
-                let sv = V3::new(s[0], s[1], s[2]);
-                for a in 0..3 {
-                    ft[a] = (eb.d[a] * sv).cross(&k.p) * k.l[a];
-                }
-                k.di[0] * s[0] + k.di[1] * s[1] + k.di[2] * s[2]
-            }
-        };
-        for (kk, &off) in C_OFF.iter().enumerate() {
-            let f = fc * (k.nds[kk] * wg);
-            r[off] += f.x;
-            r[off + 1] += f.y;
-            r[off + 2] += f.z;
-        }
-        // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)],
-        // gathered by director column: Σ_c d_cA × (L_A u_c + L'_A w_c) with
+        // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)]
+        // = Σ_c d_cA × (L_A u_c + L'_A w_c) with
         // u_k += ½s_Ki d_j', u_j −= ½s_Ki d_k', w_j += ½s_Ki d_k, w_k −= ½s_Ki d_j
         let mut u = [V3::zeros(); 3];
         let mut w = [V3::zeros(); 3];
@@ -328,17 +327,51 @@ pub fn residual_with_kin(
             w[j] += k.di[kk] * sk;
             w[kk] -= k.di[j] * sk;
         }
-        for (a, &off) in T_OFF.iter().enumerate() {
-            let mut m = ft[a];
-            for c in 0..3 {
-                let dca: V3 = eb.d[a].column(c).into();
-                m += dca.cross(&(u[c] * k.l[a] + w[c] * k.dl[a]));
+        // shear/extension rows, in the same form Σ_c d_cA × (L_A ·)
+        let fc = match shear {
+            Shear::Spatial(g0) => {
+                // ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×, w_A = Σ_c ŵ_c d_cA (ŵ = e3 + g⁰)
+                //   ⇒ N'_k n and L_A n × w_A = Σ_c d_cA × (−L_A ŵ_c n)
+                let n = V3::new(s[0], s[1], s[2]);
+                let what = V3::z() + g0[g];
+                for c in 0..3 {
+                    u[c] -= n * what[c];
+                }
+                n
             }
-            let m = m * wg;
-            r[off] += m.x;
-            r[off + 1] += m.y;
-            r[off + 2] += m.z;
+            Shear::Material => {
+                // ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
+                //   ⇒ Σ_i s_i N'_k d_i and Σ_c d_cA × (L_A s_c r')
+                for c in 0..3 {
+                    u[c] += k.p * s[c];
+                }
+                k.di[0] * s[0] + k.di[1] * s[1] + k.di[2] * s[2]
+            }
+        };
+        for kk in 0..4 {
+            fcs[kk] += fc * (k.nds[kk] * wg);
         }
+        for a in 0..3 {
+            let (la, dla) = (k.l[a] * wg, k.dl[a] * wg);
+            for c in 0..3 {
+                mom[a][c] += u[c] * la + w[c] * dla;
+            }
+        }
+    }
+    for (kk, &off) in C_OFF.iter().enumerate() {
+        r[off] += fcs[kk].x;
+        r[off + 1] += fcs[kk].y;
+        r[off + 2] += fcs[kk].z;
+    }
+    for (a, &off) in T_OFF.iter().enumerate() {
+        let mut m = V3::zeros();
+        for c in 0..3 {
+            let dca: V3 = eb.d[a].column(c).into();
+            m += dca.cross(&mom[a][c]);
+        }
+        r[off] += m.x;
+        r[off + 1] += m.y;
+        r[off + 2] += m.z;
     }
 }
 
