@@ -212,16 +212,19 @@ impl StepEquations for CableModel {
     }
 
     fn residual_norm(&self, lin: &Linear) -> f64 {
+        // NaN anywhere gives ∞ (f64::max would skip it)
         let mut m: f64 = 0.0;
+        let mut nan = false;
         let mut fi = 0;
         for (i, v) in lin.r.iter().enumerate() {
             if fi < lin.fixed.len() && lin.fixed[fi] == i {
                 fi += 1;
                 continue;
             }
+            nan |= v.is_nan();
             m = m.max(v.abs());
         }
-        if m.is_nan() { f64::INFINITY } else { m }
+        if nan { f64::INFINITY } else { m }
     }
 
     fn apply_increment(&self, _ws: &mut CableWorkspace, lin: &mut Linear, _prev: &State, cfg: &mut RodConfig) {

@@ -323,10 +323,8 @@ impl<M: StepEquations> Integrator<M> {
                 return Err(DynamicsError::Linear { time: state.time, step: h, error });
             }
             model.to_spatial_basis(&self.ws, &trial.config, &mut lin.du);
+            // (a non-finite configuration shows as an infinite residual next)
             model.apply_increment(&mut self.ws, lin, state, &mut trial.config);
-            if !trial.config.is_finite() {
-                break;
-            }
         }
         if !converged {
             // the next attempt (a smaller sub-step) starts from a new tangent

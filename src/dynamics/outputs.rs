@@ -2,7 +2,7 @@
 //! (docs/theory.md §5.6).
 
 use super::{LineModel, State};
-use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
+use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss};
 use crate::rod::element::{self, ElVec, ElemDofs, Factors};
 use crate::rod::kinematics::V3;
 use crate::rod::model::Rod;
@@ -158,6 +158,7 @@ impl LineModel {
                 element_fluid_force(
                     &self.fluid,
                     FluidFields { c: &el.c, v: &v, a: acc },
+                    &hermite_at_gauss(rod.h),
                     rod.s_node(e),
                     rod.h,
                     fac,

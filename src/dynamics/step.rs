@@ -11,11 +11,10 @@
 
 use super::newton::{Integrator, Linear, StepEquations};
 use super::{DynamicOptions, HangOff, LineModel, State};
-use crate::hydro::fluid::{FluidFactors, FluidFields, element_fluid_force};
+use crate::hydro::fluid::{FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, hermite_at_gauss};
 use crate::linsolve::LinearSolveError;
-use crate::rod::element::{
-    self, C_OFF, ElMat, ElVec, ElemDofs, Factors, GpKin, NDOF_EL, NGP, STRIDE, Shear, Strain, T_OFF,
-};
+use crate::rod::element::{self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Shear, Strain, T_OFF};
+use crate::rod::gauss::{self, F4, GaussFields, GaussShapes};
 use crate::rod::kinematics::{M3, RodConfig, V3, cayley, skew};
 use crate::rod::model::{Rod, RotationBc};
 
@@ -26,10 +25,13 @@ pub struct RodWorkspace {
     /// Candidate new centreline velocities.
     vnew: Vec<V3>,
     vpnew: Vec<V3>,
-    /// Strains of q_n at the Gauss points.
-    eps_n: Vec<[Strain; NGP]>,
+    /// Shape values at the Gauss points (every element has the same length).
+    shapes: GaussShapes,
+    fluid_shapes: HermiteAtGauss,
+    /// Strains of q_n at the Gauss points (rows over the points).
+    eps_n: Vec<[F4; 6]>,
     /// Interpolated fields of q_n at the Gauss points.
-    kin_n: Vec<[GpKin; NGP]>,
+    kin_n: Vec<GaussFields>,
     /// Material strains (Γ_i = d_i·r' − δ_i3, K) of q_n and of the trial
     /// q_{n+1}, for the structural damping.
     damp_n: Vec<[Strain; NGP]>,
@@ -61,8 +63,10 @@ impl StepEquations for LineModel {
             fluid: vec![0.0; n],
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
-            eps_n: vec![[[0.0; 6]; NGP]; rod.n_el],
-            kin_n: vec![GpKin::at_gauss_points(rod.h); rod.n_el],
+            shapes: GaussShapes::new(rod.h),
+            fluid_shapes: hermite_at_gauss(rod.h),
+            eps_n: vec![[[0.0; NGP]; 6]; rod.n_el],
+            kin_n: vec![GaussFields::default(); rod.n_el],
             damp_n: vec![[[0.0; 6]; NGP]; rod.n_el],
             damp_1: vec![[[0.0; 6]; NGP]; rod.n_el],
             reaction: [V3::zeros(); 2],
@@ -90,15 +94,11 @@ impl StepEquations for LineModel {
         let eta = options.structural_damping;
         ws.corotated = options.corotated_tangent;
         for e in 0..rod.n_el {
-            // the shape values in kin_n were set at construction
-            let el = ElemDofs::gather(&prev.config, e);
             let kin = &mut ws.kin_n[e];
-            for k in kin.iter_mut() {
-                k.refresh(&el);
-            }
-            ws.eps_n[e] = element::strains_from_kin(kin, Shear::Spatial(rod.reference_penalty(e)));
+            kin.refresh(&ws.shapes, &ElemDofs::gather(&prev.config, e));
+            ws.eps_n[e] = kin.strains(Shear::Spatial(rod.reference_penalty(e)));
             if eta > 0.0 {
-                ws.damp_n[e] = element::strains_from_kin(kin, Shear::Material);
+                ws.damp_n[e] = gauss::to_points(&kin.strains(Shear::Material));
             }
         }
     }
@@ -193,16 +193,17 @@ impl StepEquations for LineModel {
             buf.vnew[n_el] = V3::zeros();
         }
         let k_inertia = 2.0 / (h * h);
+        // (multiplications by 1/h in the element loop: a division costs several)
+        let inv_h = 1.0 / h;
         let fluid_active = !model.fluid.is_inert();
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut re = ElVec::zeros();
         let mut ke = ElMat::zeros();
         // element fluid tangent (zeroed per element only when a tangent is asked)
         let mut kf = [[M3::zeros(); 4]; 4];
-        // Gauss-point fields of q_{n+1} and of q½, refreshed in place per
-        // element (their shape values are those of every element)
-        let mut k1 = buf.kin_n[0];
-        let mut km = buf.kin_n[0];
+        // Gauss-point fields of q_{n+1} and of q½
+        let mut k1 = GaussFields::default();
+        let mut km = GaussFields::default();
         for e in 0..n_el {
             re.fill(0.0);
             if want_k {
@@ -212,29 +213,25 @@ impl StepEquations for LineModel {
             let eln = ElemDofs::gather(&prev.config, e);
             let elm = ElemDofs::average(&eln, &el1);
             // internal force: discrete gradient (§5.2)
-            for k in &mut k1 {
-                k.refresh(&el1);
-            }
+            k1.refresh(&buf.shapes, &el1);
             let shear = Shear::Spatial(rod.reference_penalty(e));
-            let eps1 = element::strains_from_kin(&k1, shear);
-            let s = rod.midpoint_stresses(e, &buf.eps_n[e], &eps1);
+            let eps1 = k1.strains(shear);
+            let s = rod.midpoint_stress_rows(e, &buf.eps_n[e], &eps1);
             // the fields of q½ (residual path; the tangent path forms its own)
             if !want_k {
-                for g in 0..NGP {
-                    km[g].set_average(&buf.kin_n[e][g], &k1[g]);
-                }
-                element::residual_with_kin(&elm, &km, &s, rod.h, shear, &mut re);
+                km.set_average(&buf.kin_n[e], &k1);
+                gauss::add_internal_force(&elm, &km, &s, &buf.shapes, shear, &mut re);
             } else {
-                let k = Some(&mut ke);
+                let (s, k) = (gauss::to_points(&s), Some(&mut ke));
                 element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
             }
             // Kelvin–Voigt damping on the objective material strains (§5.9)
             if eta > 0.0 {
-                let d1 = element::strains_from_kin(&k1, Shear::Material);
+                let d1 = gauss::to_points(&k1.strains(Shear::Material));
                 buf.damp_1[e] = d1;
                 let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
                 if !want_k {
-                    element::residual_with_kin(&elm, &km, &sd, rod.h, Shear::Material, &mut re);
+                    gauss::add_internal_force(&elm, &km, &gauss::to_rows(&sd), &buf.shapes, Shear::Material, &mut re);
                 } else {
                     let (stiff, k) = (rod.stiff(), Some(&mut ke));
                     element::internal_force(&elm, &el1, &sd, stiff, damping, rod.h, Shear::Material, &mut re, k);
@@ -245,7 +242,7 @@ impl StepEquations for LineModel {
             let v1 = [buf.vnew[e], buf.vpnew[e], buf.vnew[e + 1], buf.vpnew[e + 1]];
             let mut acc = [V3::zeros(); 4];
             for k in 0..4 {
-                acc[k] = (v1[k] - vn[k]) / h;
+                acc[k] = (v1[k] - vn[k]) * inv_h;
             }
             for k in 0..4 {
                 let mut f = V3::zeros();
@@ -280,7 +277,7 @@ impl StepEquations for LineModel {
             if fluid_active {
                 let mut vm = [V3::zeros(); 4];
                 for k in 0..4 {
-                    vm[k] = (el1.c[k] - eln.c[k]) / h;
+                    vm[k] = (el1.c[k] - eln.c[k]) * inv_h;
                 }
                 let mut ff = [V3::zeros(); 4];
                 if want_k {
@@ -289,6 +286,7 @@ impl StepEquations for LineModel {
                 element_fluid_force(
                     &model.fluid,
                     FluidFields { c: &elm.c, v: &vm, a: &acc },
+                    &buf.fluid_shapes,
                     rod.s_node(e),
                     rod.h,
                     fac,
@@ -311,9 +309,10 @@ impl StepEquations for LineModel {
             }
             // director inertia, reduced by the midpoint frames: m_A = Σ_i d_iA,½ × a_iA (§5.3)
             let ddn = prev.director_rates(e);
-            let mut dd1 = [M3::zeros(); 3];
+            // d̈ h = ḋ_{n+1} − ḋ_n = 2(d_{n+1} − d_n)/h − 2ḋ_n
+            let mut ddiff = [M3::zeros(); 3];
             for b in 0..3 {
-                dd1[b] = (el1.d[b] - eln.d[b]) * (2.0 / h) - ddn[b];
+                ddiff[b] = (el1.d[b] - eln.d[b]) * (2.0 * inv_h) - ddn[b] * 2.0;
             }
             for a in 0..3 {
                 let mut m = V3::zeros();
@@ -325,7 +324,7 @@ impl StepEquations for LineModel {
                     }
                     let mut acc_i = V3::zeros();
                     for b in 0..3 {
-                        acc_i += (dd1[b].column(i) - ddn[b].column(i)) * (mass.director[a][b] * ji / h);
+                        acc_i += ddiff[b].column(i) * (mass.director[a][b] * ji * inv_h);
                     }
                     let dmid: V3 = elm.d[a].column(i).into();
                     m += dmid.cross(&acc_i);
@@ -470,19 +469,24 @@ impl LineModel {
     /// v ← Fᵀ v (`to_local`) or F v per nodal triple, F the director frame of
     /// the triple's node at `cfg` (see [`StepEquations::to_tangent_basis`]).
     fn rotate_nodal(&self, ws: &RodWorkspace, cfg: &RodConfig, v: &mut [f64], to_local: bool) {
-        let apply = |v: &mut [f64], i: usize, f: &M3| {
-            let x = V3::new(v[i], v[i + 1], v[i + 2]);
+        #[inline(always)]
+        fn apply(v: &mut [f64], f: &M3, to_local: bool) {
+            let x = V3::new(v[0], v[1], v[2]);
             let y = if to_local { f.tr_mul(&x) } else { f * x };
-            v[i..i + 3].copy_from_slice(y.as_slice());
-        };
+            v[0] = y.x;
+            v[1] = y.y;
+            v[2] = y.z;
+        }
         for a in 0..=self.rod.n_el {
             let f = &cfg.d[2 * a];
-            apply(v, Rod::x_dof(a), f);
-            apply(v, Rod::xp_dof(a), f);
+            let (ix, ip) = (Rod::x_dof(a), Rod::xp_dof(a));
+            apply(&mut v[ix..ix + 3], f, to_local);
+            apply(&mut v[ip..ip + 3], f, to_local);
         }
-        for j in 0..self.rod.n_director_nodes() {
+        for (j, f) in cfg.d.iter().enumerate() {
             if !ws.twist_nodes.contains(&j) {
-                apply(v, Rod::theta_dof(j), &cfg.d[j]);
+                let it = Rod::theta_dof(j);
+                apply(&mut v[it..it + 3], f, to_local);
             }
         }
     }
@@ -563,15 +567,18 @@ fn slope_at_director_node(rod: &Rod, c: &RodConfig, j: usize) -> V3 {
 
 /// Largest free residual component (moment and r'-rows per element length), N.
 fn residual_norm(r: &[f64], fixed: &[usize], h: f64) -> f64 {
+    // moment rows (N m) are divided by the element length; NaN anywhere gives ∞
     let mut m: f64 = 0.0;
+    let mut nan = false;
     let mut fi = 0;
     for (i, v) in r.iter().enumerate() {
         if fi < fixed.len() && fixed[fi] == i {
             fi += 1;
             continue;
         }
-        let w = if i % STRIDE < 3 { 1.0 } else { 1.0 / h };
-        m = m.max((v * w).abs());
+        let a = if i % STRIDE < 3 { v.abs() } else { v.abs() / h };
+        nan |= a.is_nan();
+        m = m.max(a);
     }
-    if m.is_nan() { f64::INFINITY } else { m }
+    if nan { f64::INFINITY } else { m }
 }

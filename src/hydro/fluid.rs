@@ -56,6 +56,15 @@ pub struct FluidFields<'a> {
     pub a: &'a [V3; 4],
 }
 
+/// Hermite functions and their slopes at the four Gauss points of an element
+/// of length h (constant per mesh: computed once, not per element).
+pub type HermiteAtGauss = [([f64; 4], [f64; 4]); 4];
+
+/// [`HermiteAtGauss`] for an element of length `h` (m).
+pub fn hermite_at_gauss(h: f64) -> HermiteAtGauss {
+    GAUSS4.xi.map(|xi| (hermite(xi, h), hermite_ds(xi, h)))
+}
+
 /// Adds the consistent nodal fluid forces of a Hermite element of the rod
 /// to `f` (N) and, if asked, −∂F/∂c (the contribution to the tangent of a
 /// residual r = … − F) to `k`.
@@ -63,13 +72,14 @@ pub struct FluidFields<'a> {
 pub fn element_fluid_force(
     fluid: &Fluid,
     fields: FluidFields<'_>,
+    shapes: &HermiteAtGauss,
     s0: f64,
     h: f64,
     fac: FluidFactors,
     f: &mut [V3; 4],
     k: Option<&mut [[M3; 4]; 4]>,
 ) {
-    let shape = |xi: f64| (hermite(xi, h), hermite_ds(xi, h));
+    let shape = |g: usize| shapes[g];
     interpolated_fluid_force(fluid, fields.c, fields.v, fields.a, shape, s0, h, fac, f, k);
 }
 
@@ -88,7 +98,7 @@ pub fn segment_fluid_force(
     f: &mut [V3; 2],
     k: Option<&mut [[M3; 2]; 2]>,
 ) {
-    let shape = |xi: f64| ([1.0 - xi, xi], [-1.0 / l, 1.0 / l]);
+    let shape = |g: usize| ([1.0 - GAUSS4.xi[g], GAUSS4.xi[g]], [-1.0 / l, 1.0 / l]);
     interpolated_fluid_force(fluid, x, v, a, shape, s0, l, fac, f, k);
 }
 
@@ -102,13 +112,12 @@ fn interpolated_fluid_residual<const K: usize>(
     c: &[V3; K],
     vel: &[V3; K],
     acc: &[V3; K],
-    shape: impl Fn(f64) -> ([f64; K], [f64; K]),
+    shape: impl Fn(usize) -> ([f64; K], [f64; K]),
     s0: f64,
     h: f64,
     f: &mut [V3; K],
 ) {
-    let shapes: [([f64; K], [f64; K]); 4] =
-        [shape(GAUSS4.xi[0]), shape(GAUSS4.xi[1]), shape(GAUSS4.xi[2]), shape(GAUSS4.xi[3])];
+    let shapes: [([f64; K], [f64; K]); 4] = std::array::from_fn(shape);
     let mut x = [V3::zeros(); 4];
     let mut p = [V3::zeros(); 4];
     let mut v = [V3::zeros(); 4];
@@ -122,7 +131,7 @@ fn interpolated_fluid_residual<const K: usize>(
     }
     let len: [f64; 4] = std::array::from_fn(|g| p[g].norm());
     // unit tangents (a degenerate point, |p| = 0, feels nothing)
-    let t: [V3; 4] = std::array::from_fn(|g| if len[g] > 0.0 { p[g] / len[g] } else { V3::zeros() });
+    let t: [V3; 4] = std::array::from_fn(|g| if len[g] > 0.0 { p[g] * (1.0 / len[g]) } else { V3::zeros() });
     let mut force = [V3::zeros(); 4];
     if let Some((kd, current)) = &fluid.drag {
         for g in 0..4 {
@@ -150,15 +159,15 @@ fn interpolated_fluid_residual<const K: usize>(
     }
 }
 
-/// ∫ N_k f dS over an element whose fields are interpolated by `shape(ξ)` =
-/// (N(ξ), N'(ξ)) from the dofs `c` (position), `v`, `a` (4-point Gauss).
+/// ∫ N_k f dS over an element whose fields are interpolated by `shape(g)` =
+/// (N(ξ_g), N'(ξ_g)) at Gauss point g from the dofs `c` (position), `v`, `a` (4-point Gauss).
 #[allow(clippy::too_many_arguments)]
 fn interpolated_fluid_force<const K: usize>(
     fluid: &Fluid,
     c: &[V3; K],
     vel: &[V3; K],
     acc: &[V3; K],
-    shape: impl Fn(f64) -> ([f64; K], [f64; K]),
+    shape: impl Fn(usize) -> ([f64; K], [f64; K]),
     s0: f64,
     h: f64,
     fac: FluidFactors,
@@ -171,7 +180,7 @@ fn interpolated_fluid_force<const K: usize>(
     for g in 0..4 {
         let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
-        let (n, nd) = shape(xi);
+        let (n, nd) = shape(g);
         let mut x = V3::zeros();
         let mut p = V3::zeros();
         let mut v = V3::zeros();

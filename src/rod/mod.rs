@@ -2,6 +2,7 @@
 //! element (strains, energy, internal force, tangent) and the assembled model.
 
 pub mod element;
+pub mod gauss;
 pub mod kinematics;
 pub mod model;
 pub mod shape;

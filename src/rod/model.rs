@@ -8,6 +8,7 @@
 //! block-banded (half-bandwidth 20).
 
 use super::element::{self, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Strain};
+use super::gauss::F4;
 use super::kinematics::{RodConfig, V3, cayley, frame_from_tangent, skew};
 use crate::linsolve::{BandedSystem, LinearSolveError};
 
@@ -159,6 +160,18 @@ impl Rod {
         for g in 0..NGP {
             for c in 0..6 {
                 s[g][c] = self.stiff[c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - self.eps0[e][g][c]);
+            }
+        }
+        s
+    }
+
+    /// [`Rod::midpoint_stresses`] with strains and stresses as rows over the
+    /// Gauss points (the time step's residual kernel, [`super::gauss`]).
+    pub fn midpoint_stress_rows(&self, e: usize, eps_n: &[F4; 6], eps_1: &[F4; 6]) -> [F4; 6] {
+        let mut s = [[0.0; NGP]; 6];
+        for c in 0..6 {
+            for g in 0..NGP {
+                s[c][g] = self.stiff[c] * (0.5 * (eps_n[c][g] + eps_1[c][g]) - self.eps0[e][g][c]);
             }
         }
         s
