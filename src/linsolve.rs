@@ -67,12 +67,23 @@ struct BandLu {
     /// kl + ku above the diagonal).
     l_len: Vec<usize>,
     u_len: Vec<usize>,
+    /// 1/U[j, j] (the back substitution multiplies).
+    inv_diag: Vec<f64>,
 }
 
 impl BandLu {
     fn new(n: usize, kl: usize, ku: usize) -> Self {
         let ld = 2 * kl + ku + 1;
-        BandLu { kl, ku, ld, ab: vec![0.0; ld * n], ipiv: vec![0; n], l_len: vec![0; n], u_len: vec![0; n] }
+        BandLu {
+            kl,
+            ku,
+            ld,
+            ab: vec![0.0; ld * n],
+            ipiv: vec![0; n],
+            l_len: vec![0; n],
+            u_len: vec![0; n],
+            inv_diag: vec![0.0; n],
+        }
     }
 
     #[inline]
@@ -131,7 +142,8 @@ impl BandLu {
         Ok(())
     }
 
-    /// The nonzero extents of the factors' columns, [`BandLu::l_len`] and [`BandLu::u_len`].
+    /// The nonzero extents of the factors' columns, [`BandLu::l_len`] and
+    /// [`BandLu::u_len`], and the reciprocal pivots.
     fn find_extents(&mut self, n: usize) {
         let kv = self.kl + self.ku;
         for j in 0..n {
@@ -142,6 +154,7 @@ impl BandLu {
             let up = j.min(kv);
             let above = &self.ab[d - up..d];
             self.u_len[j] = above.iter().position(|&v| v != 0.0).map_or(0, |r| up - r);
+            self.inv_diag[j] = 1.0 / self.ab[d];
         }
     }
 
@@ -163,7 +176,7 @@ impl BandLu {
         }
         for j in (0..n).rev() {
             let d = self.at(j, j);
-            b[j] /= self.ab[d];
+            b[j] *= self.inv_diag[j];
             let bj = b[j];
             let lo = j - self.u_len[j];
             if bj != 0.0 {

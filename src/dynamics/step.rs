@@ -11,7 +11,9 @@
 
 use super::newton::{Integrator, Linear, StepEquations};
 use super::{DynamicOptions, HangOff, LineModel, State};
-use crate::hydro::fluid::{FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, hermite_at_gauss};
+use crate::hydro::fluid::{
+    FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, gauss_point_fluid_force, hermite_at_gauss,
+};
 use crate::linsolve::LinearSolveError;
 use crate::rod::element::{self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Shear, Strain, T_OFF};
 use crate::rod::gauss::{self, F4, GaussFields, GaussShapes};
@@ -275,24 +277,33 @@ impl StepEquations for LineModel {
             }
             // water: drag at the midpoint with v½ = Δr/h, added mass with the step's acceleration (§5.4)
             if fluid_active {
-                let mut vm = [V3::zeros(); 4];
-                for k in 0..4 {
-                    vm[k] = (el1.c[k] - eln.c[k]) * inv_h;
-                }
                 let mut ff = [V3::zeros(); 4];
                 if want_k {
+                    let mut vm = [V3::zeros(); 4];
+                    for k in 0..4 {
+                        vm[k] = (el1.c[k] - eln.c[k]) * inv_h;
+                    }
                     kf = [[M3::zeros(); 4]; 4];
+                    element_fluid_force(
+                        &model.fluid,
+                        FluidFields { c: &elm.c, v: &vm, a: &acc },
+                        &buf.fluid_shapes,
+                        rod.s_node(e),
+                        rod.h,
+                        fac,
+                        &mut ff,
+                        Some(&mut kf),
+                    );
+                } else {
+                    // the fields at the Gauss points are those of the strains:
+                    // r½, r'½ and v½ = (r_{n+1} − r_n)/h
+                    let kn = &buf.kin_n[e];
+                    let x: [V3; NGP] = std::array::from_fn(|g| km.position(g));
+                    let p: [V3; NGP] = std::array::from_fn(|g| km.slope(g));
+                    let v: [V3; NGP] = std::array::from_fn(|g| (k1.position(g) - kn.position(g)) * inv_h);
+                    let (s0, sh) = (rod.s_node(e), &buf.fluid_shapes);
+                    gauss_point_fluid_force(&model.fluid, &x, &p, &v, Some(&acc), sh, s0, rod.h, &mut ff);
                 }
-                element_fluid_force(
-                    &model.fluid,
-                    FluidFields { c: &elm.c, v: &vm, a: &acc },
-                    &buf.fluid_shapes,
-                    rod.s_node(e),
-                    rod.h,
-                    fac,
-                    &mut ff,
-                    if want_k { Some(&mut kf) } else { None },
-                );
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {
                     for c in 0..3 {
@@ -567,18 +578,19 @@ fn slope_at_director_node(rod: &Rod, c: &RodConfig, j: usize) -> V3 {
 
 /// Largest free residual component (moment and r'-rows per element length), N.
 fn residual_norm(r: &[f64], fixed: &[usize], h: f64) -> f64 {
-    // moment rows (N m) are divided by the element length; NaN anywhere gives ∞
+    // moment rows (N m) are divided by the element length; NaN anywhere gives ∞.
+    // The free rows are the runs between the (sorted) fixed ones.
+    let inv_h = 1.0 / h;
     let mut m: f64 = 0.0;
     let mut nan = false;
-    let mut fi = 0;
-    for (i, v) in r.iter().enumerate() {
-        if fi < fixed.len() && fixed[fi] == i {
-            fi += 1;
-            continue;
+    let mut start = 0;
+    for end in fixed.iter().copied().chain(std::iter::once(r.len())) {
+        for (i, v) in r[start.min(end)..end].iter().enumerate() {
+            let a = if (start + i) % STRIDE < 3 { v.abs() } else { v.abs() * inv_h };
+            nan |= a.is_nan();
+            m = m.max(a);
         }
-        let a = if i % STRIDE < 3 { v.abs() } else { v.abs() / h };
-        nan |= a.is_nan();
-        m = m.max(a);
+        start = start.max(end + 1);
     }
     if nan { f64::INFINITY } else { m }
 }

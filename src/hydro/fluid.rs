@@ -129,6 +129,26 @@ fn interpolated_fluid_residual<const K: usize>(
             v[g] += vel[j] * n[j];
         }
     }
+    let a = fluid.added_mass > 0.0;
+    gauss_point_fluid_force(fluid, &x, &p, &v, if a { Some(acc) } else { None }, &shapes, s0, h, f);
+}
+
+/// The fluid force alone (no derivatives) of an element from the fields at
+/// its Gauss points, r = `x`, r' = `p`, velocity `v` (what the rod's residual
+/// kernel has already interpolated), with the shape values `shapes` (N, N')
+/// per Gauss point; `acc` the nodal accelerations, needed only with added mass.
+#[allow(clippy::too_many_arguments)]
+pub fn gauss_point_fluid_force<const K: usize>(
+    fluid: &Fluid,
+    x: &[V3; 4],
+    p: &[V3; 4],
+    v: &[V3; 4],
+    acc: Option<&[V3; K]>,
+    shapes: &[([f64; K], [f64; K]); 4],
+    s0: f64,
+    h: f64,
+    f: &mut [V3; K],
+) {
     let len: [f64; 4] = std::array::from_fn(|g| p[g].norm());
     // unit tangents (a degenerate point, |p| = 0, feels nothing)
     let t: [V3; 4] = std::array::from_fn(|g| if len[g] > 0.0 { p[g] * (1.0 / len[g]) } else { V3::zeros() });
@@ -139,7 +159,7 @@ fn interpolated_fluid_residual<const K: usize>(
             force[g] = drag_force(kd, &(vc - v[g]), &t[g]) * len[g];
         }
     }
-    if fluid.added_mass > 0.0 {
+    if let Some(acc) = acc.filter(|_| fluid.added_mass > 0.0) {
         for g in 0..4 {
             let (n, _) = &shapes[g];
             let mut a = V3::zeros();

@@ -7,7 +7,7 @@
 
 use super::element::{C_OFF, CYC, ElVec, ElemDofs, NGP, Shear, Strain, T_OFF};
 use super::kinematics::V3;
-use super::shape::{GAUSS4, hermite_ds, lagrange, lagrange_ds};
+use super::shape::{GAUSS4, hermite, hermite_ds, lagrange, lagrange_ds};
 
 /// A value at each of the four Gauss points.
 pub type F4 = [f64; NGP];
@@ -16,6 +16,8 @@ pub type F4 = [f64; NGP];
 /// quadrature weights folded in (constant per mesh).
 #[derive(Debug, Clone, Copy)]
 pub struct GaussShapes {
+    /// Hermite N_k(ξ_g) (the slope functions in m).
+    pub n: [F4; 4],
     /// Hermite N'_k(ξ_g), 1/m.
     pub nds: [F4; 4],
     /// Lagrange L_A(ξ_g).
@@ -31,6 +33,7 @@ pub struct GaussShapes {
 impl GaussShapes {
     pub fn new(h: f64) -> Self {
         let mut s = GaussShapes {
+            n: [[0.0; NGP]; 4],
             nds: [[0.0; NGP]; 4],
             l: [[0.0; NGP]; 3],
             dl: [[0.0; NGP]; 3],
@@ -41,8 +44,9 @@ impl GaussShapes {
         for g in 0..NGP {
             let xi = GAUSS4.xi[g];
             let wg = GAUSS4.w[g] * h;
-            let (nds, l, dl) = (hermite_ds(xi, h), lagrange(xi), lagrange_ds(xi, h));
+            let (n, nds, l, dl) = (hermite(xi, h), hermite_ds(xi, h), lagrange(xi), lagrange_ds(xi, h));
             for k in 0..4 {
+                s.n[k][g] = n[k];
                 s.nds[k][g] = nds[k];
                 s.wnds[k][g] = wg * nds[k];
             }
@@ -57,12 +61,14 @@ impl GaussShapes {
     }
 }
 
-/// The interpolated fields r', d_i, d_i' at the four Gauss points
-/// (`p[c]`, `d[i][c]`, `dp[i][c]`: component c of the vector, over the points).
+/// The interpolated fields r, r', d_i, d_i' at the four Gauss points
+/// (`x[c]`, `p[c]`, `d[i][c]`, `dp[i][c]`: component c of the vector, over
+/// the points; r for the water's forces, the rest for the strains).
 /// They are linear in the element's dofs: the fields of q½ are the average
 /// of those of q_n and q_{n+1}.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct GaussFields {
+    pub x: [F4; 3],
     pub p: [F4; 3],
     pub d: [[F4; 3]; 3],
     pub dp: [[F4; 3]; 3],
@@ -74,11 +80,14 @@ fn dot4(a: &F4, b: &F4) -> f64 {
 }
 
 impl GaussFields {
-    /// The fields of element `e`: r' = Σ N'_k c_k, d_i = Σ L_A d_iA, d_i' = Σ L'_A d_iA.
+    /// The fields of element `e`: r = Σ N_k c_k, r' = Σ N'_k c_k,
+    /// d_i = Σ L_A d_iA, d_i' = Σ L'_A d_iA.
     #[inline]
     pub fn refresh(&mut self, sh: &GaussShapes, e: &ElemDofs) {
         for c in 0..3 {
             for g in 0..NGP {
+                self.x[c][g] =
+                    e.c[0][c] * sh.n[0][g] + e.c[1][c] * sh.n[1][g] + e.c[2][c] * sh.n[2][g] + e.c[3][c] * sh.n[3][g];
                 self.p[c][g] = e.c[0][c] * sh.nds[0][g]
                     + e.c[1][c] * sh.nds[1][g]
                     + e.c[2][c] * sh.nds[2][g]
@@ -96,11 +105,24 @@ impl GaussFields {
         }
     }
 
+    /// r at Gauss point g.
+    #[inline]
+    pub fn position(&self, g: usize) -> V3 {
+        V3::new(self.x[0][g], self.x[1][g], self.x[2][g])
+    }
+
+    /// r' at Gauss point g.
+    #[inline]
+    pub fn slope(&self, g: usize) -> V3 {
+        V3::new(self.p[0][g], self.p[1][g], self.p[2][g])
+    }
+
     /// self ← ½(a + b).
     #[inline]
     pub fn set_average(&mut self, a: &GaussFields, b: &GaussFields) {
         for c in 0..3 {
             for g in 0..NGP {
+                self.x[c][g] = 0.5 * (a.x[c][g] + b.x[c][g]);
                 self.p[c][g] = 0.5 * (a.p[c][g] + b.p[c][g]);
             }
         }
