@@ -54,14 +54,15 @@ pub struct BandedSystem {
     band: BandLu,
 }
 
-/// Dense band LU with partial pivoting (LAPACK's dgbtf2/dgbtrs layout):
-/// element (i, j) of the factors at `ab[kv + i − j + j·ld]`, kv = kl + ku,
-/// ld = 2kl + ku + 1 (the kl extra rows hold the fill of row interchanges).
 /// The diagonal stays the pivot while it is at least this fraction of the
 /// column's largest entry (threshold partial pivoting, as sparse LU codes
 /// do: the growth factor is bounded by (1 + 1/τ) per step instead of 2).
 const PIVOT_THRESHOLD: f64 = 0.1;
 
+/// Dense band LU with threshold partial pivoting (LAPACK's dgbtf2/dgbtrs
+/// layout): element (i, j) of the factors at `ab[kv + i − j + j·ld]`,
+/// kv = kl + ku, ld = 2kl + ku + 1 (the kl extra rows hold the fill of row
+/// interchanges).
 struct BandLu {
     kl: usize,
     ku: usize,

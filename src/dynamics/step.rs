@@ -302,7 +302,7 @@ impl StepEquations for LineModel {
                     let p: [V3; NGP] = std::array::from_fn(|g| km.slope(g));
                     let v: [V3; NGP] = std::array::from_fn(|g| (k1.position(g) - kn.position(g)) * inv_h);
                     let (s0, sh) = (rod.s_node(e), &buf.fluid_shapes);
-                    gauss_point_fluid_force(&model.fluid, &x, &p, &v, Some(&acc), sh, s0, rod.h, &mut ff);
+                    gauss_point_fluid_force(&model.fluid, &x, &p, &v, &acc, sh, s0, rod.h, &mut ff);
                 }
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {

@@ -102,48 +102,19 @@ pub fn segment_fluid_force(
     interpolated_fluid_force(fluid, x, v, a, shape, s0, l, fac, f, k);
 }
 
-/// The force alone (no derivatives) of [`interpolated_fluid_force`]: the same
-/// sums, written Gauss point by Gauss point in phases so that the four
-/// points' square roots and divisions overlap (the residual is evaluated
-/// several times per step, the tangent rarely).
-#[allow(clippy::too_many_arguments)]
-fn interpolated_fluid_residual<const K: usize>(
-    fluid: &Fluid,
-    c: &[V3; K],
-    vel: &[V3; K],
-    acc: &[V3; K],
-    shape: impl Fn(usize) -> ([f64; K], [f64; K]),
-    s0: f64,
-    h: f64,
-    f: &mut [V3; K],
-) {
-    let shapes: [([f64; K], [f64; K]); 4] = std::array::from_fn(shape);
-    let mut x = [V3::zeros(); 4];
-    let mut p = [V3::zeros(); 4];
-    let mut v = [V3::zeros(); 4];
-    for g in 0..4 {
-        let (n, nd) = &shapes[g];
-        for j in 0..K {
-            x[g] += c[j] * n[j];
-            p[g] += c[j] * nd[j];
-            v[g] += vel[j] * n[j];
-        }
-    }
-    let a = fluid.added_mass > 0.0;
-    gauss_point_fluid_force(fluid, &x, &p, &v, if a { Some(acc) } else { None }, &shapes, s0, h, f);
-}
-
 /// The fluid force alone (no derivatives) of an element from the fields at
 /// its Gauss points, r = `x`, r' = `p`, velocity `v` (what the rod's residual
 /// kernel has already interpolated), with the shape values `shapes` (N, N')
-/// per Gauss point; `acc` the nodal accelerations, needed only with added mass.
+/// per Gauss point; `acc` the nodal accelerations (read only with added
+/// mass). The four points are evaluated in phases so that their square
+/// roots overlap (the residual is evaluated several times per step).
 #[allow(clippy::too_many_arguments)]
 pub fn gauss_point_fluid_force<const K: usize>(
     fluid: &Fluid,
     x: &[V3; 4],
     p: &[V3; 4],
     v: &[V3; 4],
-    acc: Option<&[V3; K]>,
+    acc: &[V3; K],
     shapes: &[([f64; K], [f64; K]); 4],
     s0: f64,
     h: f64,
@@ -159,7 +130,7 @@ pub fn gauss_point_fluid_force<const K: usize>(
             force[g] = drag_force(kd, &(vc - v[g]), &t[g]) * len[g];
         }
     }
-    if let Some(acc) = acc.filter(|_| fluid.added_mass > 0.0) {
+    if fluid.added_mass > 0.0 {
         for g in 0..4 {
             let (n, _) = &shapes[g];
             let mut a = V3::zeros();
@@ -195,7 +166,18 @@ fn interpolated_fluid_force<const K: usize>(
     mut k: Option<&mut [[M3; K]; K]>,
 ) {
     if k.is_none() {
-        return interpolated_fluid_residual(fluid, c, vel, acc, shape, s0, h, f);
+        // the force alone: interpolate, then the per-point kernel
+        let shapes: [([f64; K], [f64; K]); 4] = std::array::from_fn(shape);
+        let (mut x, mut p, mut v) = ([V3::zeros(); 4], [V3::zeros(); 4], [V3::zeros(); 4]);
+        for g in 0..4 {
+            let (n, nd) = &shapes[g];
+            for j in 0..K {
+                x[g] += c[j] * n[j];
+                p[g] += c[j] * nd[j];
+                v[g] += vel[j] * n[j];
+            }
+        }
+        return gauss_point_fluid_force(fluid, &x, &p, &v, acc, &shapes, s0, h, f);
     }
     for g in 0..4 {
         let xi = GAUSS4.xi[g];

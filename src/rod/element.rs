@@ -86,10 +86,11 @@ impl ElemDofs {
     }
 }
 
-/// Interpolated fields at one Gauss point (linear in the element's dofs, so
-/// the fields of q½ are the average of those of q_n and q_{n+1}).
+/// Interpolated fields at one Gauss point, with its shape values (the
+/// per-point path of the strains and of B̃; the time step's residual uses
+/// [`super::gauss`]).
 #[derive(Debug, Clone, Copy, Default)]
-pub struct GpKin {
+struct GpKin {
     /// r'
     p: V3,
     /// d_i
@@ -119,7 +120,7 @@ impl GpKin {
 }
 
 /// The fields at the element's Gauss points.
-pub fn gauss_kin(e: &ElemDofs, h: f64) -> [GpKin; NGP] {
+fn gauss_kin(e: &ElemDofs, h: f64) -> [GpKin; NGP] {
     let mut out = [GpKin::default(); NGP];
     for (g, o) in out.iter_mut().enumerate() {
         *o = kin(e, GAUSS4.xi[g], h);
@@ -128,7 +129,7 @@ pub fn gauss_kin(e: &ElemDofs, h: f64) -> [GpKin; NGP] {
 }
 
 /// Strains at the Gauss points from their fields (see [`gauss_strains_with`]).
-pub fn strains_from_kin(k: &[GpKin; NGP], shear: Shear<'_>) -> [Strain; NGP] {
+fn strains_from_kin(k: &[GpKin; NGP], shear: Shear<'_>) -> [Strain; NGP] {
     let mut out = [[0.0; 6]; NGP];
     for (g, o) in out.iter_mut().enumerate() {
         let g0 = match shear {
