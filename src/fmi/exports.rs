@@ -522,14 +522,23 @@ pub unsafe extern "C" fn fmi2GetStringStatus(c: Component, _kind: c_int, _value:
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: Component,
-    _vr: *const c_uint,
-    _n: size_t,
-    _order: *const c_int,
-    _value: *const c_double,
+    vr: *const c_uint,
+    n: size_t,
+    order: *const c_int,
+    value: *const c_double,
 ) -> c_int {
     unsafe {
         with(c, None, "fmi2SetRealInputDerivatives", |i| {
-            i.fail("fmi2SetRealInputDerivatives: input derivatives are not supported (canInterpolateInputs uses the values)")
+            if n > 0 && (vr.is_null() || order.is_null() || value.is_null()) {
+                return i.fail("fmi2SetRealInputDerivatives: null array");
+            }
+            for k in 0..n {
+                let s = i.set_input_derivative(*vr.add(k), *order.add(k), *value.add(k));
+                if s != Status::Ok {
+                    return s;
+                }
+            }
+            Status::Ok
         })
     }
 }

@@ -2,6 +2,7 @@
 //! Co-Simulation state machine (one table, checked in one place), the run,
 //! saved states. Nothing here is `unsafe`.
 
+use super::input_path::{HISTORY_VALUES, InputHistory};
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::dynamics::run::Simulation;
 use crate::dynamics::serialize::fnv1a;
@@ -110,10 +111,14 @@ pub enum Value {
 pub struct Saved {
     state: State,
     inputs: [f64; 6],
-    step_inputs: [f64; 6],
+    history: InputHistory,
     mode: Mode,
     params_hash: u64,
 }
+
+/// Numbers a serialized state carries besides the line's state: the inputs
+/// (6), the input history, the mode, the parameters' hash (2).
+const SAVED_EXTRA: usize = 6 + HISTORY_VALUES + 3;
 
 /// Input order: heave, surge, sway, heave_velocity, surge_velocity, sway_velocity.
 const INPUT_NAMES: [&str; 6] = ["heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_velocity"];
@@ -128,8 +133,9 @@ pub struct Instance {
     pub mode: Mode,
     params: Vec<Option<(Value, bool)>>,
     inputs: [f64; 6],
-    /// Inputs at the last communication point (the start of the next step).
-    step_inputs: [f64; 6],
+    /// The inputs of past communication points and the derivatives set for
+    /// the next step: they plan the hang-off's path (`input_path`).
+    history: InputHistory,
     sim: Option<Simulation>,
     outputs: Option<Outputs>,
     start_time: f64,
@@ -182,7 +188,7 @@ impl Instance {
             mode: Instantiated,
             params: Vec::new(),
             inputs: [0.0; 6],
-            step_inputs: [0.0; 6],
+            history: InputHistory::new(),
             sim: None,
             outputs: None,
             start_time: 0.0,
@@ -199,7 +205,7 @@ impl Instance {
             .map(|v| if v.causality == Causality::Parameter { Some((parse_start(v), false)) } else { None })
             .collect();
         self.inputs = [0.0; 6];
-        self.step_inputs = [0.0; 6];
+        self.history = InputHistory::new();
         self.sim = None;
         self.outputs = None;
         self.start_time = 0.0;
@@ -337,7 +343,10 @@ impl Instance {
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
         };
         sim.state.time = self.start_time;
-        let m = self.motion_at(&self.inputs, &self.inputs, self.start_time, 1.0)(self.start_time);
+        let (u, vin) = self.split_inputs();
+        let v0 = self.history.start_velocity(&vin);
+        // input order heave, surge, sway → z, x, y
+        let m = HangOff { displacement: V3::new(u[1], u[2], u[0]), velocity: V3::new(v0[1], v0[2], v0[0]) };
         if m.displacement.norm() > 0.0 {
             self.log(
                 Status::Warning,
@@ -348,7 +357,6 @@ impl Instance {
         }
         sim.start(m);
         sim.integrator.invalidate_tangent();
-        self.step_inputs = self.inputs;
         self.outputs = Some(sim.outputs());
         self.log(
             Status::Ok,
@@ -365,40 +373,10 @@ impl Instance {
         Status::Ok
     }
 
-    /// The hang-off motion over a communication step [t0, t0 + h].
-    ///
-    /// Displacement inputs only (velocity inputs left at 0): the displacement
-    /// is interpolated linearly and the velocity is its slope (DESIGN.md).
-    /// With velocity inputs: cubic Hermite interpolation of the displacement
-    /// through both ends' displacements and velocities, so that the motion has
-    /// no velocity kinks at the communication points. Kinks launch axial waves;
-    /// at a communication step near the line's axial round-trip time
-    /// (2L/c ≈ 0.1 s on the catenary scene) they resonate (docs/VALIDATION.md).
-    fn motion_at(&self, u0: &[f64; 6], u1: &[f64; 6], t0: f64, h: f64) -> impl Fn(f64) -> HangOff + use<> {
-        let (u0, u1) = (*u0, *u1);
-        let given_velocity = u0[3..].iter().chain(u1[3..].iter()).any(|v| *v != 0.0);
-        move |t: f64| {
-            let a = ((t - t0) / h).clamp(0.0, 1.0);
-            // heave → z, surge → x, sway → y: (displacement, velocity) input indices
-            let axes = [(1usize, 4usize), (2, 5), (0, 3)];
-            let mut displacement = V3::zeros();
-            let mut velocity = V3::zeros();
-            for (c, &(iu, iv)) in axes.iter().enumerate() {
-                if given_velocity {
-                    let (a2, a3) = (a * a, a * a * a);
-                    let (h00, h10, h01, h11) =
-                        (2.0 * a3 - 3.0 * a2 + 1.0, a3 - 2.0 * a2 + a, -2.0 * a3 + 3.0 * a2, a3 - a2);
-                    let (d00, d10, d01, d11) =
-                        (6.0 * a2 - 6.0 * a, 3.0 * a2 - 4.0 * a + 1.0, -6.0 * a2 + 6.0 * a, 3.0 * a2 - 2.0 * a);
-                    displacement[c] = h00 * u0[iu] + h10 * h * u0[iv] + h01 * u1[iu] + h11 * h * u1[iv];
-                    velocity[c] = (d00 * u0[iu] + d01 * u1[iu]) / h + d10 * u0[iv] + d11 * u1[iv];
-                } else {
-                    displacement[c] = u0[iu] + a * (u1[iu] - u0[iu]);
-                    velocity[c] = (u1[iu] - u0[iu]) / h;
-                }
-            }
-            HangOff { displacement, velocity }
-        }
+    /// The displacement inputs (heave, surge, sway) and the velocity inputs.
+    fn split_inputs(&self) -> ([f64; 3], [f64; 3]) {
+        let i = &self.inputs;
+        ([i[0], i[1], i[2]], [i[3], i[4], i[5]])
     }
 
     /// fmi2DoStep.
@@ -413,7 +391,11 @@ impl Instance {
         if !t.is_finite() || (t - now).abs() > 1e-9 * now.abs().max(1.0) {
             return self.fail(&format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
         }
-        let motion = self.motion_at(&self.step_inputs, &self.inputs, now, h);
+        // the inputs are the master's values at `now`: the hang-off moves from
+        // where it is along a C1 path towards their extrapolation (input_path)
+        let (u, vin) = self.split_inputs();
+        let path = self.history.plan(now, h, &u, &vin, &sim.state.hang_off);
+        let motion = |s: f64| path.at(s);
         let t_end = now + h;
         let solver_log = self.logging_on && self.categories[Category::Solver as usize];
         let logger = self.logger.clone();
@@ -441,7 +423,7 @@ impl Instance {
         self.outputs = Some(sim.outputs());
         match result {
             Ok(()) => {
-                self.step_inputs = self.inputs;
+                self.history.commit(now, &u, &vin, &path);
                 self.last_successful_time = t_end;
                 self.last_status = Status::Ok;
                 Status::Ok
@@ -559,6 +541,9 @@ impl Instance {
                 }
                 let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
                 self.inputs[i] = x;
+                if i >= 3 {
+                    self.history.note_velocity(i - 3, x);
+                }
                 if self.mode != StepComplete {
                     // the start depends on the inputs: rebuild at exit
                     self.sim = None;
@@ -569,6 +554,48 @@ impl Instance {
             Causality::Parameter => self.set_param(vr, Value::Real(x)),
             Causality::Output => self.fail(&format!("{} is an output and cannot be set", v.name)),
         }
+    }
+
+    /// fmi2SetRealInputDerivatives for one value reference: the `order`-th
+    /// time derivative at the coming step's start, used by the next
+    /// fmi2DoStep only (`input_path`). Displacement inputs take orders 1
+    /// (velocity) and 2 (acceleration), velocity inputs order 1.
+    pub fn set_input_derivative(&mut self, vr: u32, order: i32, x: f64) -> Status {
+        if let Err(s) = self.check(Op::SetInput, "fmi2SetRealInputDerivatives") {
+            return s;
+        }
+        let v = match self.var(vr, Kind::Real) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if v.causality != Causality::Input {
+            return self.fail(&format!(
+                "fmi2SetRealInputDerivatives: {} is not an input (the inputs are heave, surge, sway and their \
+                 velocities)",
+                v.name
+            ));
+        }
+        if !x.is_finite() {
+            return self.fail(&format!("fmi2SetRealInputDerivatives: derivative of {} = {x} is not finite", v.name));
+        }
+        let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
+        let slot = match (i < 3, order) {
+            (true, 1) => &mut self.history.pending.first[i],
+            (true, 2) | (false, 1) => &mut self.history.pending.second[i % 3],
+            _ => {
+                let allowed = if i < 3 { "1 or 2" } else { "1" };
+                return self.fail(&format!(
+                    "fmi2SetRealInputDerivatives: order {order} of {} is not supported (allowed: {allowed})",
+                    v.name
+                ));
+            }
+        };
+        *slot = Some(x);
+        if self.mode != StepComplete {
+            self.sim = None;
+            self.outputs = None;
+        }
+        Status::Ok
     }
 
     /// fmi2SetInteger / Boolean / String for one parameter.
@@ -636,7 +663,7 @@ impl Instance {
         Some(Saved {
             state: sim.state.clone(),
             inputs: self.inputs,
-            step_inputs: self.step_inputs,
+            history: self.history,
             mode: self.mode,
             params_hash: self.params_hash(),
         })
@@ -656,7 +683,7 @@ impl Instance {
         sim.state.clone_from(&s.state);
         sim.integrator.invalidate_tangent();
         self.inputs = s.inputs;
-        self.step_inputs = s.step_inputs;
+        self.history = s.history;
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
         self.outputs = Some(sim.outputs());
@@ -665,9 +692,9 @@ impl Instance {
 
     /// fmi2SerializeFMUstate's bytes.
     pub fn serialize(&self, s: &Saved) -> Vec<u8> {
-        let mut extra = Vec::with_capacity(15);
+        let mut extra = Vec::with_capacity(SAVED_EXTRA);
         extra.extend_from_slice(&s.inputs);
-        extra.extend_from_slice(&s.step_inputs);
+        extra.extend_from_slice(&s.history.to_values());
         extra.push(match s.mode {
             StepFailed => 1.0,
             Terminated => 2.0,
@@ -687,18 +714,20 @@ impl Instance {
             return Err(self.fail("fmi2DeSerializeFMUstate before initialisation"));
         };
         match State::read_bytes(bytes, sim.state.mesh()) {
-            Ok((state, extra)) if extra.len() == 15 => {
+            Ok((state, extra)) if extra.len() == SAVED_EXTRA => {
                 let mut inputs = [0.0; 6];
-                let mut step_inputs = [0.0; 6];
                 inputs.copy_from_slice(&extra[0..6]);
-                step_inputs.copy_from_slice(&extra[6..12]);
-                let mode = match extra[12] as i32 {
+                let Some(history) = InputHistory::from_values(&extra[6..6 + HISTORY_VALUES]) else {
+                    return Err(self.fail("serialized FMU state: the input history is corrupt"));
+                };
+                let n = 6 + HISTORY_VALUES;
+                let mode = match extra[n] as i32 {
                     1 => StepFailed,
                     2 => Terminated,
                     _ => StepComplete,
                 };
-                let params_hash = ((extra[13] as u64) << 32) | (extra[14] as u64 & 0xffff_ffff);
-                Ok(Saved { state, inputs, step_inputs, mode, params_hash })
+                let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
+                Ok(Saved { state, inputs, history, mode, params_hash })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),

@@ -4,5 +4,6 @@
 //! `unsafe` code).
 
 pub mod exports;
+pub mod input_path;
 pub mod instance;
 pub mod vars;
