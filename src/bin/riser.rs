@@ -307,6 +307,8 @@ fn run(
             "energy_exchanged": exchanged,
             "dissipated_energy": series.last().map(|o| o.dissipated_energy).unwrap_or(0.0),
             "structural_damping": scene.analysis.structural_damping,
+            "rho_infinity": scene.analysis.rho_infinity,
+            "algorithmic_dissipation": series.last().map(|o| o.algorithmic_dissipation).unwrap_or(0.0),
             "energy_balance_relative": if exchanged > 0.0 { balance / exchanged } else { 0.0 },
             "steps": st.steps,
             "newton_iterations": st.newton_iterations,

@@ -6,6 +6,7 @@
 
 use super::{CableModel, NODE_DOF};
 use crate::dynamics::DynamicOptions;
+use crate::dynamics::dissipation::{self, HighFrequency, TripleLayout};
 use crate::dynamics::newton::{Linear, StepEquations};
 use crate::dynamics::outputs::{Outputs, SHAPE_POINTS};
 use crate::dynamics::{HangOff, State};
@@ -29,6 +30,15 @@ pub struct CableWorkspace {
     end_inertia: [V3; 2],
     /// Accelerations of the end segments' nodes [first, second, −, −], m/s².
     end_accel: [[V3; 4]; 2],
+    /// High-frequency dissipation (§5.10): its parameters (None: ρ∞ = 1),
+    /// each segment's algorithmic damping factor α w_f of this step, the
+    /// triples' layout, which are held, whether the line is free, scratch.
+    hf: Option<HighFrequency>,
+    alg: Vec<f64>,
+    layout: TripleLayout<2>,
+    fixed_triple: Vec<bool>,
+    free: bool,
+    d: Vec<V3>,
 }
 
 fn node(r: &[f64], a: usize) -> V3 {
@@ -49,6 +59,14 @@ impl StepEquations for CableModel {
             reaction: [V3::zeros(); 2],
             end_inertia: [V3::zeros(); 2],
             end_accel: [[V3::zeros(); 4]; 2],
+            hf: None,
+            alg: vec![0.0; c.n_el],
+            layout: TripleLayout { mass: self.mass, start: [0, 1], n_el: c.n_el, n_positions: c.n_el + 1 },
+            fixed_triple: (0..=c.n_el)
+                .map(|a| (a == 0 && c.ends_fixed[0]) || (a == c.n_el && c.ends_fixed[1]))
+                .collect(),
+            free: !c.ends_fixed[0] && !c.ends_fixed[1],
+            d: vec![V3::zeros(); c.n_el + 1],
         };
         Ok((ws, lin))
     }
@@ -62,9 +80,17 @@ impl StepEquations for CableModel {
         self.cable.ends_fixed[0]
     }
 
-    fn begin(&self, ws: &mut CableWorkspace, prev: &State, _options: &DynamicOptions) {
+    fn begin(&self, ws: &mut CableWorkspace, prev: &State, options: &DynamicOptions) {
         for e in 0..self.cable.n_el {
             ws.lam_n[e] = self.cable.stretch(&prev.config.x, e);
+        }
+        // the segments' algorithmic damping α w_f, lagged (5.31)
+        ws.hf = HighFrequency::new(options.rho_infinity);
+        if let Some(hf) = ws.hf {
+            let (v, u) = (&prev.mean_vel, &prev.prev_mean_vel);
+            for e in 0..self.cable.n_el {
+                ws.alg[e] = hf.alpha * dissipation::stress_weight([&v[e], &v[e + 1]], [&u[e], &u[e + 1]]);
+            }
         }
     }
 
@@ -138,8 +164,10 @@ impl StepEquations for CableModel {
             let lam0 = ws.lam_n[e];
             let lam1 = d1.norm() / cable.l;
             let (mut g, mut dg) = cable.discrete_slope(lam0, lam1);
-            if eta > 0.0 {
-                let (gd, dgd) = cable.damping_slope(lam0, lam1, eta / h);
+            // Kelvin–Voigt (η/h) and algorithmic (α w_f) damping of the stretch
+            let c_damp = eta / h + if ws.hf.is_some() { ws.alg[e] } else { 0.0 };
+            if c_damp > 0.0 {
+                let (gd, dgd) = cable.damping_slope(lam0, lam1, c_damp);
                 g += gd;
                 dg += dgd;
                 ws.lam_1[e] = lam1;
@@ -233,7 +261,8 @@ impl StepEquations for CableModel {
         }
     }
 
-    fn finish(&self, ws: &CableWorkspace, state: &State, trial: &mut State, h: f64, eta: f64) {
+    fn finish(&self, ws: &mut CableWorkspace, state: &State, trial: &mut State, h: f64, options: &DynamicOptions) {
+        let eta = options.structural_damping;
         // velocities, work and bookkeeping of the converged step (§5.5)
         let (x0, x1) = (&state.config.x, &trial.config.x);
         let mut w_hydro = 0.0;
@@ -251,6 +280,21 @@ impl StepEquations for CableModel {
         if eta > 0.0 {
             for e in 0..self.cable.n_el {
                 trial.dissipated += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], eta / h);
+            }
+        }
+        if let Some(hf) = ws.hf {
+            // the stress part's dissipation (5.31), the velocity filter (5.32)
+            for e in 0..self.cable.n_el {
+                trial.algorithmic += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], ws.alg[e]);
+            }
+            let (w, fixed, free) = (&state.hf_weight, &ws.fixed_triple, ws.free);
+            let removed =
+                ws.layout.filter(&trial.config.x, &state.vel, &mut trial.vel, w, fixed, free, hf.tau, &mut ws.d);
+            trial.algorithmic += removed;
+            for a in 0..=self.cable.n_el {
+                let acc = (trial.vel[a] - state.vel[a]) / h;
+                trial.hf_weight[a] = dissipation::filter_weight(&acc, &state.hf_accel[a]);
+                trial.hf_accel[a] = acc;
             }
         }
         trial.end_accel = ws.end_accel;

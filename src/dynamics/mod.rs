@@ -7,6 +7,7 @@
 //! serializable state (configuration, velocities, work accumulators),
 //! [`Integrator`] the preallocated workspace and the stepping.
 
+pub mod dissipation;
 pub mod mass;
 pub mod newton;
 pub mod outputs;
@@ -138,6 +139,14 @@ pub struct State {
     /// Work of the anchor's twist reaction since t = 0, J (zero for lines
     /// moving in a vertical plane; docs/theory.md §5.5).
     pub work_anchor: f64,
+    /// Energy removed by the high-frequency dissipation since t = 0, J (≥ 0; §5.10).
+    pub algorithmic: f64,
+    /// Velocity increments over the last step, (v_n − v_{n−1})/h, per velocity
+    /// triple (the node velocities, then the slope velocities), m/s² and 1/s²:
+    /// the history of the velocity filter's weights (§5.10).
+    pub hf_accel: Vec<V3>,
+    /// The velocity filter's weight of each triple for the next step (§5.10).
+    pub hf_weight: Vec<f64>,
     /// Hermite acceleration dofs of the first and last element over the last
     /// step (for the end reactions), m/s².
     pub end_accel: [[V3; 4]; 2],
@@ -178,6 +187,9 @@ impl Clone for State {
             work_hydro,
             dissipated,
             work_anchor,
+            algorithmic,
+            hf_accel,
+            hf_weight,
             end_accel,
             mid_reaction,
             steps,
@@ -198,6 +210,9 @@ impl Clone for State {
         self.work_hydro = *work_hydro;
         self.dissipated = *dissipated;
         self.work_anchor = *work_anchor;
+        self.algorithmic = *algorithmic;
+        self.hf_accel.clone_from(hf_accel);
+        self.hf_weight.clone_from(hf_weight);
         self.end_accel = *end_accel;
         self.mid_reaction = *mid_reaction;
         self.steps = *steps;
@@ -222,6 +237,8 @@ impl State {
             mean_slope_vel: vec![V3::zeros(); np],
             prev_mean_vel: vec![V3::zeros(); n],
             prev_mean_slope_vel: vec![V3::zeros(); np],
+            hf_accel: vec![V3::zeros(); n + np],
+            hf_weight: vec![0.0; n + np],
             config,
             ..Default::default()
         }
@@ -294,7 +311,9 @@ impl State {
         self.config.is_finite()
             && self.vel.iter().chain(self.slope_vel.iter()).all(|v| v.iter().all(|c| c.is_finite()))
             && self.director_vel.iter().all(|d| d.iter().all(|c| c.is_finite()))
-            && [self.time, self.work_top, self.work_hydro, self.work_anchor, self.dissipated]
+            && self.hf_accel.iter().all(|v| v.iter().all(|c| c.is_finite()))
+            && self.hf_weight.iter().all(|w| w.is_finite())
+            && [self.time, self.work_top, self.work_hydro, self.work_anchor, self.dissipated, self.algorithmic]
                 .iter()
                 .all(|v| v.is_finite())
     }
@@ -314,6 +333,9 @@ pub struct DynamicOptions {
     pub max_halvings: u32,
     /// Kelvin–Voigt structural damping time η, s (0: energy-conserving).
     pub structural_damping: f64,
+    /// High-frequency spectral radius of the scheme, (0, 1]; 1: the paper's
+    /// energy–momentum conserving scheme (docs/theory.md §5.10).
+    pub rho_infinity: f64,
     /// Steps a factorised tangent may be reused for (modified Newton; 0: a
     /// new tangent at every step, 1 per step and on slow convergence).
     pub max_tangent_age: u32,
@@ -331,6 +353,7 @@ impl Default for DynamicOptions {
             max_iterations: 25,
             max_halvings: 6,
             structural_damping: 0.0,
+            rho_infinity: 1.0,
             max_tangent_age: 20,
             corotated_tangent: true,
         }

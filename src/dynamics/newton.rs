@@ -91,8 +91,9 @@ pub trait StepEquations {
     fn to_tangent_basis(&self, _ws: &Self::Workspace, _cfg: &RodConfig, _v: &mut [f64]) {}
     /// The inverse of [`StepEquations::to_tangent_basis`]: back to spatial components.
     fn to_spatial_basis(&self, _ws: &Self::Workspace, _cfg: &RodConfig, _v: &mut [f64]) {}
-    /// Velocities, work and end data of the converged step into `trial`.
-    fn finish(&self, ws: &Self::Workspace, prev: &State, trial: &mut State, h: f64, eta: f64);
+    /// Velocities (with the high-frequency filter, §5.10), work and end data
+    /// of the converged step into `trial`.
+    fn finish(&self, ws: &mut Self::Workspace, prev: &State, trial: &mut State, h: f64, options: &DynamicOptions);
 }
 
 /// The time integrator: a line model, the options and a preallocated workspace.
@@ -341,7 +342,7 @@ impl<M: StepEquations> Integrator<M> {
             self.factor_h = f64::NAN;
             return Err(DynamicsError::Inadmissible { time: state.time, step: h });
         }
-        model.finish(&self.ws, state, trial, h, eta);
+        model.finish(&mut self.ws, state, trial, h, &self.options);
         trial.hang_off = target;
         trial.time = state.time + h;
         trial.steps += 1;

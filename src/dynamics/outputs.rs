@@ -39,13 +39,16 @@ pub struct Outputs {
     pub work_anchor: f64,
     /// Energy dissipated by structural damping since t = 0, J (≥ 0; 0 without damping).
     pub dissipated_energy: f64,
+    /// Energy removed by the scheme's high-frequency dissipation since t = 0,
+    /// J (≥ 0; 0 with ρ∞ = 1).
+    pub algorithmic_dissipation: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 13] = [
+    pub const NAMES: [&'static str; 14] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -59,10 +62,11 @@ impl Outputs {
         "work_top",
         "work_hydro",
         "dissipated_energy",
+        "algorithmic_dissipation",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 13] {
+    pub fn values(&self) -> [f64; 14] {
         [
             self.top_tension,
             self.top_force.x,
@@ -77,13 +81,16 @@ impl Outputs {
             self.work_top,
             self.work_hydro,
             self.dissipated_energy,
+            self.algorithmic_dissipation,
         ]
     }
 
-    /// E(t) − E(0) − W_top − W_hydro − W_anchor + D: zero to the Newton
-    /// tolerance (§5.5, §5.9), J.
+    /// E(t) − E(0) − W_top − W_hydro − W_anchor + D + D_alg: zero to the
+    /// Newton tolerance (§5.5, §5.9, §5.10), J.
     pub fn energy_balance_residual(&self, e0: f64) -> f64 {
-        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor + self.dissipated_energy
+        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor
+            + self.dissipated_energy
+            + self.algorithmic_dissipation
     }
 }
 
@@ -114,6 +121,7 @@ impl Outputs {
             work_hydro: s.work_hydro,
             work_anchor: s.work_anchor,
             dissipated_energy: s.dissipated,
+            algorithmic_dissipation: s.algorithmic,
             shape,
         }
     }

@@ -66,6 +66,7 @@ impl Engine {
             time_step: scene.analysis.time_step,
             newton_tolerance: scene.analysis.newton_tolerance,
             structural_damping: scene.analysis.structural_damping,
+            rho_infinity: scene.analysis.rho_infinity,
             ..Default::default()
         };
         let origin = scene.hang_off();

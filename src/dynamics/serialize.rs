@@ -11,7 +11,7 @@ use super::{HangOff, State};
 use crate::rod::kinematics::{M3, RodConfig, V3};
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 2;
+const VERSION: u32 = 3;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -161,8 +161,14 @@ impl State {
         }
         w.v3(&self.hang_off.displacement);
         w.v3(&self.hang_off.velocity);
-        for v in [self.work_top, self.work_hydro, self.dissipated, self.work_anchor] {
+        for v in [self.work_top, self.work_hydro, self.dissipated, self.work_anchor, self.algorithmic] {
             w.f(v);
+        }
+        for v in &self.hf_accel {
+            w.v3(v);
+        }
+        for v in &self.hf_weight {
+            w.f(*v);
         }
         for e in &self.end_accel {
             for v in e {
@@ -225,6 +231,9 @@ impl State {
         let prev_mean_slope_vel = r.vec3(np)?;
         let hang_off = HangOff { displacement: r.v3()?, velocity: r.v3()? };
         let (work_top, work_hydro, dissipated, work_anchor) = (r.f()?, r.f()?, r.f()?, r.f()?);
+        let algorithmic = r.f()?;
+        let hf_accel = r.vec3(n + np)?;
+        let hf_weight = (0..n + np).map(|_| r.f()).collect::<Result<Vec<_>, _>>()?;
         let mut end_accel = [[V3::zeros(); 4]; 2];
         for e in end_accel.iter_mut() {
             for v in e.iter_mut() {
@@ -251,6 +260,9 @@ impl State {
             work_hydro,
             dissipated,
             work_anchor,
+            algorithmic,
+            hf_accel,
+            hf_weight,
             end_accel,
             mid_reaction,
             steps,

@@ -9,6 +9,7 @@
 //! average strain). Newton on (Δr, Δr', θ) with the consistent tangent; the
 //! directors are updated by the Cayley transform.
 
+use super::dissipation::{self, HighFrequency, TripleLayout};
 use super::newton::{Integrator, Linear, StepEquations};
 use super::{DynamicOptions, HangOff, LineModel, State};
 use crate::hydro::fluid::{
@@ -52,6 +53,20 @@ pub struct RodWorkspace {
     theta_step: Vec<V3>,
     /// Whether the tangent is assembled in the nodes' director frames (§5.7).
     corotated: bool,
+    /// High-frequency dissipation (§5.10): its parameters (None: ρ∞ = 1),
+    /// each element's algorithmic damping factor α w_f of this step, the
+    /// velocity triples' layout (nodes, then slopes), which are held,
+    /// whether the line is free; triples of the new configuration, of the
+    /// old and new velocities, and the filter's scratch.
+    hf: Option<HighFrequency>,
+    alg: Vec<f64>,
+    layout: TripleLayout<4>,
+    fixed_triple: Vec<bool>,
+    free: bool,
+    tri_c: Vec<V3>,
+    tri_v0: Vec<V3>,
+    tri_v: Vec<V3>,
+    tri_d: Vec<V3>,
 }
 
 impl StepEquations for LineModel {
@@ -60,7 +75,9 @@ impl StepEquations for LineModel {
     fn workspace(&self) -> Result<(RodWorkspace, Linear), LinearSolveError> {
         let rod = &self.rod;
         let n = rod.n_dof();
-        let lin = Linear::new(rod.new_system()?, rod.fixed_dofs());
+        let fixed = rod.fixed_dofs();
+        let np = rod.n_el + 1;
+        let lin = Linear::new(rod.new_system()?, fixed.clone());
         let ws = RodWorkspace {
             fluid: vec![0.0; n],
             vnew: vec![V3::zeros(); rod.n_el + 1],
@@ -78,6 +95,20 @@ impl StepEquations for LineModel {
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
             corotated: true,
+            hf: None,
+            alg: vec![0.0; rod.n_el],
+            layout: TripleLayout { mass: self.mass.centre, start: [0, np, 1, np + 1], n_el: rod.n_el, n_positions: np },
+            fixed_triple: (0..2 * np)
+                .map(|i| {
+                    let dof = if i < np { Rod::x_dof(i) } else { Rod::xp_dof(i - np) };
+                    fixed.contains(&dof)
+                })
+                .collect(),
+            free: fixed.is_empty(),
+            tri_c: vec![V3::zeros(); 2 * np],
+            tri_v0: vec![V3::zeros(); 2 * np],
+            tri_v: vec![V3::zeros(); 2 * np],
+            tri_d: vec![V3::zeros(); 2 * np],
         };
         Ok((ws, lin))
     }
@@ -95,12 +126,20 @@ impl StepEquations for LineModel {
         let rod = &self.rod;
         let eta = options.structural_damping;
         ws.corotated = options.corotated_tangent;
+        ws.hf = HighFrequency::new(options.rho_infinity);
         for e in 0..rod.n_el {
             let kin = &mut ws.kin_n[e];
             kin.refresh(&ws.shapes, &ElemDofs::gather(&prev.config, e));
             ws.eps_n[e] = kin.strains(Shear::Spatial(rod.reference_penalty(e)));
-            if eta > 0.0 {
+            if eta > 0.0 || ws.hf.is_some() {
                 ws.damp_n[e] = gauss::to_points(&kin.strains(Shear::Material));
+            }
+        }
+        // the elements' algorithmic damping α w_f, lagged (5.31)
+        if let Some(hf) = ws.hf {
+            let (v, u) = (&prev.mean_vel, &prev.prev_mean_vel);
+            for e in 0..rod.n_el {
+                ws.alg[e] = hf.alpha * dissipation::stress_weight([&v[e], &v[e + 1]], [&u[e], &u[e + 1]]);
             }
         }
     }
@@ -173,7 +212,6 @@ impl StepEquations for LineModel {
         tangent: bool,
     ) {
         let (model, buf, want_k) = (self, ws, tangent);
-        let damping = Factors { config: 0.5, stress: eta / h };
         let rod = &model.rod;
         let n_el = rod.n_el;
         let mass = &model.mass;
@@ -227,11 +265,14 @@ impl StepEquations for LineModel {
                 let (s, k) = (gauss::to_points(&s), Some(&mut ke));
                 element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
             }
-            // Kelvin–Voigt damping on the objective material strains (§5.9)
-            if eta > 0.0 {
+            // Kelvin–Voigt (η/h, §5.9) and algorithmic (α w_f, §5.10) damping
+            // on the objective material strains
+            let c_damp = eta / h + if buf.hf.is_some() { buf.alg[e] } else { 0.0 };
+            if c_damp > 0.0 {
+                let damping = Factors { config: 0.5, stress: c_damp };
                 let d1 = gauss::to_points(&k1.strains(Shear::Material));
                 buf.damp_1[e] = d1;
-                let sd = rod.damping_stresses(&buf.damp_n[e], &d1, eta / h);
+                let sd = rod.damping_stresses(&buf.damp_n[e], &d1, c_damp);
                 if !want_k {
                     gauss::add_internal_force(&elm, &km, &gauss::to_rows(&sd), &buf.shapes, Shear::Material, &mut re);
                 } else {
@@ -436,7 +477,8 @@ impl StepEquations for LineModel {
         prev.config.d.iter().zip(&cfg.d).all(|(a, b)| a.component_mul(b).sum() >= 1.0)
     }
 
-    fn finish(&self, ws: &RodWorkspace, state: &State, trial: &mut State, h: f64, eta: f64) {
+    fn finish(&self, ws: &mut RodWorkspace, state: &State, trial: &mut State, h: f64, options: &DynamicOptions) {
+        let eta = options.structural_damping;
         // velocities, work and bookkeeping of the converged step (§5.5)
         let rod = &self.rod;
         let cfg0 = &state.config;
@@ -473,10 +515,44 @@ impl StepEquations for LineModel {
         }
         trial.end_accel = ws.end_accel;
         trial.mid_reaction = ws.reaction;
+        if let Some(hf) = ws.hf {
+            self.filter_velocities(ws, hf, state, trial, h);
+        }
     }
 }
 
 impl LineModel {
+    /// The high-frequency dissipation of a converged step (§5.10): the
+    /// stress part's dissipation, the velocity filter (5.32) on the node and
+    /// slope velocities (the director rates keep the midpoint rule's: the
+    /// spin momentum is untouched), the filter weights of the next step.
+    fn filter_velocities(&self, ws: &mut RodWorkspace, hf: HighFrequency, state: &State, trial: &mut State, h: f64) {
+        let rod = &self.rod;
+        for e in 0..rod.n_el {
+            trial.algorithmic += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], ws.alg[e]);
+        }
+        let np = rod.n_el + 1;
+        let c1 = &trial.config;
+        for a in 0..np {
+            ws.tri_c[a] = c1.x[a];
+            ws.tri_c[np + a] = c1.xp[a];
+            ws.tri_v0[a] = state.vel[a];
+            ws.tri_v0[np + a] = state.slope_vel[a];
+            ws.tri_v[a] = trial.vel[a];
+            ws.tri_v[np + a] = trial.slope_vel[a];
+        }
+        let (w, fixed, free) = (&state.hf_weight, &ws.fixed_triple, ws.free);
+        trial.algorithmic +=
+            ws.layout.filter(&ws.tri_c, &ws.tri_v0, &mut ws.tri_v, w, fixed, free, hf.tau, &mut ws.tri_d);
+        for i in 0..2 * np {
+            let acc = (ws.tri_v[i] - ws.tri_v0[i]) / h;
+            trial.hf_weight[i] = dissipation::filter_weight(&acc, &state.hf_accel[i]);
+            trial.hf_accel[i] = acc;
+        }
+        trial.vel.copy_from_slice(&ws.tri_v[..np]);
+        trial.slope_vel.copy_from_slice(&ws.tri_v[np..]);
+    }
+
     /// v ← Fᵀ v (`to_local`) or F v per nodal triple, F the director frame of
     /// the triple's node at `cfg` (see [`StepEquations::to_tangent_basis`]).
     fn rotate_nodal(&self, ws: &RodWorkspace, cfg: &RodConfig, v: &mut [f64], to_local: bool) {

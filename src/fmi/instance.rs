@@ -479,6 +479,7 @@ impl Instance {
             "work_top" => o.work_top,
             "work_hydro" => o.work_hydro,
             "dissipated_energy" => o.dissipated_energy,
+            "algorithmic_dissipation" => o.algorithmic_dissipation,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

@@ -4,13 +4,14 @@
 use super::{Buoyancy, Model, ProfileKind, Scene, SceneError};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 28] = [
+pub const PARAMETER_NAMES: [(&str, &str); 29] = [
     ("model", "rod | cable"),
     ("n_elements", "-"),
     ("time_step", "s"),
     ("newton_tolerance", "-"),
     ("static_current", "true | false"),
     ("structural_damping", "s"),
+    ("rho_infinity", "-"),
     ("length", "m"),
     ("mass_per_length", "kg/m"),
     ("outer_diameter", "m"),
@@ -113,6 +114,7 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "time_step" => s.analysis.time_step = num()?,
         "newton_tolerance" => s.analysis.newton_tolerance = num()?,
         "structural_damping" => s.analysis.structural_damping = num()?,
+        "rho_infinity" => s.analysis.rho_infinity = num()?,
         "static_current" => {
             s.analysis.static_current = match value {
                 "true" | "1" => true,

@@ -168,6 +168,9 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     {
         c.err("analysis.structural_damping", format!("{} s must be in [0, 10] s", an.structural_damping));
     }
+    if c.finite("analysis.rho_infinity", an.rho_infinity, "(-)") && !(an.rho_infinity > 0.0 && an.rho_infinity <= 1.0) {
+        c.err("analysis.rho_infinity", format!("{} must be in (0, 1]", an.rho_infinity));
+    }
     let _ = Model::Rod;
     c.0
 }
