@@ -226,11 +226,10 @@ fn hanging_chain_first_three_frequencies() {
 #[test]
 fn energy_is_conserved_and_the_balance_closes_with_water() {
     // Hamiltonian: no water, the hang-off heaves abruptly for 3 s then holds
+    // (the conserving scheme, rho_infinity = 1)
     for dt in [0.01f64, 0.1, 0.5] {
-        let sc = scene(
-            "catenary",
-            &["cd_normal=0", "cd_tangential=0", "n_elements=30", "newton_tolerance=1e-12", &format!("time_step={dt}")],
-        );
+        let sets = ["cd_normal=0", "cd_tangential=0", "n_elements=30", "newton_tolerance=1e-12", "rho_infinity=1"];
+        let sc = scene("catenary", &[&sets[..], &[format!("time_step={dt}").as_str()]].concat());
         let mut sim = Simulation::from_scene(&sc).unwrap();
         let heave = riser::dynamics::run::Heave { amplitude: 1.0, period: 6.0, until: Some(3.0), ramp: 0.0 };
         sim.start(heave.at(0.0));

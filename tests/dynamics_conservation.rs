@@ -208,7 +208,13 @@ fn free_motion_after_the_excitation_keeps_its_energy() {
     use riser::dynamics::run::{Heave, Simulation};
     let scene = Scene::builtin("catenary")
         .unwrap()
-        .with_overrides(&["n_elements=20", "cd_normal=0", "cd_tangential=0", "newton_tolerance=1e-12"])
+        .with_overrides(&[
+            "n_elements=20",
+            "cd_normal=0",
+            "cd_tangential=0",
+            "newton_tolerance=1e-12",
+            "rho_infinity=1",
+        ])
         .unwrap();
     let mut sim = Simulation::from_scene(&scene).unwrap();
     let heave = Heave { amplitude: 2.5, period: 20.0, until: Some(15.0), ramp: 0.0 };

@@ -217,7 +217,7 @@ fn default_tolerance() -> f64 {
     1e-8
 }
 /// The default ρ∞ (docs/theory.md §5.10 says how it was chosen).
-pub const DEFAULT_RHO_INFINITY: f64 = 1.0;
+pub const DEFAULT_RHO_INFINITY: f64 = 0.8;
 fn default_rho_infinity() -> f64 {
     DEFAULT_RHO_INFINITY
 }

@@ -172,3 +172,35 @@ def test_bad_input_derivatives_are_errors(fmu_path, unzipped):
         s.exitInitializationMode()
     s.terminate()
     s.freeInstance()
+
+
+def test_the_abrupt_start_settles_with_the_default_dissipation(fmu_path, riser_bin, tmp_path_factory):
+    """The paper's abrupt start (heave 2.5 m sin(2πt/20 s) from t = 0, a velocity jump) with the FMU's and
+    the CLI's default rho_infinity: the top tension over [20, 100] s within 5 % of the smooth start's range,
+    and the energy balance closed with algorithmic_dissipation."""
+    h = 0.05
+    t = np.arange(0.0, DURATION + 1e-9, h)
+    out = ["top_tension", "total_energy", "work_top", "work_hydro", "dissipated_energy", "algorithmic_dissipation"]
+    ranges = {}
+    for name, z in [("abrupt", AMPLITUDE * np.sin(2 * np.pi * t / PERIOD)), ("smooth", heave(t))]:
+        signal = np.array(list(zip(t, z)), dtype=[("time", np.float64), ("heave", np.float64)])
+        res = simulate_fmu(fmu_path, stop_time=DURATION, output_interval=h, input=signal, output=out)
+        m = res["time"] >= 20.0 - 1e-9
+        ranges[name] = (res["top_tension"][m].min(), res["top_tension"][m].max(), res["top_tension"][m].mean())
+        balance = res["total_energy"] - res["total_energy"][0] - res["work_top"] - res["work_hydro"] \
+            + res["dissipated_energy"] + res["algorithmic_dissipation"]
+        exchanged = np.max(np.abs(res["work_top"]) + np.abs(res["work_hydro"]))
+        assert np.max(np.abs(balance)) <= 1e-6 * exchanged, name
+        if name == "abrupt":
+            assert res["algorithmic_dissipation"][-1] > 0.0
+        # the CLI, same motion
+        d = tmp_path_factory.mktemp(name)
+        subprocess.run([riser_bin, "run", "catenary", "--heave", f"{AMPLITUDE},{PERIOD}", "--ramp",
+                        "0" if name == "abrupt" else str(RAMP), "--duration", str(DURATION), "--out", str(d)],
+                       check=True, capture_output=True)
+        ts = np.genfromtxt(d / "timeseries.csv", delimiter=",", names=True)
+        m = ts["t"] >= 20.0 - 1e-9
+        ranges["cli " + name] = (ts["top_tension"][m].min(), ts["top_tension"][m].max(), ts["top_tension"][m].mean())
+    for a, s in [("abrupt", "smooth"), ("cli abrupt", "cli smooth")]:
+        (a0, a1, _), (s0, s1, mean) = ranges[a], ranges[s]
+        assert max(abs(a0 - s0), abs(a1 - s1)) <= 0.05 * mean, (a, ranges[a], ranges[s])
