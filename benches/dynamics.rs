@@ -2,17 +2,18 @@
 //! elements, time step 0.05 s, 100 s of heave 2.5 m / 20 s with the 0.8 m/s
 //! current, from the static state. Prints wall time, Newton iterations per
 //! step and the real-time factor, median of several runs, for the paper's
-//! abrupt start and for a one-period smooth start.
+//! abrupt start and for a one-period smooth start, at the default
+//! `rho_infinity` and with the conserving scheme (`rho_infinity` = 1).
 //!
 //! Run: `cargo bench --bench dynamics` (RISER_BENCH_RUNS sets the run count,
 //! RISER_BENCH_ONLY=smooth or =abrupt runs one start only).
 
 use riser::dynamics::run::{Heave, Simulation};
-use riser::scene::Scene;
+use riser::scene::{DEFAULT_RHO_INFINITY, Scene};
 use std::time::Instant;
 
-fn one_run(ramp: f64) -> (f64, f64, u64, f64) {
-    let scene = Scene::builtin("catenary").unwrap();
+fn one_run(ramp: f64, rho_infinity: f64) -> (f64, f64, u64, f64) {
+    let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("rho_infinity={rho_infinity}")]).unwrap();
     let mut sim = Simulation::from_scene(&scene).unwrap();
     let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp };
     let motion = move |t: f64| heave.at(t);
@@ -37,11 +38,12 @@ fn main() {
     let runs: usize = std::env::var("RISER_BENCH_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(5);
     println!("catenary, 60 elements, dt 0.05 s, 100 s simulated, {runs} runs (median)");
     println!(
-        "{:<28} {:>10} {:>12} {:>13} {:>10} {:>8}",
-        "start", "wall (s)", "Newton/step", "tangents/step", "RTF", "splits"
+        "{:<28} {:>12} {:>10} {:>12} {:>13} {:>10} {:>8}",
+        "start", "rho_infinity", "wall (s)", "Newton/step", "tangents/step", "RTF", "splits"
     );
     let only = std::env::var("RISER_BENCH_ONLY").unwrap_or_default();
-    for (name, ramp) in [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)] {
+    let starts = [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)];
+    for (rho, (name, ramp)) in [DEFAULT_RHO_INFINITY, 1.0].into_iter().flat_map(|r| starts.map(|s| (r, s))) {
         if !name.starts_with(only.as_str()) {
             continue;
         }
@@ -50,13 +52,22 @@ fn main() {
         let mut splits = 0;
         let mut tangents = 0.0;
         for _ in 0..runs {
-            let (w, i, s, t) = one_run(ramp);
+            let (w, i, s, t) = one_run(ramp, rho);
             walls.push(w);
             its = i;
             splits = s;
             tangents = t;
         }
         let w = median(&mut walls);
-        println!("{:<28} {:>10.3} {:>12.2} {:>13.3} {:>10.1} {:>8}", name, w, its, tangents, 100.0 / w, splits);
+        println!(
+            "{:<28} {:>12} {:>10.3} {:>12.2} {:>13.3} {:>10.1} {:>8}",
+            name,
+            rho,
+            w,
+            its,
+            tangents,
+            100.0 / w,
+            splits
+        );
     }
 }
