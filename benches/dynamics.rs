@@ -6,7 +6,8 @@
 //! `rho_infinity` and with the conserving scheme (`rho_infinity` = 1).
 //!
 //! Run: `cargo bench --bench dynamics` (RISER_BENCH_RUNS sets the run count,
-//! RISER_BENCH_ONLY=smooth or =abrupt runs one start only).
+//! RISER_BENCH_ONLY=smooth or =abrupt runs one start only, RISER_BENCH_RHO
+//! one `rho_infinity` only).
 
 use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::{DEFAULT_RHO_INFINITY, Scene};
@@ -43,7 +44,11 @@ fn main() {
     );
     let only = std::env::var("RISER_BENCH_ONLY").unwrap_or_default();
     let starts = [("abrupt (paper)", 0.0), ("smooth over 20 s", 20.0)];
-    for (rho, (name, ramp)) in [DEFAULT_RHO_INFINITY, 1.0].into_iter().flat_map(|r| starts.map(|s| (r, s))) {
+    let rhos: Vec<f64> = match std::env::var("RISER_BENCH_RHO").ok().and_then(|v| v.parse().ok()) {
+        Some(r) => vec![r],
+        None => vec![DEFAULT_RHO_INFINITY, 1.0],
+    };
+    for (rho, (name, ramp)) in rhos.into_iter().flat_map(|r| starts.map(|s| (r, s))) {
         if !name.starts_with(only.as_str()) {
             continue;
         }

@@ -93,7 +93,11 @@ def main():
         lines += ["![abrupt and smooth start, rho_infinity 1 and 0.8](figures/abrupt_vs_smooth.png)", ""]
     except ImportError:
         pass
-    (Path(args.docs) / "rho_infinity.md").write_text("\n".join(lines) + "\n")
+    # the hand-written discussion after the tables (from "Real-time factors in these tables") is kept
+    out = Path(args.docs) / "rho_infinity.md"
+    old = out.read_text() if out.exists() else ""
+    keep = old[old.find("Real-time factors in these tables"):] if "Real-time factors in these tables" in old else ""
+    out.write_text("\n".join(lines) + "\n" + ("\n" + keep if keep else ""))
 
 
 if __name__ == "__main__":

@@ -284,7 +284,7 @@ impl StepEquations for CableModel {
         }
         if let Some(hf) = ws.hf {
             // the stress part's dissipation (5.31), the velocity filter (5.32)
-            for e in 0..self.cable.n_el {
+            for e in (0..self.cable.n_el).filter(|&e| ws.alg[e] > 0.0) {
                 trial.algorithmic += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], ws.alg[e]);
             }
             let (w, fixed, free) = (&state.hf_weight, &ws.fixed_triple, ws.free);

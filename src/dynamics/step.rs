@@ -257,27 +257,32 @@ impl StepEquations for LineModel {
             let shear = Shear::Spatial(rod.reference_penalty(e));
             let eps1 = k1.strains(shear);
             let s = rod.midpoint_stress_rows(e, &buf.eps_n[e], &eps1);
-            // the fields of q½ (residual path; the tangent path forms its own)
-            if !want_k {
-                km.set_average(&buf.kin_n[e], &k1);
-                gauss::add_internal_force(&elm, &km, &s, &buf.shapes, shear, &mut re);
-            } else {
-                let (s, k) = (gauss::to_points(&s), Some(&mut ke));
-                element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
-            }
             // Kelvin–Voigt (η/h, §5.9) and algorithmic (α w_f, §5.10) damping
             // on the objective material strains
             let c_damp = eta / h + if buf.hf.is_some() { buf.alg[e] } else { 0.0 };
-            if c_damp > 0.0 {
-                let damping = Factors { config: 0.5, stress: c_damp };
+            let sd = (c_damp > 0.0).then(|| {
                 let d1 = gauss::to_points(&k1.strains(Shear::Material));
                 buf.damp_1[e] = d1;
-                let sd = rod.damping_stresses(&buf.damp_n[e], &d1, c_damp);
-                if !want_k {
-                    gauss::add_internal_force(&elm, &km, &gauss::to_rows(&sd), &buf.shapes, Shear::Material, &mut re);
-                } else {
+                rod.damping_stresses(&buf.damp_n[e], &d1, c_damp)
+            });
+            if !want_k {
+                // the fields of q½ (residual path; the tangent path forms its own),
+                // the damping stress in the same pass
+                km.set_average(&buf.kin_n[e], &k1);
+                match &sd {
+                    None => gauss::add_internal_force(&elm, &km, &s, &buf.shapes, shear, &mut re),
+                    Some(sd) => {
+                        let g0 = rod.reference_penalty(e);
+                        gauss::add_internal_force_damped(&elm, &km, &s, g0, &gauss::to_rows(sd), &buf.shapes, &mut re)
+                    }
+                }
+            } else {
+                let (s, k) = (gauss::to_points(&s), Some(&mut ke));
+                element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
+                if let Some(sd) = &sd {
+                    let damping = Factors { config: 0.5, stress: c_damp };
                     let (stiff, k) = (rod.stiff(), Some(&mut ke));
-                    element::internal_force(&elm, &el1, &sd, stiff, damping, rod.h, Shear::Material, &mut re, k);
+                    element::internal_force(&elm, &el1, sd, stiff, damping, rod.h, Shear::Material, &mut re, k);
                 }
             }
             // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
@@ -528,7 +533,7 @@ impl LineModel {
     /// spin momentum is untouched), the filter weights of the next step.
     fn filter_velocities(&self, ws: &mut RodWorkspace, hf: HighFrequency, state: &State, trial: &mut State, h: f64) {
         let rod = &self.rod;
-        for e in 0..rod.n_el {
+        for e in (0..rod.n_el).filter(|&e| ws.alg[e] > 0.0) {
             trial.algorithmic += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], ws.alg[e]);
         }
         let np = rod.n_el + 1;

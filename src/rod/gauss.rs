@@ -221,13 +221,49 @@ pub fn add_internal_force(
     shear: Shear<'_>,
     r: &mut ElVec,
 ) {
+    let bend = [&s[3], &s[4], &s[5]];
+    match shear {
+        Shear::Spatial(g0) => kernel(eb, kb, bend, Some((s, g0)), None, sh, r),
+        Shear::Material => kernel(eb, kb, bend, None, Some(s), sh, r),
+    }
+}
+
+/// Both at once: the stress `s` on the spatial strains (penalty reference
+/// `g0`) plus the damping stress `sd` on the material strains, as
+/// `add_internal_force(s, Spatial(g0))` then `add_internal_force(sd,
+/// Material)` (equal up to round-off), in one pass over the Gauss points:
+/// the bending and twist rows share one sum, s_K + sd_K.
+pub fn add_internal_force_damped(
+    eb: &ElemDofs,
+    kb: &GaussFields,
+    s: &[F4; 6],
+    g0: &[V3; NGP],
+    sd: &[F4; 6],
+    sh: &GaussShapes,
+    r: &mut ElVec,
+) {
+    let sum: [F4; 3] = std::array::from_fn(|i| std::array::from_fn(|g| s[3 + i][g] + sd[3 + i][g]));
+    kernel(eb, kb, [&sum[0], &sum[1], &sum[2]], Some((s, g0)), Some(sd), sh, r);
+}
+
+/// The kernel of both: bending/twist stresses `bend`, shear/extension rows
+/// 0..3 of `spatial` (with g⁰) and/or of `material`.
+fn kernel(
+    eb: &ElemDofs,
+    kb: &GaussFields,
+    bend: [&F4; 3],
+    spatial: Option<(&[F4; 6], &[V3; NGP])>,
+    material: Option<&[F4; 6]>,
+    sh: &GaussShapes,
+    r: &mut ElVec,
+) {
     // bending and twist: ½ Σ_i s_Ki [L_A (d_kA × d_j' − d_jA × d_k') + L'_A (d_jA × d_k − d_kA × d_j)]
     // (i, j, k cyclic) = Σ_c d_cA × (L_A u_c + L'_A w_c) with, for each c,
     //   u_c = ½(s_K(c+1) d_(c+2)' − s_K(c+2) d_(c+1)'),  w_c = ½(s_K(c+2) d_(c+1) − s_K(c+1) d_(c+2))
     // (indices mod 3); the shear adds to u_c (below). Each u_c, w_c is summed
     // over the Gauss points as soon as it is formed: mom[A][c] = Σ_g w_g (L_A u_c + L'_A w_c).
-    let sk: [F4; 3] = std::array::from_fn(|i| std::array::from_fn(|g| 0.5 * s[3 + i][g]));
-    // the shear's centreline force per Gauss point: n (spatial) or Σ_i s_i d_i (material)
+    let sk: [F4; 3] = std::array::from_fn(|i| std::array::from_fn(|g| 0.5 * bend[i][g]));
+    // the material shear's centreline force per Gauss point, Σ_i s_i d_i
     let mut f = [[0.0; NGP]; 3];
     let mut mom = [[V3::zeros(); 3]; 3];
     for cc in 0..3 {
@@ -235,22 +271,20 @@ pub fn add_internal_force(
         for c in 0..3 {
             let mut u: F4 = std::array::from_fn(|g| sk[c1][g] * kb.dp[c2][c][g] - sk[c2][g] * kb.dp[c1][c][g]);
             let w: F4 = std::array::from_fn(|g| sk[c2][g] * kb.d[c1][c][g] - sk[c1][g] * kb.d[c2][c][g]);
-            match shear {
-                // ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×, w_A = Σ_c ŵ_c d_cA (ŵ = e3 + g⁰)
-                //   ⇒ N'_k n and L_A n × w_A = Σ_c d_cA × (−L_A ŵ_c n)
-                Shear::Spatial(g0) => {
-                    for g in 0..NGP {
-                        let what = if cc == 2 { 1.0 + g0[g][2] } else { g0[g][cc] };
-                        u[g] -= s[c][g] * what;
-                    }
+            // spatial: ∂γ/∂c_k = N'_k I, ∂γ/∂θ_A = L_A [w_A]×, w_A = Σ_c ŵ_c d_cA (ŵ = e3 + g⁰)
+            //   ⇒ N'_k n and L_A n × w_A = Σ_c d_cA × (−L_A ŵ_c n)
+            if let Some((s, g0)) = spatial {
+                for g in 0..NGP {
+                    let what = if cc == 2 { 1.0 + g0[g][2] } else { g0[g][cc] };
+                    u[g] -= s[c][g] * what;
                 }
-                // ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
-                //   ⇒ Σ_i s_i N'_k d_i and Σ_c d_cA × (L_A s_c r')
-                Shear::Material => {
-                    for g in 0..NGP {
-                        u[g] += kb.p[c][g] * s[cc][g];
-                        f[c][g] += kb.d[cc][c][g] * s[cc][g];
-                    }
+            }
+            // material: ∂Γ_i/∂c_k = N'_k d_i, ∂Γ_i/∂θ_A = L_A d_iA × r'
+            //   ⇒ Σ_i s_i N'_k d_i and Σ_c d_cA × (L_A s_c r')
+            if let Some(s) = material {
+                for g in 0..NGP {
+                    u[g] += kb.p[c][g] * s[cc][g];
+                    f[c][g] += kb.d[cc][c][g] * s[cc][g];
                 }
             }
             for a in 0..3 {
@@ -258,8 +292,17 @@ pub fn add_internal_force(
             }
         }
     }
-    if let Shear::Spatial(_) = shear {
-        f = [s[0], s[1], s[2]];
+    // the spatial shear's centreline force is n itself
+    if let Some((s, _)) = spatial {
+        if material.is_some() {
+            for c in 0..3 {
+                for g in 0..NGP {
+                    f[c][g] += s[c][g];
+                }
+            }
+        } else {
+            f = [s[0], s[1], s[2]];
+        }
     }
     for (k, &off) in C_OFF.iter().enumerate() {
         for c in 0..3 {
@@ -324,6 +367,25 @@ mod tests {
             let err = (fast - dense).amax() / dense.amax();
             assert!(err < 1e-13, "relative difference {err:.3e}");
         }
+        // the one-pass elastic + damping force against the explicit B̃ᵀ of
+        // each part (spatial shear for the elastic, material for the damping)
+        let mut damp = [[0.0; 6]; NGP];
+        for s in damp.iter_mut() {
+            for v in s.iter_mut() {
+                *v = rnd() * 1e2;
+            }
+        }
+        let sh = GaussShapes::new(h);
+        let mut kb = GaussFields::default();
+        kb.refresh(&sh, &e);
+        let mut fast = ElVec::zeros();
+        add_internal_force_damped(&e, &kb, &to_rows(&stress), &g0, &to_rows(&damp), &sh, &mut fast);
+        let mut dense = ElVec::zeros();
+        let mut k = ElMat::zeros();
+        internal_force(&e, &e, &stress, &[1.0; 6], Factors::STATIC, h, Shear::Spatial(&g0), &mut dense, Some(&mut k));
+        internal_force(&e, &e, &damp, &[1.0; 6], Factors::STATIC, h, Shear::Material, &mut dense, Some(&mut k));
+        let err = (fast - dense).amax() / dense.amax();
+        assert!(err < 1e-13, "one pass, elastic + damping: relative difference {err:.3e}");
     }
 
     /// Strains from the component-major fields against the per-point ones.
