@@ -121,10 +121,14 @@ def test_the_hang_off_reaches_the_input_without_a_lag(fmu_path):
     assert np.max(np.abs(z - heave(res["time"]))) <= 0.01 * AMPLITUDE
 
 
-def test_libcosim_drives_it_exactly_as_fmpy_does(fmu_path):
+@pytest.mark.parametrize("h", [0.05, 0.2, 0.5])
+def test_libcosim_drives_it_exactly_as_fmpy_does(fmu_path, h):
     # OSP libcosim, the heave set by an override manipulator before each step:
-    # the same FMI calls as fmpy's (whose times and table interpolation round
-    # differently in the last bits), so the same numbers to round-off
+    # the same FMI calls as fmpy's, whose times and table interpolation round
+    # differently in the last bits (libcosim counts integer nanoseconds): so
+    # the same numbers to the Newton tolerance (1e-8, relative; Newton stops
+    # at a slightly different iterate from a start that differs in the last
+    # bits), asserted at 10x that
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimManipulator import CosimManipulator
@@ -132,7 +136,7 @@ def test_libcosim_drives_it_exactly_as_fmpy_does(fmu_path):
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     log_output_level(CosimLogLevel.WARNING)
-    h, duration = 0.2, 60.0
+    duration = 60.0
     ex = CosimExecution.from_step_size(step_size=int(round(h * 1e9)))
     idx = ex.add_local_slave(CosimLocalSlave(fmu_path=fmu_path, instance_name="riser"))
     refs = {v.name.decode(): v.reference for v in ex.slave_variables(idx)}
@@ -148,7 +152,7 @@ def test_libcosim_drives_it_exactly_as_fmpy_does(fmu_path):
     sig = np.array(list(zip(np.arange(0.0, duration + 1e-9, h), heave(np.arange(0.0, duration + 1e-9, h)))),
                    dtype=[("time", np.float64), ("heave", np.float64)])
     res = simulate_fmu(fmu_path, stop_time=duration, output_interval=h, input=sig, output=["top_tension"])
-    assert np.allclose(np.array(tension), res["top_tension"][1:], rtol=1e-9, atol=0.0)
+    assert np.allclose(np.array(tension), res["top_tension"][1:], rtol=1e-7, atol=0.0)
 
 
 def test_bad_input_derivatives_are_errors(fmu_path, unzipped):
