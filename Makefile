@@ -31,7 +31,7 @@ demo: build venv fmu
 	$(PY) scripts/demo_fmu.py --fmu fmu/riser.fmu --out $(DEMO_DIR)
 	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png"
 
-# The seed paper's runs (DESIGN.md list): docs/paper_runs.md, docs/paper_runs_damped.md
+# The seed paper's runs: docs/paper_runs.md, docs/paper_runs_damped.md
 # and docs/figures/paper_*.png (a few minutes).
 paper: build venv
 	$(PY) scripts/paper_runs.py

@@ -9,8 +9,8 @@
 //! RISER_BENCH_ONLY=smooth or =abrupt runs one start only, RISER_BENCH_RHO
 //! one `rho_infinity` only).
 
-use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::{DEFAULT_RHO_INFINITY, Scene};
+use riser::sim::{Heave, Simulation};
 use std::time::Instant;
 
 fn one_run(ramp: f64, rho_infinity: f64) -> (f64, f64, u64, f64) {

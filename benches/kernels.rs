@@ -8,8 +8,8 @@
 //!
 //! Run: `cargo bench --bench kernels`.
 
-use riser::dynamics::run::{Engine, Heave, Simulation};
 use riser::scene::Scene;
+use riser::sim::{Engine, Heave, Simulation};
 use std::hint::black_box;
 use std::time::Instant;
 

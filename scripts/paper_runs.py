@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The seed paper's runs (DESIGN.md list), reproduced with `riser run`.
+"""The seed paper's runs (the list of the project's contract), reproduced with `riser run`.
 
 Usage: python scripts/paper_runs.py [--bin target/release/riser] [--out out/paper]
        [--docs docs] [--only NAME ...] [--damping ETA]

@@ -50,7 +50,7 @@ def run(bin_, scene, model, n, dt, tol, out):
     t = np.array([float(r["t"]) for r in ts])
     tt = np.array([float(r["top_tension"]) for r in ts])
     shape = [r for r in csv.DictReader(open(out / "shapes.csv"))]
-    # the 21 DESIGN shape points: interpolate the node rows at S = k L/20
+    # the 21 shape points of the FMU: interpolate the node rows at S = k L/20
     s = np.array([float(r["S"]) for r in shape])
     xyz = np.array([[float(r["x"]), float(r["y"]), float(r["z"])] for r in shape])
     sk = np.linspace(0, s[-1], 21)

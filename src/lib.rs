@@ -3,19 +3,27 @@
 //! (Cosserat director rod, energy–momentum conserving time stepping, Morison
 //! drag), packaged as an FMI 2.0 Co-Simulation unit.
 //!
-//! Layout: [`rod`] (kinematics, element, strains, internal force and tangent),
-//! [`hydro`] (loads from the water), [`scene`] (scene files and built-in
-//! scenes), [`statics`] (static equilibrium), [`linsolve`] (global sparse LU),
-//! [`error`] (the typed errors).
+//! Layers, bottom to top; a module imports only from the layers below it
+//! (checked by `tests/layering.rs`):
+//! - [`math`]: small algebra, shape functions and quadrature, the banded system;
+//! - [`scene`]: scene files, built-in scenes, overrides, validation;
+//! - [`loads`]: per unit length, shared by both models: weight and buoyancy,
+//!   current, Morison drag and added mass;
+//! - [`model`]: the rod ([`model::rod`]) and the cable ([`model::cable`]),
+//!   each whole, and the seam the solvers use ([`model::StepEquations`],
+//!   [`model::statics::StaticEquations`], [`model::State`]);
+//! - [`solve`]: Newton time stepping and static continuation, generic over
+//!   the model;
+//! - [`sim`]: a simulation (scene + model + state + outputs), the statics
+//!   report, the typed top-level error;
+//! - [`fmi`] and the `riser` binary on top.
 
-pub use error::RiserError;
+pub use sim::error::RiserError;
 
-pub mod cable;
-pub mod dynamics;
-pub mod error;
 pub mod fmi;
-pub mod hydro;
-pub mod linsolve;
-pub mod rod;
+pub mod loads;
+pub mod math;
+pub mod model;
 pub mod scene;
-pub mod statics;
+pub mod sim;
+pub mod solve;

@@ -7,15 +7,17 @@
 mod common;
 
 use common::reference::{bessel_j0_zeros, elastic_catenary, piecewise_catenary};
-use riser::cable::statics::CableStatics;
-use riser::cable::{Cable, CableModel};
-use riser::dynamics::run::Simulation;
-use riser::dynamics::{DynamicOptions, HangOff, Integrator, State};
-use riser::hydro::fluid::Fluid;
-use riser::hydro::weight::VerticalLoad;
-use riser::rod::kinematics::V3;
+use riser::loads::fluid::Fluid;
+use riser::loads::weight::VerticalLoad;
+use riser::math::V3;
+use riser::model::cable::statics::CableStatics;
+use riser::model::cable::{Cable, CableModel};
+use riser::model::{DynamicOptions, HangOff, State};
 use riser::scene::Scene;
-use riser::statics::report::solve_scene;
+use riser::sim::Simulation;
+use riser::sim::report::solve_scene;
+use riser::solve::Integrator;
+use riser::solve::statics::relax;
 use std::f64::consts::PI;
 
 fn scene(name: &str, sets: &[&str]) -> Scene {
@@ -139,7 +141,7 @@ fn step_tangent_matches_finite_differences_with_water_and_damping() {
 #[test]
 fn cable_statics_match_the_elastic_catenary_with_second_order_convergence() {
     let sc = scene("catenary", &[]);
-    let w = -sc.vertical_load().uniform;
+    let w = -riser::loads::vertical_load(&sc).uniform;
     let r = elastic_catenary(sc.line.length, w, sc.line.axial_stiffness, 60.0, -70.0).unwrap();
     let mut prev = f64::INFINITY;
     let mut errs = Vec::new();
@@ -172,7 +174,7 @@ fn cable_statics_match_the_elastic_catenary_with_second_order_convergence() {
 #[test]
 fn cable_lazy_wave_matches_the_piecewise_catenary() {
     let sc = scene("lazy_wave", &["n_elements=200"]);
-    let w = -sc.vertical_load().uniform;
+    let w = -riser::loads::vertical_load(&sc).uniform;
     let segments = [(50.0, w), (30.0, w - 670.0), (20.0, w)];
     let r = piecewise_catenary(&segments, sc.line.axial_stiffness, 50.0, -40.0).unwrap();
     let rep = solve_scene(&sc).unwrap();
@@ -205,7 +207,7 @@ fn hanging_chain_first_three_frequencies() {
     let vertical = VerticalLoad { uniform: -m * g, sections: vec![] };
     let model = CableModel::new(cable, m, vertical, Fluid::none());
     let straight: Vec<V3> = (0..=n_el).map(|a| -V3::z() * (a as f64 * l / n_el as f64)).collect();
-    let sol = CableStatics::new(&model, false).solve(straight, 1e-12).unwrap();
+    let sol = relax(&CableStatics::new(&model, false), straight, 1e-12).unwrap();
     let dt = 0.02;
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
     let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
@@ -231,7 +233,7 @@ fn energy_is_conserved_and_the_balance_closes_with_water() {
         let sets = ["cd_normal=0", "cd_tangential=0", "n_elements=30", "newton_tolerance=1e-12", "rho_infinity=1"];
         let sc = scene("catenary", &[&sets[..], &[format!("time_step={dt}").as_str()]].concat());
         let mut sim = Simulation::from_scene(&sc).unwrap();
-        let heave = riser::dynamics::run::Heave { amplitude: 1.0, period: 6.0, until: Some(3.0), ramp: 0.0 };
+        let heave = riser::sim::Heave { amplitude: 1.0, period: 6.0, until: Some(3.0), ramp: 0.0 };
         sim.start(heave.at(0.0));
         let motion = move |t: f64| heave.at(t);
         let mut t = 0.0;
@@ -256,7 +258,7 @@ fn energy_is_conserved_and_the_balance_closes_with_water() {
     // with drag, current, added mass, damping and a moving hang-off: E − E0 = W_top + W_hydro − D
     let sc = scene("catenary", &["ca_normal=1", "structural_damping=0.002"]);
     let mut sim = Simulation::from_scene(&sc).unwrap();
-    let heave = riser::dynamics::run::Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 0.0 };
+    let heave = riser::sim::Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 0.0 };
     sim.start(heave.at(0.0));
     let e0 = sim.initial_energy;
     let motion = move |t: f64| heave.at(t);
@@ -342,7 +344,7 @@ fn rod_and_cable_agree_on_the_catenary_scene() {
             .with_overrides(&[&format!("model={model}"), "structural_damping=0.002"])
             .unwrap();
         let mut sim = Simulation::from_scene(&sc).unwrap();
-        let heave = riser::dynamics::run::Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+        let heave = riser::sim::Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
         sim.start(heave.at(0.0));
         let motion = move |t: f64| heave.at(t);
         let mut tt = Vec::new();

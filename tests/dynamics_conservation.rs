@@ -2,17 +2,19 @@
 //! exact energy in the Hamiltonian case, exact momenta for a free rod, the
 //! discrete energy balance with drag and a moving hang-off.
 
-use riser::dynamics::{DynamicOptions, HangOff, Integrator, LineModel, State};
-use riser::hydro::fluid::Fluid;
-use riser::rod::kinematics::V3;
+use riser::loads::fluid::Fluid;
+use riser::math::V3;
+use riser::model::rod::RodModel;
+use riser::model::{DynamicOptions, HangOff, State};
 use riser::scene::Scene;
-use riser::statics::report::solve_scene;
+use riser::sim::report::solve_scene;
+use riser::solve::Integrator;
 
 /// Catenary scene without water forces, static state, and a velocity kick.
-fn hamiltonian_setup(n_el: usize, dt: f64) -> (Integrator, State) {
+fn hamiltonian_setup(n_el: usize, dt: f64) -> (Integrator<RodModel>, State) {
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("n_elements={n_el}")]).unwrap();
     let report = solve_scene(&scene).unwrap();
-    let mut model = LineModel::from_scene(&scene);
+    let mut model = RodModel::from_scene(&scene);
     model.fluid = Fluid::none();
     // energy is conserved to the Newton tolerance: ask for round-off
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-13, ..Default::default() };
@@ -59,14 +61,14 @@ fn hamiltonian_energy_is_conserved_for_small_and_large_steps() {
 }
 
 /// A free rod in space: no gravity, no water, free ends.
-fn free_rod(n_el: usize, dt: f64) -> (Integrator, State) {
-    use riser::hydro::weight::VerticalLoad;
-    use riser::rod::model::{EndBc, Rod, Stiffness};
+fn free_rod(n_el: usize, dt: f64) -> (Integrator<RodModel>, State) {
+    use riser::loads::weight::VerticalLoad;
+    use riser::model::rod::{EndBc, Rod, Stiffness};
     let l = 10.0;
     let rod = Rod::new(n_el, l, Stiffness::paper(1e5, 1e2, 80.0), [EndBc::FREE, EndBc::FREE]);
     let m = 5.0;
     let vertical = VerticalLoad { uniform: 0.0, sections: vec![] };
-    let model = LineModel::new(rod, m, [0.01, 0.02], vertical, Fluid::none());
+    let model = RodModel::new(rod, m, [0.01, 0.02], vertical, Fluid::none());
     let cfg = model.rod.straight(V3::new(-4.9, -1.0, -0.5), V3::new(1.0, 0.2, 0.1), V3::z());
     // Newton to round-off: the momenta drift by h Σ x × r per step
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-15, ..Default::default() };
@@ -115,12 +117,12 @@ fn free_rod_conserves_momenta_and_keeps_directors_orthonormal() {
 }
 
 /// Catenary scene with its current, 20 elements, heave 2.5 m / 20 s.
-fn heaving_catenary(extra: &[&str]) -> (Integrator, State, f64) {
+fn heaving_catenary(extra: &[&str]) -> (Integrator<RodModel>, State, f64) {
     let mut sets = vec!["n_elements=20".to_string()];
     sets.extend(extra.iter().map(|s| s.to_string()));
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&sets).unwrap();
     let report = solve_scene(&scene).unwrap();
-    let model = LineModel::from_scene(&scene);
+    let model = RodModel::from_scene(&scene);
     let opts = DynamicOptions { time_step: 0.05, newton_tolerance: 1e-8, ..Default::default() };
     let integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
     let state = State::at_rest(report.solution.config.clone(), 0.0);
@@ -205,7 +207,7 @@ fn structural_damping_never_creates_energy_and_keeps_momenta() {
 fn free_motion_after_the_excitation_keeps_its_energy() {
     // the paper's Fig. 11: no drag, heave 2.5 m / 20 s for 15 s, then the
     // hang-off is held (at t = 15 s the heave velocity is zero)
-    use riser::dynamics::run::{Heave, Simulation};
+    use riser::sim::{Heave, Simulation};
     let scene = Scene::builtin("catenary")
         .unwrap()
         .with_overrides(&[

@@ -2,9 +2,9 @@
 //! high-frequency dissipative variant, docs/theory.md §5.10), on the
 //! catenary scene against a fine-step reference run.
 
-use riser::dynamics::run::{Heave, Simulation};
-use riser::rod::kinematics::V3;
+use riser::math::V3;
 use riser::scene::Scene;
+use riser::sim::{Heave, Simulation};
 
 /// Centreline at S = k L / 20 after 10 s of smoothly started heave with the current.
 fn shape_after(dt: f64, rho_infinity: f64) -> Vec<V3> {

@@ -4,11 +4,12 @@
 //! Its order: `dynamics_convergence`; energy and momenta:
 //! `dynamics_conservation` and `cable`.
 
-use riser::cable::{Cable, CableModel};
-use riser::dynamics::{DynamicOptions, HangOff, Integrator, State};
-use riser::hydro::fluid::Fluid;
-use riser::hydro::weight::VerticalLoad;
-use riser::rod::kinematics::V3;
+use riser::loads::fluid::Fluid;
+use riser::loads::weight::VerticalLoad;
+use riser::math::V3;
+use riser::model::cable::{Cable, CableModel};
+use riser::model::{DynamicOptions, HangOff, State};
+use riser::solve::Integrator;
 
 /// Measured spectral radius of the scheme on a linear oscillator at ω h =
 /// `omega_h`: one cable segment hanging from a fixed point under its weight

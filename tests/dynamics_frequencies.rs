@@ -6,16 +6,21 @@
 
 mod common;
 
-use riser::dynamics::{DynamicOptions, HangOff, Integrator, LineModel, State};
-use riser::hydro::fluid::Fluid;
-use riser::hydro::weight::VerticalLoad;
-use riser::rod::kinematics::{M3, RodConfig, V3};
-use riser::rod::model::{EndBc, Rod, Stiffness};
-use riser::statics::{StaticLoads, StaticOptions, solve};
+use riser::loads::fluid::Fluid;
+use riser::loads::weight::VerticalLoad;
+use riser::math::{M3, V3};
+use riser::model::RodConfig;
+use riser::model::rod::RodModel;
+use riser::model::rod::statics::{StaticLoads, StaticProblem};
+use riser::model::rod::{EndBc, Rod, Stiffness};
+use riser::model::statics::StaticOptions;
+use riser::model::{DynamicOptions, HangOff, State};
+use riser::solve::Integrator;
+use riser::solve::statics::solve;
 use std::f64::consts::PI;
 
 /// Runs free vibration and samples the y-displacement of end node `a`.
-fn record(integ: &mut Integrator, state: &mut State, a: usize, dt: f64, steps: usize) -> Vec<f64> {
+fn record(integ: &mut Integrator<RodModel>, state: &mut State, a: usize, dt: f64, steps: usize) -> Vec<f64> {
     let still = |_t: f64| HangOff::default();
     let mut y = Vec::with_capacity(steps + 1);
     y.push(state.config.x[a].y);
@@ -41,8 +46,8 @@ fn hanging_chain_first_three_frequencies() {
     let vertical = VerticalLoad { uniform: -m * g, sections: vec![] };
     let start = rod.straight(V3::zeros(), -V3::z(), V3::y());
     let loads = StaticLoads::gravity_only(vertical.clone());
-    let sol = solve(&rod, &loads, start, &StaticOptions::default()).unwrap();
-    let model = LineModel::new(rod, m, [1e-4, 1e-4], vertical, Fluid::none());
+    let sol = solve(&StaticProblem::new(&rod, &loads), start, &StaticOptions::default()).unwrap();
+    let model = RodModel::new(rod, m, [1e-4, 1e-4], vertical, Fluid::none());
     let dt = 0.04;
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
     let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
@@ -74,7 +79,7 @@ fn cantilever_first_frequency() {
     let n_el = 10;
     let rod = Rod::new(n_el, l, Stiffness::paper(1e8, ei, 1e3), [EndBc::CLAMPED, EndBc::FREE]);
     let cfg = rod.straight(V3::zeros(), V3::x(), V3::y());
-    let model = LineModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
+    let model = RodModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
     let dt = 0.04;
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
     let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();
@@ -106,7 +111,7 @@ fn taut_string_first_three_frequencies() {
         xp: vec![-V3::z() * stretch; n_el + 1],
         d: vec![M3::from_columns(&[V3::y(), V3::x(), -V3::z()]) * frame; 2 * n_el + 1],
     };
-    let model = LineModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
+    let model = RodModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
     let dt = 0.004;
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-10, ..Default::default() };
     let mut integ = Integrator::new(model, opts, V3::zeros()).unwrap();

@@ -3,10 +3,12 @@
 //! midpoint, added mass, the twist-held anchor's step basis), in the global
 //! frame and in the nodes' director frames (the corotated tangent, §5.7).
 
-use riser::dynamics::{DynamicOptions, HangOff, Integrator, LineModel, State};
-use riser::rod::kinematics::V3;
+use riser::math::V3;
+use riser::model::rod::RodModel;
+use riser::model::{DynamicOptions, HangOff, State};
 use riser::scene::Scene;
-use riser::statics::report::solve_scene;
+use riser::sim::report::solve_scene;
+use riser::solve::Integrator;
 
 #[test]
 fn step_tangent_matches_finite_differences_of_the_residual() {
@@ -44,7 +46,7 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
         .with_overrides(&["n_elements=4", "ca_normal=1.0", "current_direction=40"])
         .unwrap();
     let report = solve_scene(&scene).unwrap();
-    let model = LineModel::from_scene(&scene);
+    let model = RodModel::from_scene(&scene);
     let opts =
         DynamicOptions { structural_damping: eta, corotated_tangent: corotated, rho_infinity, ..Default::default() };
     let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
@@ -58,7 +60,7 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
         prev.prev_mean_vel[a] = prev.vel[a] * (a as f64 * 0.9).cos();
     }
     for j in 0..prev.director_vel.len() {
-        prev.director_vel[j] = prev.config.d[j] * riser::rod::kinematics::skew(&V3::new(0.02, -0.01, 0.03));
+        prev.director_vel[j] = prev.config.d[j] * riser::math::skew(&V3::new(0.02, -0.01, 0.03));
     }
     let h = 0.1;
     let target = HangOff { displacement: V3::new(0.05, 0.02, 0.1), velocity: V3::new(0.3, 0.1, 0.6) };
@@ -74,7 +76,7 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
         bump[i] = 0.0;
     }
     integ.apply_step_increment(&prev, &mut cfg, &bump);
-    let twist0 = integ.twist_state();
+    let twist0 = integ.workspace().twist_state();
     let r0 = integ.step_residual(&prev, &cfg, h, target, true);
     let k: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| integ.tangent_entry(i, j)).collect()).collect();
     let scale = r0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -90,12 +92,12 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
             du[j] = sign * eps;
             integ.to_spatial_basis(&cfg, &mut du);
             let mut c = cfg.clone();
-            integ.set_twist_state(&twist0);
+            integ.workspace_mut().set_twist_state(&twist0);
             integ.apply_step_increment(&prev, &mut c, &du);
             col[s] = integ.step_residual(&prev, &c, h, target, false);
             integ.to_tangent_basis(&cfg, &mut col[s]);
         }
-        integ.set_twist_state(&twist0);
+        integ.workspace_mut().set_twist_state(&twist0);
         for i in 0..n {
             if fixed.contains(&i) {
                 continue;

@@ -1,9 +1,9 @@
 //! A time step allocates nothing once the integrator is warmed up
-//! (workspace preallocated at construction; DESIGN: nothing is allocated in
+//! (workspace preallocated at construction; the contract: nothing is allocated in
 //! fmi2DoStep). Counted with a global allocator wrapper in this test binary.
 
-use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::Scene;
+use riser::sim::{Heave, Simulation};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 

@@ -4,8 +4,9 @@
 //! and energy are objective and the internal force rotates with the line.
 
 use nalgebra::{Matrix3, Vector3};
-use riser::rod::kinematics::{RodConfig, cayley};
-use riser::rod::model::{EndBc, Rod, Stiffness};
+use riser::math::cayley;
+use riser::model::RodConfig;
+use riser::model::rod::{EndBc, Rod, Stiffness};
 
 struct Lcg(u64);
 impl Lcg {
@@ -140,8 +141,18 @@ fn strains_energy_and_forces_are_objective() {
     let g0 = Vector3::new(0.01, -0.02, 0.005);
     for e in 0..rod.n_el {
         for xi in [0.0, 0.3, 0.77, 1.0] {
-            let a = riser::rod::element::strains_at(&riser::rod::element::ElemDofs::gather(&cfg, e), xi, rod.h, &g0);
-            let b = riser::rod::element::strains_at(&riser::rod::element::ElemDofs::gather(&moved, e), xi, rod.h, &g0);
+            let a = riser::model::rod::element::strains_at(
+                &riser::model::rod::element::ElemDofs::gather(&cfg, e),
+                xi,
+                rod.h,
+                &g0,
+            );
+            let b = riser::model::rod::element::strains_at(
+                &riser::model::rod::element::ElemDofs::gather(&moved, e),
+                xi,
+                rod.h,
+                &g0,
+            );
             let (ga, gb) = (Vector3::new(a[0], a[1], a[2]), Vector3::new(b[0], b[1], b[2]));
             assert!((q * ga - gb).norm() < 1e-13, "penalty strain: {ga} vs {gb}");
             for k in 3..6 {

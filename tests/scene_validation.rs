@@ -113,10 +113,10 @@ fn unknown_scene_names_the_built_ins() {
 fn current_overrides_follow_the_profile() {
     // a uniform current set to one speed stays uniform in effect
     let s = Scene::builtin("catenary").unwrap().with_overrides(&["current_top=0.5", "current_bottom=0.5"]).unwrap();
-    let c = s.current();
+    let c = riser::loads::current(&s);
     assert_eq!(c.speed(0.0, 0.0).0, 0.5);
     assert_eq!(c.speed(100.0, -70.0).0, 0.5);
     // the lazy wave's profile reversed
     let s = Scene::builtin("lazy_wave").unwrap().with_overrides(&["current_top=-0.8", "current_bottom=-0.3"]).unwrap();
-    assert_eq!(s.current().speed(0.0, 0.0).0, -0.8);
+    assert_eq!(riser::loads::current(&s).speed(0.0, 0.0).0, -0.8);
 }

@@ -3,8 +3,8 @@
 //! closed, or stops with a typed error and a finite state kept. Never a NaN,
 //! a panic or a hang.
 
-use riser::dynamics::run::{Heave, Simulation};
 use riser::scene::Scene;
+use riser::sim::{Heave, Simulation};
 
 /// Runs `duration` s of heave from the static state; returns the outcome.
 fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String {

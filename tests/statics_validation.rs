@@ -5,11 +5,13 @@
 mod common;
 use common::reference::{cantilever_elastica, elastic_catenary, piecewise_catenary};
 use nalgebra::Vector3;
-use riser::hydro::weight::VerticalLoad;
-use riser::rod::model::{EndBc, Rod, Stiffness};
+use riser::loads::weight::VerticalLoad;
+use riser::model::rod::statics::{StaticLoads, StaticProblem};
+use riser::model::rod::{EndBc, Rod, Stiffness};
+use riser::model::statics::StaticOptions;
 use riser::scene::Scene;
-use riser::statics::report::{StaticReport, solve_scene};
-use riser::statics::{StaticLoads, StaticOptions, solve};
+use riser::sim::report::{StaticReport, solve_scene};
+use riser::solve::statics::solve;
 
 fn scene(name: &str, sets: &[&str]) -> Scene {
     Scene::builtin(name).unwrap().with_overrides(sets).unwrap()
@@ -27,7 +29,7 @@ fn cantilever_tip(n_el: usize, ei: f64, ea: f64, load: f64) -> Vector3<f64> {
     let mut loads = StaticLoads::gravity_only(VerticalLoad { uniform: 0.0, sections: vec![] });
     loads.point_forces.push((n_el, Vector3::new(0.0, 0.0, -load)));
     let opts = StaticOptions { tolerance: 1e-11, ..Default::default() };
-    let sol = solve(&rod, &loads, start, &opts).expect("cantilever converges");
+    let sol = solve(&StaticProblem::new(&rod, &loads), start, &opts).expect("cantilever converges");
     sol.config.x[n_el] - Vector3::new(1.0, 0.0, 0.0)
 }
 
@@ -59,7 +61,7 @@ fn large_deflection_elastica_matches_bisshopp_drucker() {
 }
 
 fn catenary_w(s: &Scene) -> f64 {
-    -s.vertical_load().uniform
+    -riser::loads::vertical_load(s).uniform
 }
 
 #[test]
@@ -97,7 +99,7 @@ fn end_reactions_balance_the_applied_load_exactly() {
     for name in ["catenary", "lazy_wave"] {
         let sc = scene(name, &[]);
         let rep = solve_scene(&sc).unwrap();
-        let total = sc.vertical_load().total(sc.line.length);
+        let total = riser::loads::vertical_load(&sc).total(sc.line.length);
         // the supports carry the weight: F_top + F_bottom (on the line) + total load = 0
         let f = rep.solution.reactions[0] + rep.solution.reactions[1] + Vector3::new(0.0, 0.0, total);
         println!("{name}: reactions + load = {f:?} N (load {total:.1} N)");
@@ -154,7 +156,7 @@ fn local_extrema(rep: &StaticReport) -> (Vec<f64>, Vec<f64>) {
 #[test]
 fn lazy_wave_has_sag_and_hog_bends_and_matches_the_piecewise_catenary() {
     let sc = scene("lazy_wave", &[]);
-    let w = -sc.vertical_load().uniform;
+    let w = -riser::loads::vertical_load(&sc).uniform;
     let segments = [(50.0, w), (30.0, w - 670.0), (20.0, w)];
     let r = piecewise_catenary(&segments, sc.line.axial_stiffness, 50.0, -40.0).unwrap();
 

@@ -5,7 +5,7 @@
 
 use clap::{Parser, Subcommand};
 use riser::scene::{PARAMETER_NAMES, Scene};
-use riser::statics::report::{StaticReport, solve_scene};
+use riser::sim::report::{StaticReport, solve_scene};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -223,8 +223,8 @@ fn run(
     json: bool,
     out: Option<PathBuf>,
 ) -> Result<(), String> {
-    use riser::dynamics::Outputs;
-    use riser::dynamics::run::{Heave, Simulation};
+    use riser::model::Outputs;
+    use riser::sim::{Heave, Simulation};
     if !(duration.is_finite() && duration > 0.0) {
         return Err(format!("--duration must be positive, got {duration}"));
     }
@@ -352,15 +352,11 @@ fn run(
     }
 }
 
-fn write_run_csv(
-    dir: &Path,
-    series: &[riser::dynamics::Outputs],
-    shapes: &[(f64, Vec<[f64; 4]>)],
-) -> std::io::Result<()> {
+fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 4]>)]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("timeseries.csv"))?);
     write!(f, "t")?;
-    for n in riser::dynamics::Outputs::NAMES {
+    for n in riser::model::Outputs::NAMES {
         write!(f, ",{n}")?;
     }
     writeln!(f)?;

@@ -43,8 +43,8 @@
 //! (the first four steps) give lower degrees. The price of the high degree is
 //! that a jump in the input (not a physical motion) overshoots for four steps.
 
-use crate::dynamics::HangOff;
-use crate::rod::kinematics::V3;
+use crate::math::V3;
+use crate::model::HangOff;
 use nalgebra::{SMatrix, SVector};
 
 /// Pieces of information that predict a step's end (the degree of (7.1) + 1).

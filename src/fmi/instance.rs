@@ -4,11 +4,11 @@
 
 use super::input_path::{HISTORY_VALUES, InputHistory};
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
-use crate::dynamics::run::Simulation;
-use crate::dynamics::serialize::fnv1a;
-use crate::dynamics::{HangOff, Outputs, State};
-use crate::rod::kinematics::V3;
+use crate::math::V3;
+use crate::model::serialize::fnv1a;
+use crate::model::{HangOff, Outputs, State};
 use crate::scene::Scene;
+use crate::sim::Simulation;
 use std::path::PathBuf;
 
 /// fmi2Status.

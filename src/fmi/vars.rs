@@ -58,7 +58,7 @@ mod tests {
             assert!(MODEL_DESCRIPTION.contains(&needle), "{needle}");
         }
         assert!(MODEL_DESCRIPTION.contains(GUID));
-        // every DESIGN.md output and input exists
+        // every output and input of docs/interface.md exists
         for n in ["heave", "surge", "sway", "heave_velocity", "top_tension", "top_force_z", "work_hydro", "shape[20].z"]
         {
             assert!(vr_of(n).is_some(), "{n}");

@@ -1,7 +1,7 @@
 //! Scene files (TOML, serde): the line, its ends, the environment, the current,
 //! buoyancy modules and the analysis settings, all in SI units. Built-in
 //! scenes ship in `scenes/` and are compiled in. Parameters can be overridden
-//! by the names of DESIGN.md (the same names the FMU uses).
+//! by the FMU's parameter names (docs/interface.md).
 
 mod overrides;
 mod validate;
@@ -9,12 +9,7 @@ mod validate;
 pub use overrides::PARAMETER_NAMES;
 pub use validate::FieldError;
 
-use crate::hydro::current::{Current, CurrentProfile};
-use crate::hydro::fluid::Fluid;
-use crate::hydro::morison::DragCoefficients;
-use crate::hydro::weight::{BuoyancySection, VerticalLoad};
-use crate::rod::kinematics::V3;
-use crate::rod::model::{EndBc, Rod, Stiffness};
+use crate::math::V3;
 use serde::{Deserialize, Serialize};
 
 /// Built-in scenes: (name, TOML text).
@@ -321,7 +316,7 @@ impl Scene {
         if errs.is_empty() { Ok(()) } else { Err(SceneError::Invalid(errs)) }
     }
 
-    /// Applies `name=value` overrides (DESIGN.md parameter names), then validates.
+    /// Applies `name=value` overrides (the FMU's parameter names), then validates.
     pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<Scene, SceneError> {
         for s in sets {
             let s = s.as_ref();
@@ -335,7 +330,7 @@ impl Scene {
         Ok(self)
     }
 
-    /// Sets one parameter by its DESIGN.md name (no validation of the whole scene).
+    /// Sets one parameter by its FMU parameter name (no validation of the whole scene).
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), SceneError> {
         overrides::set(self, name, value)
     }
@@ -350,77 +345,7 @@ impl Scene {
         V3::zeros()
     }
 
-    /// Section stiffness (the paper's: shear penalty = EA).
-    pub fn stiffness(&self) -> Stiffness {
-        Stiffness::paper(self.line.axial_stiffness, self.line.bending_stiffness, self.line.torsional_stiffness)
-    }
-
-    /// The discrete rod: pinned hang-off, pinned anchor with its twist held.
-    pub fn rod(&self) -> Rod {
-        Rod::new(self.analysis.n_elements, self.line.length, self.stiffness(), [EndBc::PINNED, EndBc::PINNED_NO_TWIST])
-    }
-
-    /// Weight, buoyancy and buoyancy modules.
-    pub fn vertical_load(&self) -> VerticalLoad {
-        let mut v = VerticalLoad::new(
-            self.line.mass_per_length,
-            self.line.outer_diameter,
-            self.environment.water_density,
-            self.environment.gravity,
-        );
-        v.sections =
-            self.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
-        v
-    }
-
-    /// Morison drag coefficients ½ ρw D C_D.
-    pub fn drag_coefficients(&self) -> DragCoefficients {
-        DragCoefficients::new(
-            self.environment.water_density,
-            self.line.outer_diameter,
-            self.line.cd_normal,
-            self.line.cd_tangential,
-        )
-    }
-
-    /// Drag (with the current) and normal added mass of the line.
-    pub fn fluid(&self) -> Fluid {
-        let k = self.drag_coefficients();
-        let drag = if k.is_zero() { None } else { Some((k, self.current())) };
-        let d = self.line.outer_diameter;
-        let added_mass = self.line.ca_normal * self.environment.water_density * std::f64::consts::PI * d * d / 4.0;
-        Fluid { drag, added_mass }
-    }
-
-    /// The current profile.
-    pub fn current(&self) -> Current {
-        let c = &self.current;
-        let dir = V3::new(c.direction[0], c.direction[1], 0.0);
-        let direction = if dir.norm() > 0.0 { dir.normalize() } else { V3::x() };
-        let surface_z = self.environment.water_surface_z;
-        let profile = match c.profile {
-            ProfileKind::None => CurrentProfile::None,
-            ProfileKind::Uniform => CurrentProfile::Uniform { speed: c.speed.unwrap_or(0.0) },
-            ProfileKind::LinearS => CurrentProfile::LinearInS {
-                top: c.top.unwrap_or(0.0),
-                bottom: c.bottom.unwrap_or(0.0),
-                length: self.line.length,
-            },
-            ProfileKind::LinearDepth => CurrentProfile::LinearInDepth {
-                top: c.top.unwrap_or(0.0),
-                bottom: c.bottom.unwrap_or(0.0),
-                depth: c.depth.unwrap_or(1.0),
-                surface_z,
-            },
-            ProfileKind::Table => CurrentProfile::Table {
-                rows: c.table.clone().unwrap_or_default().iter().map(|r| (r[0], r[1])).collect(),
-                surface_z,
-            },
-        };
-        Current { profile, direction }
-    }
-
-    /// Rotary inertia per length, kg m (default m D²/8, DESIGN.md).
+    /// Rotary inertia per length, kg m (default m D²/8).
     pub fn rotary_inertia(&self) -> f64 {
         self.line.rotary_inertia.unwrap_or(self.line.mass_per_length * self.line.outer_diameter.powi(2) / 8.0)
     }

@@ -1,4 +1,4 @@
-//! Overrides by the parameter names of DESIGN.md (`--set name=value` on the
+//! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
 use super::{Buoyancy, Model, ProfileKind, Scene, SceneError};

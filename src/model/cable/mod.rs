@@ -1,0 +1,277 @@
+//! The cable model (docs/theory.md §6): a line whose bending and torsion do
+//! not matter. Position-only nodes joined by straight two-node segments, an
+//! elastic tension-only axial law, the same loads as the rod (weight,
+//! buoyancy and modules, Morison drag, normal added mass) and the same
+//! energy–momentum conserving midpoint scheme, through the shared Newton
+//! iteration of [`crate::solve::newton`].
+//!
+//! Segment e joins nodes e and e+1, reference length l = L/N; with
+//! d = x_{e+1} − x_e the stretch is λ = |d|/l and the strain energy
+//!   W = ½ EA l (λ − 1)₊²                                               (6.1)
+//! (a cable carries no compression). Unknowns: the node positions, three per
+//! node, so the line has 3(N+1) unknowns against the rod's 15N+9.
+
+pub mod statics;
+mod step;
+
+pub use step::CableWorkspace;
+
+use crate::loads::weight::VerticalLoad;
+use crate::loads::{self, fluid::Fluid};
+use crate::math::band::{BandedSystem, LinearSolveError};
+use crate::math::{M3, V3};
+use crate::scene::Scene;
+
+/// Geometry and axial stiffness of a discretised cable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cable {
+    /// Unstretched length L, m.
+    pub length: f64,
+    /// Segments N.
+    pub n_el: usize,
+    /// Segment reference length l = L/N, m.
+    pub l: f64,
+    /// EA, N.
+    pub axial_stiffness: f64,
+    /// Whether the position of the end at S = 0 (the hang-off) and S = L (the
+    /// anchor) is prescribed.
+    pub ends_fixed: [bool; 2],
+}
+
+/// Unknowns per node.
+pub const NODE_DOF: usize = 3;
+
+impl Cable {
+    pub fn new(length: f64, n_el: usize, axial_stiffness: f64, ends_fixed: [bool; 2]) -> Self {
+        Cable { length, n_el, l: length / n_el as f64, axial_stiffness, ends_fixed }
+    }
+
+    /// Reference arc length of node a, m.
+    pub fn s_node(&self, a: usize) -> f64 {
+        a as f64 * self.l
+    }
+
+    /// Unknowns of the line.
+    pub fn n_dof(&self) -> usize {
+        NODE_DOF * (self.n_el + 1)
+    }
+
+    /// The tangent's sparsity: one 6×6 block per segment, overlapping at the nodes.
+    pub fn new_system(&self) -> Result<BandedSystem, LinearSolveError> {
+        BandedSystem::new(self.n_el, 2 * NODE_DOF, NODE_DOF)
+    }
+
+    /// Fixed unknowns (the prescribed ends).
+    pub fn fixed_dofs(&self) -> Vec<usize> {
+        let mut v = Vec::new();
+        for (end, &fixed) in self.ends_fixed.iter().enumerate() {
+            if fixed {
+                let a = if end == 0 { 0 } else { self.n_el };
+                v.extend(NODE_DOF * a..NODE_DOF * a + NODE_DOF);
+            }
+        }
+        v
+    }
+
+    /// Segment stiffness k = EA l (the factor of (6.1)), N m.
+    fn k(&self) -> f64 {
+        self.axial_stiffness * self.l
+    }
+
+    /// Stretch λ = |d|/l of segment e.
+    pub fn stretch(&self, x: &[V3], e: usize) -> f64 {
+        (x[e + 1] - x[e]).norm() / self.l
+    }
+
+    /// Axial force of segment e, EA (λ − 1)₊, N.
+    pub fn tension(&self, x: &[V3], e: usize) -> f64 {
+        self.axial_stiffness * (self.stretch(x, e) - 1.0).max(0.0)
+    }
+
+    /// Strain energy Σ W_e (6.1), J.
+    pub fn strain_energy(&self, x: &[V3]) -> f64 {
+        (0..self.n_el).map(|e| 0.5 * self.k() * (self.stretch(x, e) - 1.0).max(0.0).powi(2)).sum()
+    }
+
+    /// Position at arc length S (linear between nodes), m.
+    pub fn position_at(&self, x: &[V3], s: f64) -> V3 {
+        let s = s.clamp(0.0, self.length);
+        let e = ((s / self.l) as usize).min(self.n_el - 1);
+        let xi = (s - self.s_node(e)) / self.l;
+        x[e] * (1.0 - xi) + x[e + 1] * xi
+    }
+
+    /// Largest relative round-off of a residual component at positions `x`, N.
+    pub fn residual_roundoff(&self, x: &[V3]) -> f64 {
+        let extent = x.iter().fold(0.0f64, |m, p| m.max(p.norm())).max(self.length);
+        self.axial_stiffness * f64::EPSILON * extent / self.l
+    }
+
+    /// Internal force of segment e on its end node e+1, f = 2 g d / l², and
+    /// its derivative K = ∂f/∂x_{e+1} (on node e: −f, −K), for the energy
+    /// slope g = ∂W/∂C (C = λ²) evaluated along `d_eval` (6.2):
+    ///   K = (2/l²) [g c I + (∂g/∂λ1) d_eval ⊗ d1/(λ1 l²)],
+    /// c = ∂d_eval/∂d1 (½ at the midpoint, 1 in statics), d1 the trial chord.
+    fn segment_force(&self, d_eval: &V3, d1: &V3, lam1: f64, g: f64, dg: f64, c: f64) -> (V3, M3) {
+        let l2 = self.l * self.l;
+        let f = d_eval * (2.0 * g / l2);
+        let k = (M3::identity() * (g * c) + d_eval * d1.transpose() * (dg / (lam1 * l2))) * (2.0 / l2);
+        (f, k)
+    }
+
+    /// Static energy slope g = W'(C) = k (λ − 1)₊/(2λ) and dg/dλ.
+    fn static_slope(&self, lam: f64) -> (f64, f64) {
+        let e = lam - 1.0;
+        if e > 0.0 { (0.5 * self.k() * e / lam, 0.5 * self.k() / (lam * lam)) } else { (0.0, 0.0) }
+    }
+
+    /// The discrete gradient (6.3): g = [W(λ1) − W(λ0)]/(λ1² − λ0²), so that
+    /// f·(x_{n+1} − x_n) = W(λ1) − W(λ0) exactly, and ∂g/∂λ1. Written without
+    /// the difference quotient where both states are taut (no cancellation).
+    pub fn discrete_slope(&self, lam0: f64, lam1: f64) -> (f64, f64) {
+        let k = self.k();
+        let (e0, e1) = (lam0 - 1.0, lam1 - 1.0);
+        let s = lam0 + lam1;
+        if e0 >= 0.0 && e1 >= 0.0 {
+            (0.5 * k * (e0 + e1) / s, k / (s * s))
+        } else if e0 <= 0.0 && e1 <= 0.0 {
+            (0.0, 0.0)
+        } else {
+            // one state slack: (e1 − e0) is at least the taut state's strain
+            let n = 0.5 * k * (e1.max(0.0).powi(2) - e0.max(0.0).powi(2));
+            let dn = k * e1.max(0.0);
+            let d = (e1 - e0) * s;
+            let dd = s + (e1 - e0);
+            (n / d, (dn * d - n * dd) / (d * d))
+        }
+    }
+
+    /// Kelvin–Voigt damping slope (6.5): g_η = k (η/h) (λ1 − λ0)/(λ0 + λ1),
+    /// dissipating k (η/h)(λ1 − λ0)² ≥ 0 over the step, and ∂g_η/∂λ1.
+    pub fn damping_slope(&self, lam0: f64, lam1: f64, eta_over_h: f64) -> (f64, f64) {
+        let s = lam0 + lam1;
+        let c = self.k() * eta_over_h;
+        (c * (lam1 - lam0) / s, c * 2.0 * lam0 / (s * s))
+    }
+
+    /// Energy dissipated by the damping of segment e over a step, J.
+    pub fn damping_dissipation(&self, lam0: f64, lam1: f64, eta_over_h: f64) -> f64 {
+        self.k() * eta_over_h * (lam1 - lam0).powi(2)
+    }
+
+    /// Adds the static internal force ∂W/∂x to `r` and its tangent to `sys`.
+    pub fn add_static_internal_force(&self, x: &[V3], r: &mut [f64], mut sys: Option<&mut BandedSystem>) {
+        for e in 0..self.n_el {
+            let d = x[e + 1] - x[e];
+            let lam = d.norm() / self.l;
+            let (g, dg) = self.static_slope(lam);
+            let (f, k) = self.segment_force(&d, &d, lam, g, dg, 1.0);
+            add_segment(e, &f, &k, r, sys.as_deref_mut());
+        }
+    }
+}
+
+/// Adds a segment's internal force (f on node e+1, −f on node e) to `r` and
+/// its derivative K (blocks [[K, −K], [−K, K]]) to `sys`.
+fn add_segment(e: usize, f: &V3, k: &M3, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+    let (a, b) = (NODE_DOF * e, NODE_DOF * (e + 1));
+    for c in 0..3 {
+        r[a + c] -= f[c];
+        r[b + c] += f[c];
+    }
+    if let Some(sys) = sys {
+        sys.add_block(e, |i, j| {
+            let sign = if (i < 3) == (j < 3) { 1.0 } else { -1.0 };
+            sign * k[(i % 3, j % 3)]
+        });
+    }
+}
+
+/// Everything about a cable line that does not change during a run.
+#[derive(Debug, Clone)]
+pub struct CableModel {
+    pub cable: Cable,
+    /// ρ̄, kg/m.
+    pub mass_per_length: f64,
+    /// Segment mass matrix (scalar factors of I3), kg: the average of the
+    /// lumped and the consistent mass, ρ̄ l/12 [[5, 1], [1, 5]] (6.4).
+    pub mass: [[f64; 2]; 2],
+    pub vertical: VerticalLoad,
+    pub fluid: Fluid,
+    /// Nodal vertical load ∫ N_a q dS, N (z components).
+    f_grav: Vec<f64>,
+}
+
+impl CableModel {
+    pub fn new(cable: Cable, mass_per_length: f64, vertical: VerticalLoad, fluid: Fluid) -> Self {
+        let m = mass_per_length * cable.l / 12.0;
+        let f_grav = nodal_vertical_load(&cable, &vertical);
+        CableModel { cable, mass_per_length, mass: [[5.0 * m, m], [m, 5.0 * m]], vertical, fluid, f_grav }
+    }
+
+    /// The cable of a scene: the scene's line without its bending and torsion.
+    pub fn from_scene(scene: &Scene) -> Self {
+        let cable = Cable::new(scene.line.length, scene.analysis.n_elements, scene.line.axial_stiffness, [true, true]);
+        CableModel::new(cable, scene.line.mass_per_length, loads::vertical_load(scene), loads::fluid(scene))
+    }
+
+    /// Nodal vertical load, N (one value per node: the z component).
+    pub fn gravity_vector(&self) -> &[f64] {
+        &self.f_grav
+    }
+
+    /// Potential of the vertical load, −∫ q z dS, J (exact for linear z).
+    pub fn potential_energy(&self, x: &[V3]) -> f64 {
+        -x.iter().zip(&self.f_grav).map(|(p, f)| p.z * f).sum::<f64>()
+    }
+
+    /// Kinetic energy ½ vᵀ M v, J.
+    pub fn kinetic_energy(&self, v: &[V3]) -> f64 {
+        let m = &self.mass;
+        (0..self.cable.n_el)
+            .map(|e| {
+                let (a, b) = (v[e], v[e + 1]);
+                0.5 * (m[0][0] * a.norm_squared() + 2.0 * m[0][1] * a.dot(&b) + m[1][1] * b.norm_squared())
+            })
+            .sum()
+    }
+
+    /// Linear momentum, kg m/s.
+    pub fn linear_momentum(&self, v: &[V3]) -> V3 {
+        let m = &self.mass;
+        (0..self.cable.n_el).map(|e| (v[e] + v[e + 1]) * (m[0][0] + m[0][1])).sum()
+    }
+
+    /// Angular momentum about the origin, Σ_e Σ_kl M_kl x_k × v_l, kg m²/s.
+    pub fn angular_momentum(&self, x: &[V3], v: &[V3]) -> V3 {
+        let m = &self.mass;
+        (0..self.cable.n_el)
+            .map(|e| {
+                let (xa, xb, va, vb) = (x[e], x[e + 1], v[e], v[e + 1]);
+                xa.cross(&(va * m[0][0] + vb * m[0][1])) + xb.cross(&(va * m[1][0] + vb * m[1][1]))
+            })
+            .sum()
+    }
+
+    /// Total mass, kg.
+    pub fn total_mass(&self) -> f64 {
+        self.mass_per_length * self.cable.length
+    }
+}
+
+/// ∫ N_a q(S) dS at every node, with q piecewise constant (exact).
+fn nodal_vertical_load(cable: &Cable, load: &VerticalLoad) -> Vec<f64> {
+    let mut f = vec![0.0; cable.n_el + 1];
+    for e in 0..cable.n_el {
+        let s0 = cable.s_node(e);
+        for w in load.breakpoints(s0, s0 + cable.l).windows(2) {
+            let (a, b) = ((w[0] - s0) / cable.l, (w[1] - s0) / cable.l);
+            let q = load.at(0.5 * (w[0] + w[1]));
+            // ∫ ξ dS and ∫ (1 − ξ) dS over [a, b] (in ξ), times l
+            let int_xi = 0.5 * (b * b - a * a) * cable.l;
+            f[e] += q * ((b - a) * cable.l - int_xi);
+            f[e + 1] += q * int_xi;
+        }
+    }
+    f
+}

@@ -1,0 +1,367 @@
+//! The cable's step equations (docs/theory.md §6.2), for the shared Newton
+//! iteration: with v_{n+1} = 2(x_{n+1} − x_n)/h − v_n,
+//!   M (v_{n+1} − v_n)/h + f_int(x_n, x_{n+1}) − f_grav − f_fluid,½ = 0     (6.6)
+//! with f_int the discrete gradient of (6.3) along the midpoint chord, plus the
+//! Kelvin–Voigt damping (6.5), and the water at the midpoint as for the rod.
+
+use super::{CableModel, NODE_DOF};
+use crate::loads::fluid::{FluidFactors, segment_fluid_force};
+use crate::math::band::LinearSolveError;
+use crate::math::{M3, V3};
+use crate::model::DynamicOptions;
+use crate::model::RodConfig;
+use crate::model::dissipation::{self, HighFrequency, TripleLayout};
+use crate::model::outputs::{Outputs, SHAPE_POINTS};
+use crate::model::{HangOff, State};
+use crate::model::{Linear, StepEquations};
+use nalgebra::SMatrix;
+
+/// Scratch data of a cable step beyond the linear system, allocated once.
+pub struct CableWorkspace {
+    /// Global fluid force vector, N.
+    fluid: Vec<f64>,
+    /// Candidate new node velocities, m/s.
+    vnew: Vec<V3>,
+    /// Stretches of x_n and of the trial x_{n+1}.
+    lam_n: Vec<f64>,
+    lam_1: Vec<f64>,
+    /// Reactions (force of the supports on the line) at S = 0 and S = L, N.
+    reaction: [V3; 2],
+    /// Inertia rows M a at the end nodes, N.
+    end_inertia: [V3; 2],
+    /// Accelerations of the end segments' nodes [first, second, −, −], m/s².
+    end_accel: [[V3; 4]; 2],
+    /// High-frequency dissipation (§5.10): its parameters (None: ρ∞ = 1),
+    /// each segment's algorithmic damping factor α w_f of this step, the
+    /// triples' layout, which are held, whether the line is free, scratch.
+    hf: Option<HighFrequency>,
+    alg: Vec<f64>,
+    layout: TripleLayout<2>,
+    fixed_triple: Vec<bool>,
+    free: bool,
+    d: Vec<V3>,
+}
+
+fn node(r: &[f64], a: usize) -> V3 {
+    V3::new(r[NODE_DOF * a], r[NODE_DOF * a + 1], r[NODE_DOF * a + 2])
+}
+
+impl StepEquations for CableModel {
+    type Workspace = CableWorkspace;
+
+    fn workspace(&self) -> Result<(CableWorkspace, Linear), LinearSolveError> {
+        let c = &self.cable;
+        let lin = Linear::new(c.new_system()?, c.fixed_dofs());
+        let ws = CableWorkspace {
+            fluid: vec![0.0; c.n_dof()],
+            vnew: vec![V3::zeros(); c.n_el + 1],
+            lam_n: vec![1.0; c.n_el],
+            lam_1: vec![1.0; c.n_el],
+            reaction: [V3::zeros(); 2],
+            end_inertia: [V3::zeros(); 2],
+            end_accel: [[V3::zeros(); 4]; 2],
+            hf: None,
+            alg: vec![0.0; c.n_el],
+            layout: TripleLayout { mass: self.mass, start: [0, 1], n_el: c.n_el, n_positions: c.n_el + 1 },
+            fixed_triple: (0..=c.n_el)
+                .map(|a| (a == 0 && c.ends_fixed[0]) || (a == c.n_el && c.ends_fixed[1]))
+                .collect(),
+            free: !c.ends_fixed[0] && !c.ends_fixed[1],
+            d: vec![V3::zeros(); c.n_el + 1],
+        };
+        Ok((ws, lin))
+    }
+
+    fn force_scale(&self) -> f64 {
+        let weight: f64 = self.gravity_vector().iter().map(|f| f.abs()).sum();
+        weight.max(self.total_mass() * 9.81)
+    }
+
+    fn hang_off_prescribed(&self) -> bool {
+        self.cable.ends_fixed[0]
+    }
+
+    fn begin(&self, ws: &mut CableWorkspace, prev: &State, options: &DynamicOptions) {
+        for e in 0..self.cable.n_el {
+            ws.lam_n[e] = self.cable.stretch(&prev.config.x, e);
+        }
+        // the segments' algorithmic damping α w_f, lagged (5.31)
+        ws.hf = HighFrequency::new(options.rho_infinity);
+        if let Some(hf) = ws.hf {
+            let (v, u) = (&prev.mean_vel, &prev.prev_mean_vel);
+            for e in 0..self.cable.n_el {
+                ws.alg[e] = hf.alpha * dissipation::stress_weight([&v[e], &v[e + 1]], [&u[e], &u[e + 1]]);
+            }
+        }
+    }
+
+    fn predict(
+        &self,
+        _ws: &mut CableWorkspace,
+        prev: &State,
+        trial: &mut State,
+        h: f64,
+        origin: V3,
+        target: HangOff,
+        order: u32,
+    ) {
+        // r_{n+1} = r_n + h (2 v̄_n − v̄_{n−1}) or r_n + h v̄_n, as for the rod (§5.7)
+        let (c1, c0) = if order >= 2 { (2.0, 1.0) } else { (1.0, 0.0) };
+        let n = self.cable.n_el;
+        for a in 0..=n {
+            let fixed = (a == 0 && self.cable.ends_fixed[0]) || (a == n && self.cable.ends_fixed[1]);
+            if !fixed {
+                trial.config.x[a] = prev.config.x[a] + (prev.mean_vel[a] * c1 - prev.prev_mean_vel[a] * c0) * h;
+            }
+        }
+        if self.cable.ends_fixed[0] {
+            trial.config.x[0] = origin + target.displacement;
+        }
+    }
+
+    fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
+        self.cable.residual_roundoff(&cfg.x)
+    }
+
+    fn assemble(
+        &self,
+        ws: &mut CableWorkspace,
+        lin: &mut Linear,
+        prev: &State,
+        cfg: &RodConfig,
+        h: f64,
+        target: HangOff,
+        eta: f64,
+        tangent: bool,
+    ) {
+        let cable = &self.cable;
+        let n = cable.n_el;
+        let (x0, x1) = (&prev.config.x, &cfg.x);
+        lin.r.iter_mut().for_each(|v| *v = 0.0);
+        ws.fluid.iter_mut().for_each(|v| *v = 0.0);
+        if tangent {
+            lin.sys.clear();
+        }
+        ws.end_inertia = [V3::zeros(); 2];
+        for a in 0..=n {
+            ws.vnew[a] = (x1[a] - x0[a]) * (2.0 / h) - prev.vel[a];
+        }
+        if cable.ends_fixed[0] {
+            ws.vnew[0] = target.velocity;
+        }
+        if cable.ends_fixed[1] {
+            ws.vnew[n] = V3::zeros();
+        }
+        let k_inertia = 2.0 / (h * h);
+        let fluid_active = !self.fluid.is_inert();
+        let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
+        let mut ke = SMatrix::<f64, 6, 6>::zeros();
+        for e in 0..n {
+            let (a, b) = (e, e + 1);
+            let off = NODE_DOF * e;
+            // internal force: the discrete gradient along the midpoint chord (6.3), damping (6.5)
+            let d0 = x0[b] - x0[a];
+            let d1 = x1[b] - x1[a];
+            let lam0 = ws.lam_n[e];
+            let lam1 = d1.norm() / cable.l;
+            let (mut g, mut dg) = cable.discrete_slope(lam0, lam1);
+            // Kelvin–Voigt (η/h) and algorithmic (α w_f) damping of the stretch
+            let c_damp = eta / h + if ws.hf.is_some() { ws.alg[e] } else { 0.0 };
+            if c_damp > 0.0 {
+                let (gd, dgd) = cable.damping_slope(lam0, lam1, c_damp);
+                g += gd;
+                dg += dgd;
+                ws.lam_1[e] = lam1;
+            }
+            let (f, k) = cable.segment_force(&((d0 + d1) * 0.5), &d1, lam1, g, dg, 0.5);
+            let mut fe = [-f, f];
+            let mut kb = [[k, -k], [-k, k]];
+            // inertia M (v_{n+1} − v_n)/h (6.4)
+            let acc = [(ws.vnew[a] - prev.vel[a]) / h, (ws.vnew[b] - prev.vel[b]) / h];
+            for i in 0..2 {
+                let fi = acc[0] * self.mass[i][0] + acc[1] * self.mass[i][1];
+                fe[i] += fi;
+                for j in 0..2 {
+                    kb[i][j] += M3::identity() * (k_inertia * self.mass[i][j]);
+                }
+            }
+            if e == 0 {
+                ws.end_inertia[0] = acc[0] * self.mass[0][0] + acc[1] * self.mass[0][1];
+                ws.end_accel[0] = [acc[0], acc[1], V3::zeros(), V3::zeros()];
+            }
+            if e == n - 1 {
+                ws.end_inertia[1] = acc[0] * self.mass[1][0] + acc[1] * self.mass[1][1];
+                ws.end_accel[1] = [acc[0], acc[1], V3::zeros(), V3::zeros()];
+            }
+            // water at the midpoint, v½ = Δx/h, added mass with the step's acceleration (§5.4)
+            if fluid_active {
+                let xm = [(x0[a] + x1[a]) * 0.5, (x0[b] + x1[b]) * 0.5];
+                let vm = [(x1[a] - x0[a]) / h, (x1[b] - x0[b]) / h];
+                let mut ff = [V3::zeros(); 2];
+                let mut kf = [[M3::zeros(); 2]; 2];
+                segment_fluid_force(
+                    &self.fluid,
+                    &xm,
+                    &vm,
+                    &acc,
+                    cable.s_node(e),
+                    cable.l,
+                    fac,
+                    &mut ff,
+                    if tangent { Some(&mut kf) } else { None },
+                );
+                for i in 0..2 {
+                    fe[i] -= ff[i];
+                    for c in 0..3 {
+                        ws.fluid[off + NODE_DOF * i + c] += ff[i][c];
+                    }
+                    for j in 0..2 {
+                        kb[i][j] += kf[i][j];
+                    }
+                }
+            }
+            for i in 0..2 {
+                for c in 0..3 {
+                    lin.r[off + NODE_DOF * i + c] += fe[i][c];
+                }
+            }
+            if tangent {
+                for i in 0..2 {
+                    for j in 0..2 {
+                        ke.fixed_view_mut::<3, 3>(3 * i, 3 * j).copy_from(&kb[i][j]);
+                    }
+                }
+                lin.sys.add_block(e, |i, j| ke[(i, j)]);
+            }
+        }
+        for (a, f) in self.gravity_vector().iter().enumerate() {
+            lin.r[NODE_DOF * a + 2] -= f;
+        }
+        ws.reaction = [node(&lin.r, 0), node(&lin.r, n)];
+    }
+
+    fn residual_norm(&self, lin: &Linear) -> f64 {
+        // NaN anywhere gives ∞ (f64::max would skip it)
+        let mut m: f64 = 0.0;
+        let mut nan = false;
+        let mut fi = 0;
+        for (i, v) in lin.r.iter().enumerate() {
+            if fi < lin.fixed.len() && lin.fixed[fi] == i {
+                fi += 1;
+                continue;
+            }
+            nan |= v.is_nan();
+            m = m.max(v.abs());
+        }
+        if nan { f64::INFINITY } else { m }
+    }
+
+    fn apply_increment(&self, _ws: &mut CableWorkspace, lin: &mut Linear, _prev: &State, cfg: &mut RodConfig) {
+        for (a, x) in cfg.x.iter_mut().enumerate() {
+            *x += node(&lin.du, a);
+        }
+    }
+
+    fn finish(&self, ws: &mut CableWorkspace, state: &State, trial: &mut State, h: f64, options: &DynamicOptions) {
+        let eta = options.structural_damping;
+        // velocities, work and bookkeeping of the converged step (§5.5)
+        let (x0, x1) = (&state.config.x, &trial.config.x);
+        let mut w_hydro = 0.0;
+        for a in 0..=self.cable.n_el {
+            let dx = x1[a] - x0[a];
+            trial.vel[a] = ws.vnew[a];
+            trial.prev_mean_vel[a] = state.mean_vel[a];
+            trial.mean_vel[a] = dx / h;
+            w_hydro += dx.dot(&node(&ws.fluid, a));
+        }
+        let dx0 = x1[0] - x0[0];
+        let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
+        trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
+        trial.work_hydro += w_hydro;
+        if eta > 0.0 {
+            for e in 0..self.cable.n_el {
+                trial.dissipated += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], eta / h);
+            }
+        }
+        if let Some(hf) = ws.hf {
+            // the stress part's dissipation (5.31), the velocity filter (5.32)
+            for e in (0..self.cable.n_el).filter(|&e| ws.alg[e] > 0.0) {
+                trial.algorithmic += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], ws.alg[e]);
+            }
+            let (w, fixed, free) = (&state.hf_weight, &ws.fixed_triple, ws.free);
+            let removed =
+                ws.layout.filter(&trial.config.x, &state.vel, &mut trial.vel, w, fixed, free, hf.tau, &mut ws.d);
+            trial.algorithmic += removed;
+            for a in 0..=self.cable.n_el {
+                let acc = (trial.vel[a] - state.vel[a]) / h;
+                trial.hf_weight[a] = dissipation::filter_weight(&acc, &state.hf_accel[a]);
+                trial.hf_accel[a] = acc;
+            }
+        }
+        trial.end_accel = ws.end_accel;
+        trial.mid_reaction = ws.reaction;
+    }
+}
+
+impl CableModel {
+    /// A cable state at rest at the node positions `x`.
+    pub fn state_at_rest(x: Vec<V3>, time: f64) -> State {
+        State::at_rest(RodConfig { x, xp: Vec::new(), d: Vec::new() }, time)
+    }
+
+    /// Force of the supports on the line at S = 0 and S = L in `state`, N:
+    /// the end rows of the equations of motion at the state (internal force,
+    /// weight and water at the state; inertia with the last step's acceleration).
+    pub fn end_reactions(&self, s: &State) -> [V3; 2] {
+        let c = &self.cable;
+        let n = c.n_el;
+        let x = &s.config.x;
+        let mut out = [V3::zeros(); 2];
+        for (end, e) in [0usize, n - 1].into_iter().enumerate() {
+            let d = x[e + 1] - x[e];
+            let f_int = d / d.norm() * c.tension(x, e);
+            let (row, node) = if end == 0 { (0, 0) } else { (1, n) };
+            let mut f = if end == 0 { -f_int } else { f_int };
+            f.z -= self.gravity_vector()[node];
+            let acc = &s.end_accel[end];
+            f += acc[0] * self.mass[row][0] + acc[1] * self.mass[row][1];
+            if !self.fluid.is_inert() {
+                let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
+                let mut ff = [V3::zeros(); 2];
+                segment_fluid_force(
+                    &self.fluid,
+                    &[x[e], x[e + 1]],
+                    &[s.vel[e], s.vel[e + 1]],
+                    &[acc[0], acc[1]],
+                    c.s_node(e),
+                    c.l,
+                    fac,
+                    &mut ff,
+                    None,
+                );
+                f -= ff[row];
+            }
+            out[end] = f;
+        }
+        out
+    }
+
+    /// Every output quantity of `state` (the rod's names and meanings).
+    pub fn outputs(&self, s: &State) -> Outputs {
+        let c = &self.cable;
+        let x = &s.config.x;
+        let reactions = self.end_reactions(s);
+        let t0 = (x[1] - x[0]).normalize();
+        let t1 = (x[c.n_el] - x[c.n_el - 1]).normalize();
+        let interior = (0..c.n_el).map(|e| c.tension(x, e)).fold(f64::INFINITY, f64::min);
+        let min_tension = (-reactions[0].dot(&t0)).min(reactions[1].dot(&t1)).min(interior);
+        let kinetic = self.kinetic_energy(&s.vel);
+        let strain = c.strain_energy(x);
+        let potential = self.potential_energy(x);
+        let mut shape = [V3::zeros(); SHAPE_POINTS];
+        for (k, p) in shape.iter_mut().enumerate() {
+            *p = c.position_at(x, c.length * k as f64 / (SHAPE_POINTS - 1) as f64);
+        }
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], shape)
+    }
+}

@@ -1,0 +1,125 @@
+//! The quantities a run reports at each output time, with the interface's names (docs/interface.md)
+//! (docs/theory.md §5.6).
+
+use super::State;
+use crate::math::V3;
+
+/// Points of the `shape[k]` output: S = k L / 20, k = 0..=20.
+pub const SHAPE_POINTS: usize = 21;
+
+/// Output quantities at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outputs {
+    /// s.
+    pub time: f64,
+    /// |force at the hang-off|, N (effective tension).
+    pub top_tension: f64,
+    /// Force the line exerts on the vessel, N.
+    pub top_force: V3,
+    /// |force at the anchor|, N.
+    pub bottom_tension: f64,
+    /// Force the line exerts on the anchor, N.
+    pub bottom_force: V3,
+    /// Smallest axial force along the line (Gauss points and ends), N.
+    pub min_tension: f64,
+    /// kinetic + strain + potential, J.
+    pub total_energy: f64,
+    pub kinetic_energy: f64,
+    pub strain_energy: f64,
+    /// Potential of gravity and buoyancy, −∫ q z dS (z from the origin), J.
+    pub potential_energy: f64,
+    /// Work of the hang-off on the line since t = 0, J.
+    pub work_top: f64,
+    /// Work of the water on the line since t = 0, J.
+    pub work_hydro: f64,
+    /// Work of the anchor's twist reaction since t = 0, J (not an FMU output).
+    pub work_anchor: f64,
+    /// Energy dissipated by structural damping since t = 0, J (≥ 0; 0 without damping).
+    pub dissipated_energy: f64,
+    /// Energy removed by the scheme's high-frequency dissipation since t = 0,
+    /// J (≥ 0; 0 with ρ∞ = 1).
+    pub algorithmic_dissipation: f64,
+    /// Centreline at S = k L / 20, m.
+    pub shape: [V3; SHAPE_POINTS],
+}
+
+impl Outputs {
+    /// Names of the scalar outputs, in the order of [`Outputs::values`].
+    pub const NAMES: [&'static str; 14] = [
+        "top_tension",
+        "top_force_x",
+        "top_force_y",
+        "top_force_z",
+        "bottom_tension",
+        "min_tension",
+        "total_energy",
+        "kinetic_energy",
+        "strain_energy",
+        "potential_energy",
+        "work_top",
+        "work_hydro",
+        "dissipated_energy",
+        "algorithmic_dissipation",
+    ];
+
+    /// Scalar outputs in the order of [`Outputs::NAMES`].
+    pub fn values(&self) -> [f64; 14] {
+        [
+            self.top_tension,
+            self.top_force.x,
+            self.top_force.y,
+            self.top_force.z,
+            self.bottom_tension,
+            self.min_tension,
+            self.total_energy,
+            self.kinetic_energy,
+            self.strain_energy,
+            self.potential_energy,
+            self.work_top,
+            self.work_hydro,
+            self.dissipated_energy,
+            self.algorithmic_dissipation,
+        ]
+    }
+
+    /// E(t) − E(0) − W_top − W_hydro − W_anchor + D + D_alg: zero to the
+    /// Newton tolerance (§5.5, §5.9, §5.10), J.
+    pub fn energy_balance_residual(&self, e0: f64) -> f64 {
+        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor
+            + self.dissipated_energy
+            + self.algorithmic_dissipation
+    }
+}
+
+impl Outputs {
+    /// The outputs of state `s` from its end `reactions` (force of the supports
+    /// on the line, N), smallest axial force (N), energies [kinetic, strain,
+    /// potential] (J) and shape points; the work terms are the state's.
+    pub fn of_state(
+        s: &State,
+        reactions: [V3; 2],
+        min_tension: f64,
+        energy: [f64; 3],
+        shape: [V3; SHAPE_POINTS],
+    ) -> Self {
+        let [kinetic, strain, potential] = energy;
+        Outputs {
+            time: s.time,
+            top_tension: reactions[0].norm(),
+            top_force: -reactions[0],
+            bottom_tension: reactions[1].norm(),
+            bottom_force: -reactions[1],
+            min_tension,
+            total_energy: kinetic + strain + potential,
+            kinetic_energy: kinetic,
+            strain_energy: strain,
+            potential_energy: potential,
+            work_top: s.work_top,
+            work_hydro: s.work_hydro,
+            work_anchor: s.work_anchor,
+            dissipated_energy: s.dissipated,
+            algorithmic_dissipation: s.algorithmic,
+            shape,
+        }
+    }
+}

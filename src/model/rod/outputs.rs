@@ -1,0 +1,80 @@
+//! The rod's outputs at a state: end reactions, tensions, energies, shape.
+
+use super::element::{self, ElVec, ElemDofs, Factors};
+use super::{Rod, RodModel};
+use crate::loads::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss};
+use crate::math::V3;
+use crate::model::State;
+use crate::model::outputs::{Outputs, SHAPE_POINTS};
+
+impl RodModel {
+    /// Force of the supports on the line at S = 0 and S = L in `state`, N:
+    /// the end rows of the equations of motion at the state (internal force,
+    /// weight and water at the state; inertia with the last step's acceleration).
+    pub fn end_reactions(&self, s: &State) -> [V3; 2] {
+        let rod = &self.rod;
+        let n = rod.n_el;
+        let mut out = [V3::zeros(); 2];
+        for (end, (e, k)) in [(0usize, 0usize), (n - 1, 2)].into_iter().enumerate() {
+            let el = ElemDofs::gather(&s.config, e);
+            let eps = rod.strains_of(&el, e);
+            let st = rod.stresses(e, &eps);
+            let mut re = ElVec::zeros();
+            element::internal_force(
+                &el,
+                &el,
+                &st,
+                rod.stiff(),
+                Factors::STATIC,
+                rod.h,
+                element::Shear::Spatial(rod.reference_penalty(e)),
+                &mut re,
+                None,
+            );
+            let node = if end == 0 { 0 } else { n };
+            let g = self.gravity_vector();
+            let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);
+            f -= V3::new(g[Rod::x_dof(node)], g[Rod::x_dof(node) + 1], g[Rod::x_dof(node) + 2]);
+            let acc = &s.end_accel[end];
+            for m in 0..4 {
+                f += acc[m] * self.mass.centre[k][m];
+            }
+            if !self.fluid.is_inert() {
+                let mut ff = [V3::zeros(); 4];
+                let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
+                let v = s.hermite_velocity(e);
+                element_fluid_force(
+                    &self.fluid,
+                    FluidFields { c: &el.c, v: &v, a: acc },
+                    &hermite_at_gauss(rod.h),
+                    rod.s_node(e),
+                    rod.h,
+                    fac,
+                    &mut ff,
+                    None,
+                );
+                f -= ff[k];
+            }
+            out[end] = f;
+        }
+        out
+    }
+
+    /// Every output quantity of `state`.
+    pub fn outputs(&self, s: &State) -> Outputs {
+        let rod = &self.rod;
+        let cfg = &s.config;
+        let reactions = self.end_reactions(s);
+        let t0 = cfg.xp[0].normalize();
+        let t1 = cfg.xp[rod.n_el].normalize();
+        let min_tension = (-reactions[0].dot(&t0)).min(reactions[1].dot(&t1)).min(rod.min_gauss_axial_force(cfg));
+        let kinetic = self.kinetic_energy(s);
+        let strain = rod.strain_energy(cfg);
+        let potential = self.potential_energy(cfg);
+        let mut shape = [V3::zeros(); SHAPE_POINTS];
+        for (k, p) in shape.iter_mut().enumerate() {
+            *p = rod.position_at(cfg, rod.length * k as f64 / (SHAPE_POINTS - 1) as f64);
+        }
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], shape)
+    }
+}

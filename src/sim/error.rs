@@ -1,0 +1,49 @@
+//! The crate's error type: every failure is typed; the CLI prints it and the
+//! FMU turns it into an fmi2Status and a logged message.
+
+use crate::model::DynamicsError;
+use crate::model::statics::StaticsError;
+use crate::scene::SceneError;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum RiserError {
+    /// A bad scene, scene file or override.
+    Scene(SceneError),
+    /// No static equilibrium.
+    Statics(StaticsError),
+    /// A dynamic run stopped (the state is kept at the last good time).
+    Dynamics(DynamicsError),
+    /// A feature the scene asks for that this version does not provide.
+    Unsupported(String),
+}
+
+impl std::fmt::Display for RiserError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RiserError::Scene(e) => e.fmt(f),
+            RiserError::Statics(e) => e.fmt(f),
+            RiserError::Dynamics(e) => e.fmt(f),
+            RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for RiserError {}
+
+impl From<SceneError> for RiserError {
+    fn from(e: SceneError) -> Self {
+        RiserError::Scene(e)
+    }
+}
+
+impl From<StaticsError> for RiserError {
+    fn from(e: StaticsError) -> Self {
+        RiserError::Statics(e)
+    }
+}
+
+impl From<DynamicsError> for RiserError {
+    fn from(e: DynamicsError) -> Self {
+        RiserError::Dynamics(e)
+    }
+}

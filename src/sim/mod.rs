@@ -1,0 +1,184 @@
+//! A simulation: a scene, its model, the state and the outputs, as the CLI
+//! and the FMU drive it: the static state ([`report`]), the integrator with
+//! the scene's settings, and hang-off motions; the typed top-level
+//! [`error::RiserError`].
+
+pub mod error;
+pub mod report;
+
+use crate::math::V3;
+use crate::model::cable::CableModel;
+use crate::model::rod::RodModel;
+use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
+use crate::scene::{Model, Scene};
+use crate::sim::report::{StaticReport, solve_scene};
+use crate::solve::{Integrator, SolverLog, StepInfo};
+use error::RiserError;
+
+/// Heave of the hang-off, U0 sin(2π t/T), held at its value after `until`
+/// (the paper's runs; the free-motion run stops the excitation at 15 s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Heave {
+    /// Amplitude U0, m.
+    pub amplitude: f64,
+    /// Period T, s.
+    pub period: f64,
+    /// Time after which the hang-off is held still, s.
+    pub until: Option<f64>,
+    /// Length of a smooth start, s: the amplitude grows as ½(1 − cos(π t/ramp))
+    /// (0: the paper's abrupt start, with a velocity jump at t = 0).
+    pub ramp: f64,
+}
+
+impl Heave {
+    /// Hang-off displacement and velocity at t.
+    pub fn at(&self, t: f64) -> HangOff {
+        let w = 2.0 * std::f64::consts::PI / self.period;
+        let held = self.until.is_some_and(|u| t > u);
+        let tt = if held { self.until.unwrap_or(t) } else { t };
+        let (r, dr) = if self.ramp > 0.0 && tt < self.ramp {
+            let a = std::f64::consts::PI / self.ramp;
+            (0.5 * (1.0 - (a * tt).cos()), 0.5 * a * (a * tt).sin())
+        } else {
+            (1.0, 0.0)
+        };
+        let z = self.amplitude * r * (w * tt).sin();
+        let vz = if held { 0.0 } else { self.amplitude * (r * w * (w * tt).cos() + dr * (w * tt).sin()) };
+        HangOff { displacement: V3::z() * z, velocity: V3::z() * vz }
+    }
+}
+
+/// The time integrator of a scene's line model.
+pub enum Engine {
+    /// The Cosserat director rod.
+    Rod(Box<Integrator<RodModel>>),
+    /// The cable (no bending, no torsion).
+    Cable(Box<Integrator<CableModel>>),
+}
+
+/// `$body` with `$i` bound to the integrator of either model.
+macro_rules! with_integrator {
+    ($engine:expr, $i:ident => $body:expr) => {
+        match $engine {
+            Engine::Rod($i) => $body,
+            Engine::Cable($i) => $body,
+        }
+    };
+}
+
+impl Engine {
+    /// The integrator of the scene's model (`analysis.model`).
+    pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
+        let options = DynamicOptions {
+            time_step: scene.analysis.time_step,
+            newton_tolerance: scene.analysis.newton_tolerance,
+            structural_damping: scene.analysis.structural_damping,
+            rho_infinity: scene.analysis.rho_infinity,
+            ..Default::default()
+        };
+        let origin = scene.hang_off();
+        let engine = match scene.analysis.model {
+            Model::Rod => Integrator::new(RodModel::from_scene(scene), options, origin).map(|i| Engine::Rod(i.into())),
+            Model::Cable => {
+                Integrator::new(CableModel::from_scene(scene), options, origin).map(|i| Engine::Cable(i.into()))
+            }
+        };
+        engine.map_err(|e| RiserError::Unsupported(format!("cannot set up the linear solver: {e}")))
+    }
+
+    pub fn options(&self) -> &DynamicOptions {
+        with_integrator!(self, i => &i.options)
+    }
+
+    pub fn options_mut(&mut self) -> &mut DynamicOptions {
+        with_integrator!(self, i => &mut i.options)
+    }
+
+    /// Sets the sink of the per-iteration solver messages (None: silent).
+    pub fn set_solver_log(&mut self, log: Option<SolverLog>) {
+        with_integrator!(self, i => i.solver_log = log)
+    }
+
+    /// Tangents factorised so far.
+    pub fn factorizations(&self) -> u64 {
+        with_integrator!(self, i => i.factorizations)
+    }
+
+    /// See [`Integrator::invalidate_tangent`].
+    pub fn invalidate_tangent(&mut self) {
+        with_integrator!(self, i => i.invalidate_tangent())
+    }
+
+    /// See [`Integrator::impose_hang_off`].
+    pub fn impose_hang_off(&self, state: &mut State, motion: HangOff) {
+        with_integrator!(self, i => i.impose_hang_off(state, motion))
+    }
+
+    /// See [`Integrator::step`].
+    pub fn step(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        motion: &dyn Fn(f64) -> HangOff,
+    ) -> Result<StepInfo, DynamicsError> {
+        with_integrator!(self, i => i.step(state, h, motion))
+    }
+
+    /// Every output quantity of `state`.
+    pub fn outputs(&self, state: &State) -> Outputs {
+        match self {
+            Engine::Rod(i) => i.model.outputs(state),
+            Engine::Cable(i) => i.model.outputs(state),
+        }
+    }
+
+    /// Reference arc length of every node of `state`, m.
+    pub fn node_arc_lengths(&self) -> Vec<f64> {
+        match self {
+            Engine::Rod(i) => (0..=i.model.rod.n_el).map(|a| i.model.rod.s_node(a)).collect(),
+            Engine::Cable(i) => (0..=i.model.cable.n_el).map(|a| i.model.cable.s_node(a)).collect(),
+        }
+    }
+}
+
+/// A scene set up for a dynamic run, starting from its static equilibrium.
+pub struct Simulation {
+    pub integrator: Engine,
+    pub state: State,
+    /// The static equilibrium the run starts from.
+    pub statics: StaticReport,
+    /// Total energy at t = 0, J (the reference of the energy balance).
+    pub initial_energy: f64,
+}
+
+impl Simulation {
+    /// Solves the scene's statics and prepares the integrator of the scene's
+    /// line model with the scene's time step and Newton tolerance.
+    pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
+        let statics = solve_scene(scene)?;
+        let integrator = Engine::from_scene(scene)?;
+        let state = State::at_rest(statics.solution.config.clone(), 0.0);
+        let initial_energy = integrator.outputs(&state).total_energy;
+        Ok(Simulation { integrator, state, statics, initial_energy })
+    }
+
+    /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
+    pub fn start(&mut self, motion: HangOff) {
+        self.integrator.impose_hang_off(&mut self.state, motion);
+        self.initial_energy = self.integrator.outputs(&self.state).total_energy;
+    }
+
+    /// Outputs of the current state.
+    pub fn outputs(&self) -> Outputs {
+        self.integrator.outputs(&self.state)
+    }
+
+    /// Advances to `t_target` in one internal step (split only if Newton
+    /// needs it); the state's time is then exactly `t_target`.
+    pub fn advance_to(&mut self, t_target: f64, motion: &dyn Fn(f64) -> HangOff) -> Result<(), RiserError> {
+        let h = t_target - self.state.time;
+        self.integrator.step(&mut self.state, h, motion)?;
+        self.state.time = t_target;
+        Ok(())
+    }
+}
