@@ -9,8 +9,8 @@
 //! concrete model. No module depends on itself through others (no cycle).
 //!
 //! Read from the source: every `crate::…` and `super::…` path in code (not in
-//! comments, not in `#[cfg(test)]` modules, where a test may compare two
-//! implementations), resolved to the file of the longest module prefix that
+//! comments, not in `#[cfg(test)]` items, where a test may compare two
+//! implementations; code after such an item is read), resolved to the file of the longest module prefix that
 //! exists. `pub use` lines (re-exports for the users) and `mod` declarations
 //! are not dependencies.
 
@@ -45,10 +45,29 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
 /// `#[cfg(test)]` module, `pub use` re-exports and `mod` declarations.
 fn code_lines(text: &str) -> Vec<String> {
     let mut out = Vec::new();
+    // inside a #[cfg(test)] item: its brace depth and whether it has opened
+    let mut test_item: Option<(i32, bool)> = None;
     for line in text.lines() {
         let t = line.trim_start();
         if t.starts_with("#[cfg(test)]") {
-            break;
+            test_item = Some((0, false));
+            continue;
+        }
+        if let Some((depth, opened)) = test_item.as_mut() {
+            for c in t.chars() {
+                match c {
+                    '{' => {
+                        *depth += 1;
+                        *opened = true;
+                    }
+                    '}' => *depth -= 1,
+                    _ => {}
+                }
+            }
+            if (*opened && *depth <= 0) || (!*opened && t.ends_with(';')) {
+                test_item = None;
+            }
+            continue;
         }
         if t.starts_with("//") || t.starts_with("pub use") || t.starts_with("pub mod") || t.starts_with("mod ") {
             continue;
@@ -232,14 +251,19 @@ fn the_checker_reads_paths_as_the_compiler_does() {
     let module = vec!["model".to_string(), "rod".to_string(), "step".to_string()];
     let code = code_lines(
         "use super::RodModel;\nuse crate::solve::Integrator; // crate::sim\n/// crate::fmi\npub use crate::sim::X;\n\
-         let x = crate::math::band::new(\"crate::fmi\");\n#[cfg(test)]\nmod tests { use crate::sim; }",
+         let x = crate::math::band::new(\"crate::fmi\");\n#[cfg(test)]\nmod tests {\n    use crate::sim;\n}\n\
+         use crate::scene::Scene;",
     );
     let refs = references(&module, false, &code);
-    let want: BTreeSet<Vec<String>> =
-        [vec!["model", "rod", "RodModel"], vec!["solve", "Integrator"], vec!["math", "band", "new"]]
-            .iter()
-            .map(|v| v.iter().map(|s| s.to_string()).collect())
-            .collect();
+    let want: BTreeSet<Vec<String>> = [
+        vec!["model", "rod", "RodModel"],
+        vec!["solve", "Integrator"],
+        vec!["math", "band", "new"],
+        vec!["scene", "Scene"],
+    ]
+    .iter()
+    .map(|v| v.iter().map(|s| s.to_string()).collect())
+    .collect();
     assert_eq!(refs, want);
     let modules: BTreeSet<Vec<String>> = [vec!["model"], vec!["model", "rod"], vec!["solve"]]
         .iter()

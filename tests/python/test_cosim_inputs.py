@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave
-from fmpy import read_model_description
+from slaves import started_slave
 
 AMPLITUDE, PERIOD, RAMP, DURATION, WINDOW = 2.5, 20.0, 20.0, 100.0, 40.0
 
@@ -87,14 +86,7 @@ def test_input_derivatives_give_the_same_accuracy(fmu_path, unzipped, riser_bin,
     # a master that knows the vessel's velocity and acceleration passes them
     # through fmi2SetRealInputDerivatives (orders 1 and 2) at every step
     # (fmpy 0.3.32's own set_input_derivatives only works with 9 inputs)
-    md = read_model_description(fmu_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="derivatives")
-    s.instantiate()
-    s.setupExperiment(startTime=0.0)
-    s.enterInitializationMode()
-    s.setReal([vr["time_step"]], [internal_step(h)])
-    s.exitInitializationMode()
+    s, vr = started_slave(fmu_path, unzipped, "derivatives", reals={"time_step": internal_step(h)})
     n = int(round(DURATION / h))
     time, tension = [], []
     for k in range(n):
@@ -156,13 +148,7 @@ def test_libcosim_drives_it_exactly_as_fmpy_does(fmu_path, h):
 
 
 def test_bad_input_derivatives_are_errors(fmu_path, unzipped):
-    md = read_model_description(fmu_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="d")
-    s.instantiate()
-    s.setupExperiment(startTime=0.0)
-    s.enterInitializationMode()
-    s.exitInitializationMode()
+    s, vr = started_slave(fmu_path, unzipped, "d")
     s.setRealInputDerivatives([vr["heave"]], [1], [0.3])
     s.setRealInputDerivatives([vr["heave"]], [2], [-0.1])
     s.setRealInputDerivatives([vr["heave_velocity"]], [1], [0.2])

@@ -11,8 +11,8 @@ import threading
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
-from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
+from slaves import started_slave
 
 OUT = ["top_tension", "top_force_x", "top_force_z", "min_tension", "total_energy", "work_top", "work_hydro",
        "dissipated_energy", "algorithmic_dissipation", "shape[10].x", "shape[10].z"]
@@ -70,7 +70,7 @@ def test_the_cable_model_through_the_fmu(fmu_path, unzipped, riser_bin):
     balance = res["total_energy"] - res["total_energy"][0] - res["work_top"] - res["work_hydro"] \
         + res["dissipated_energy"] + res["algorithmic_dissipation"]
     assert np.max(np.abs(balance)) <= 1e-6 * np.max(np.abs(res["work_top"]) + np.abs(res["work_hydro"]))
-    s, vr = _slave(fmu_path, unzipped, strings={"model": "cable"})
+    s, vr = started_slave(fmu_path, unzipped, strings={"model": "cable"})
     _run(s, vr, 0.0, 10.0)
     state = s.getFMUstate()
     first = _run(s, vr, 10.0, 20.0)
@@ -79,21 +79,6 @@ def test_the_cable_model_through_the_fmu(fmu_path, unzipped, riser_bin):
     assert np.array_equal(first, _run(s, vr, 10.0, 20.0))
     s.terminate()
     s.freeInstance()
-
-
-def _slave(fmu_path, unzipped, name="riser", scene=None, strings=None):
-    md = read_model_description(fmu_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName=name)
-    s.instantiate()
-    s.setupExperiment(startTime=0.0)
-    s.enterInitializationMode()
-    if scene is not None:
-        s.setString([vr["scene"]], [scene])
-    for k, v in (strings or {}).items():
-        s.setString([vr[k]], [v])
-    s.exitInitializationMode()
-    return s, vr
 
 
 def _run(s, vr, t0, t1, h=0.1):
@@ -108,7 +93,7 @@ def _run(s, vr, t0, t1, h=0.1):
 
 
 def test_state_save_restore_is_bit_for_bit_also_in_a_fresh_process(fmu_path, unzipped, tmp_path):
-    s, vr = _slave(fmu_path, unzipped)
+    s, vr = started_slave(fmu_path, unzipped)
     _run(s, vr, 0.0, 20.0)
     state = s.getFMUstate()
     first = _run(s, vr, 20.0, 40.0)
@@ -127,8 +112,9 @@ def test_state_save_restore_is_bit_for_bit_also_in_a_fresh_process(fmu_path, unz
     code = f"""
 import sys, numpy as np
 sys.path.insert(0, {str(root / 'tests' / 'python')!r})
-from test_fmu import _slave, _run
-s, vr = _slave({str(fmu_path)!r}, {str(unzipped)!r})
+from slaves import started_slave
+from test_fmu import _run
+s, vr = started_slave({str(fmu_path)!r}, {str(unzipped)!r})
 st = s.deSerializeFMUstate(open({str(tmp_path / 'state.bin')!r}, 'rb').read())
 s.setFMUstate(st)
 rows = _run(s, vr, 20.0, 40.0)
@@ -143,13 +129,13 @@ def test_instances_are_independent_in_one_process_and_across_threads(fmu_path, u
     # alone
     ref = {}
     for scene in ["catenary", "lazy_wave"]:
-        s, vr = _slave(fmu_path, unzipped, scene=scene)
+        s, vr = started_slave(fmu_path, unzipped, scene=scene)
         ref[scene] = _run(s, vr, 0.0, 5.0)
         s.terminate()
         s.freeInstance()
     # interleaved in one process
-    a, vra = _slave(fmu_path, unzipped, "a", "catenary")
-    b, vrb = _slave(fmu_path, unzipped, "b", "lazy_wave")
+    a, vra = started_slave(fmu_path, unzipped, "a", "catenary")
+    b, vrb = started_slave(fmu_path, unzipped, "b", "lazy_wave")
     ra, rb = [], []
     t = 0.0
     for _ in range(50):
@@ -160,7 +146,7 @@ def test_instances_are_independent_in_one_process_and_across_threads(fmu_path, u
     assert np.array_equal(np.array(rb), ref["lazy_wave"])
     # four threads, four instances, at the same time
     scenes = ["catenary", "lazy_wave", "catenary", "lazy_wave"]
-    slaves = [_slave(fmu_path, unzipped, f"t{k}", sc) for k, sc in enumerate(scenes)]
+    slaves = [started_slave(fmu_path, unzipped, f"t{k}", sc) for k, sc in enumerate(scenes)]
     results = [None] * 4
 
     def work(k):
@@ -179,7 +165,7 @@ def test_instances_are_independent_in_one_process_and_across_threads(fmu_path, u
 def test_bad_input_is_an_error_not_a_crash(fmu_path, unzipped):
     from fmpy.fmi1 import FMICallException
 
-    s, vr = _slave(fmu_path, unzipped)
+    s, vr = started_slave(fmu_path, unzipped)
     with pytest.raises(FMICallException):
         s.setReal([vr["heave"]], [float("nan")])
     s.reset()
@@ -226,15 +212,7 @@ def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path):
 def test_a_step_newton_cannot_take_is_discarded_with_the_last_good_time(fmu_path, unzipped):
     from fmpy.fmi1 import FMICallException
 
-    md = read_model_description(fmu_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="discard")
-    s.instantiate()
-    s.setupExperiment(startTime=0.0)
-    s.enterInitializationMode()
-    s.setReal([vr["time_step"]], [100.0])
-    s.setInteger([vr["n_elements"]], [10])
-    s.exitInitializationMode()
+    s, vr = started_slave(fmu_path, unzipped, "discard", reals={"time_step": 100.0}, integers={"n_elements": 10})
     # the hang-off thrown 69 m down and 55 m towards the anchor in one 100 s step
     s.setReal([vr["heave"], vr["surge"]], [-69.0, 55.0])
     with pytest.raises(FMICallException) as e:
