@@ -8,6 +8,7 @@ pub mod cable;
 pub mod catenary;
 pub mod config;
 pub mod dissipation;
+pub mod linearized;
 pub mod outputs;
 pub mod rod;
 pub mod serialize;

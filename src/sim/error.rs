@@ -4,6 +4,7 @@
 use crate::model::DynamicsError;
 use crate::model::statics::StaticsError;
 use crate::scene::SceneError;
+use crate::solve::eigen::EigenError;
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum RiserError {
@@ -13,6 +14,8 @@ pub enum RiserError {
     Statics(StaticsError),
     /// A dynamic run stopped (the state is kept at the last good time).
     Dynamics(DynamicsError),
+    /// A modal analysis or a hang-off stiffness failed.
+    Linearized(EigenError),
     /// A feature the scene asks for that this version does not provide.
     Unsupported(String),
 }
@@ -23,6 +26,7 @@ impl std::fmt::Display for RiserError {
             RiserError::Scene(e) => e.fmt(f),
             RiserError::Statics(e) => e.fmt(f),
             RiserError::Dynamics(e) => e.fmt(f),
+            RiserError::Linearized(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
         }
     }
@@ -45,5 +49,11 @@ impl From<StaticsError> for RiserError {
 impl From<DynamicsError> for RiserError {
     fn from(e: DynamicsError) -> Self {
         RiserError::Dynamics(e)
+    }
+}
+
+impl From<EigenError> for RiserError {
+    fn from(e: EigenError) -> Self {
+        RiserError::Linearized(e)
     }
 }

@@ -4,14 +4,19 @@
 //! [`error::RiserError`].
 
 pub mod error;
+pub mod modes;
 pub mod report;
 
-use crate::math::V3;
+use crate::math::{M3, V3};
 use crate::model::cable::CableModel;
+use crate::model::cable::linearized::CableLinearized;
 use crate::model::rod::RodModel;
+use crate::model::rod::linearized::RodLinearized;
+use crate::model::rod::statics::StaticLoads;
 use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
 use crate::scene::{Model, Scene};
-use crate::sim::report::{StaticReport, solve_scene};
+use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
+use crate::solve::eigen::hang_off_stiffness;
 use crate::solve::{Integrator, SolverLog, StepInfo};
 use error::RiserError;
 
@@ -149,6 +154,8 @@ pub struct Simulation {
     pub statics: StaticReport,
     /// Total energy at t = 0, J (the reference of the energy balance).
     pub initial_energy: f64,
+    /// The loads of the statics (for the stiffness at the hang-off).
+    pub static_loads: StaticLoads,
 }
 
 impl Simulation {
@@ -159,7 +166,8 @@ impl Simulation {
         let integrator = Engine::from_scene(scene)?;
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
         let initial_energy = integrator.outputs(&state).total_energy;
-        Ok(Simulation { integrator, state, statics, initial_energy })
+        let static_loads = scene_static_loads(scene);
+        Ok(Simulation { integrator, state, statics, initial_energy, static_loads })
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
@@ -180,5 +188,20 @@ impl Simulation {
         self.integrator.step(&mut self.state, h, motion)?;
         self.state.time = t_target;
         Ok(())
+    }
+
+    /// The line's tangent stiffness at the hang-off at the current state
+    /// (docs/theory.md §8.3): the change of the force of the support on the
+    /// line per metre of hang-off displacement, N/m; the force on the vessel
+    /// (`top_force_*`) changes by minus this.
+    pub fn hang_off_stiffness(&self) -> Result<M3, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) => hang_off_stiffness(&RodLinearized::new(&i.model, &self.static_loads), cfg),
+            Engine::Cable(i) => {
+                hang_off_stiffness(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg)
+            }
+        };
+        Ok(s?)
     }
 }

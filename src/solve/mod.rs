@@ -2,6 +2,7 @@
 //! cable): the time integrator with its Newton iteration and step control
 //! ([`newton`]) and static equilibrium by continuation ([`statics`]).
 
+pub mod eigen;
 pub mod newton;
 pub mod statics;
 

@@ -11,6 +11,7 @@
 //! (a cable carries no compression). Unknowns: the node positions, three per
 //! node, so the line has 3(N+1) unknowns against the rod's 15N+9.
 
+pub mod linearized;
 pub mod statics;
 mod step;
 

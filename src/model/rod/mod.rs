@@ -8,6 +8,7 @@ pub mod dynamic;
 pub mod element;
 pub mod gauss;
 pub mod line;
+pub mod linearized;
 pub mod mass;
 pub mod outputs;
 pub mod statics;

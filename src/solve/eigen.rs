@@ -1,0 +1,261 @@
+//! Linear analyses about a configuration, generic over the model's
+//! [`Linearized`] seam (docs/theory.md §8):
+//! - the natural modes, K φ = ω² M φ on the free unknowns, shift-inverted,
+//!   with faer's dense Cholesky and eigen-solvers (the lines of this project
+//!   have at most a few thousand unknowns, where a dense solve takes seconds:
+//!   docs/performance.md gives the cost) and the band LU for K − σM;
+//! - the line's stiffness at the hang-off, the 3×3 Schur complement of the
+//!   static tangent on the hang-off's position (eq. 8.6), with the band LU.
+
+use crate::math::M3;
+use crate::math::band::LinearSolveError;
+use crate::model::RodConfig;
+use crate::model::linearized::Linearized;
+use faer::{Mat, Side};
+
+/// Why the linear analysis failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EigenError {
+    /// No mode asked for.
+    NoModes,
+    /// Every unknown is held: nothing can vibrate.
+    NoFreeUnknowns,
+    /// The mass matrix is not positive definite (a massless unknown).
+    MassNotPositive,
+    /// The eigen-decomposition did not converge.
+    NotConverged,
+    /// The tangent at the hang-off could not be factorised.
+    Linear(LinearSolveError),
+    /// The hang-off's position is not held, so the line has no stiffness there.
+    HangOffFree,
+    /// The configuration or the matrices are not finite.
+    NotFinite,
+}
+
+impl std::fmt::Display for EigenError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EigenError::NoModes => write!(f, "no modes asked for (the count must be at least 1)"),
+            EigenError::NoFreeUnknowns => write!(f, "every unknown of the line is held: it has no modes"),
+            EigenError::MassNotPositive => {
+                write!(f, "the mass matrix is not positive definite (a mass or rotary inertia is zero)")
+            }
+            EigenError::NotConverged => write!(f, "the eigen-decomposition did not converge"),
+            EigenError::Linear(e) => write!(f, "the line's tangent at the hang-off: {e}"),
+            EigenError::HangOffFree => write!(f, "the hang-off's position is free: the line has no stiffness there"),
+            EigenError::NotFinite => write!(f, "the configuration or the tangent is not finite"),
+        }
+    }
+}
+
+impl std::error::Error for EigenError {}
+
+/// One natural mode.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mode {
+    /// λ = ω², 1/s² (negative: the static state is unstable in this mode).
+    pub eigenvalue: f64,
+    /// Imaginary part of λ, 1/s²: non-zero only when the tangent is not
+    /// symmetric (the steady current's drag) and the mode is a flutter pair.
+    pub eigenvalue_imag: f64,
+    /// The mode over every unknown (zero at the held ones), mass-normalised
+    /// φᵀ M φ = 1 (kg); the real part when λ is complex.
+    pub vector: Vec<f64>,
+}
+
+impl Mode {
+    /// Natural period 2π/ω, s (∞ for λ ≤ 0).
+    pub fn period(&self) -> f64 {
+        if self.eigenvalue > 0.0 { 2.0 * std::f64::consts::PI / self.eigenvalue.sqrt() } else { f64::INFINITY }
+    }
+
+    /// Natural frequency ω/2π, Hz (0 for λ ≤ 0).
+    pub fn frequency(&self) -> f64 {
+        if self.eigenvalue > 0.0 { self.eigenvalue.sqrt() / (2.0 * std::f64::consts::PI) } else { 0.0 }
+    }
+}
+
+/// The modes and how the problem was solved.
+#[derive(Debug, Clone)]
+pub struct Modes {
+    /// The lowest modes, by increasing real part of λ.
+    pub modes: Vec<Mode>,
+    /// Free unknowns (the size of the dense problem).
+    pub size: usize,
+    /// Largest |K − Kᵀ| over the largest |K| of the free unknowns: ~1e-16 for
+    /// a conservative problem (solved as symmetric), larger with the current.
+    pub asymmetry: f64,
+}
+
+/// Dense matrix of the free unknowns `free` of a banded matrix.
+fn dense(sys: &crate::math::band::BandedSystem, free: &[usize]) -> Mat<f64> {
+    Mat::from_fn(free.len(), free.len(), |i, j| sys.get(free[i], free[j]))
+}
+
+/// The shift σ of the inverse iteration, 1/s²: −(2π/1000 s)², below every
+/// natural frequency of a line that is held at its ends (eq. 8.2).
+const SHIFT: f64 = -(2.0 * std::f64::consts::PI / 1000.0) * (2.0 * std::f64::consts::PI / 1000.0);
+
+/// The `count` lowest natural modes of `line` about `cfg` (eqs. 8.1–8.2).
+///
+/// K φ = λ M φ is solved in shift-inverted form: with M = L Lᵀ (Cholesky)
+/// and C = K − σ M, the matrix B = Lᵀ C⁻¹ L has the eigenvalues
+/// μ = 1/(λ − σ), so the lowest modes are its largest and the dense
+/// solver's absolute error ε‖B‖ is a relative error on them. (Solving
+/// L⁻¹ K L⁻ᵀ directly is hopeless: a rod's stiff axial and rotary modes make
+/// its spectrum span 17 decades, and the lowest modes drown in round-off.)
+/// B is solved as self-adjoint when K is symmetric to round-off, as a
+/// general real matrix otherwise (the current's drag); φ = C⁻¹ L y.
+pub fn lowest_modes<L: Linearized>(line: &L, cfg: &RodConfig, count: usize) -> Result<Modes, EigenError> {
+    if count == 0 {
+        return Err(EigenError::NoModes);
+    }
+    let n = line.n_dof();
+    let fixed = line.fixed_dofs();
+    let free: Vec<usize> = (0..n).filter(|i| fixed.binary_search(i).is_err()).collect();
+    if free.is_empty() {
+        return Err(EigenError::NoFreeUnknowns);
+    }
+    let nf = free.len();
+    let mut c_band = line.new_system().map_err(EigenError::Linear)?;
+    let mut m_band = line.new_system().map_err(EigenError::Linear)?;
+    let mut r = vec![0.0; n];
+    line.static_tangent(cfg, &mut r, &mut c_band);
+    line.mass_matrix(cfg, &mut m_band);
+    if !c_band.values.iter().chain(&m_band.values).all(|v| v.is_finite()) {
+        return Err(EigenError::NotFinite);
+    }
+    // asymmetry of K on the free unknowns
+    let (mut asym, mut kmax) = (0.0f64, 0.0f64);
+    for (a, &i) in free.iter().enumerate() {
+        for &j in &free[..=a] {
+            let (kij, kji) = (c_band.get(i, j), c_band.get(j, i));
+            asym = asym.max((kij - kji).abs());
+            kmax = kmax.max(kij.abs()).max(kji.abs());
+        }
+    }
+    let asymmetry = if kmax > 0.0 { asym / kmax } else { 0.0 };
+    let m = dense(&m_band, &free);
+    let llt = m.llt(Side::Lower).map_err(|_| EigenError::MassNotPositive)?;
+    let l = llt.L();
+    // C = K − σ M (same pattern), the supports held, factorised once
+    for (c, mv) in c_band.values.iter_mut().zip(&m_band.values) {
+        *c -= SHIFT * mv;
+    }
+    for &i in &fixed {
+        c_band.constrain(i);
+    }
+    c_band.factorize().map_err(EigenError::Linear)?;
+    // X = C⁻¹ L, column by column through the band LU
+    let mut x = Mat::<f64>::zeros(nf, nf);
+    let mut col = vec![0.0; n];
+    for j in 0..nf {
+        col.iter_mut().for_each(|v| *v = 0.0);
+        for (i, &f) in free.iter().enumerate().skip(j) {
+            col[f] = l[(i, j)];
+        }
+        c_band.solve_in_place(&mut col).map_err(EigenError::Linear)?;
+        for (i, &f) in free.iter().enumerate() {
+            x[(i, j)] = col[f];
+        }
+    }
+    let b = l.transpose() * &x;
+    let count = count.min(nf);
+    // (μ, imaginary part of λ, y) of the wanted modes
+    let mut wanted: Vec<(f64, f64, Mat<f64>)> = Vec::with_capacity(count);
+    if asymmetry < 1e-9 {
+        let sym = Mat::from_fn(nf, nf, |i, j| 0.5 * (b[(i, j)] + b[(j, i)]));
+        let evd = sym.self_adjoint_eigen(Side::Lower).map_err(|_| EigenError::NotConverged)?;
+        let (s, u) = (evd.S(), evd.U());
+        // ascending μ: the lowest modes (largest μ > 0) are at the end
+        for c in (0..nf).rev().take(count) {
+            wanted.push((s[c], 0.0, Mat::from_fn(nf, 1, |i, _| u[(i, c)])));
+        }
+    } else {
+        let evd = b.eigen().map_err(|_| EigenError::NotConverged)?;
+        let (s, u) = (evd.S(), evd.U());
+        let lambda = |c: usize| {
+            let mu = s[c];
+            let inv = mu.re * mu.re + mu.im * mu.im;
+            (SHIFT + mu.re / inv, -mu.im / inv)
+        };
+        let mut order: Vec<usize> = (0..nf).filter(|&c| s[c].re > 0.0).collect();
+        order.sort_by(|&p, &q| lambda(p).0.total_cmp(&lambda(q).0));
+        let mut last = None;
+        for &c in &order {
+            if wanted.len() == count {
+                break;
+            }
+            // of a complex-conjugate pair keep one
+            let (re, im) = lambda(c);
+            if im != 0.0 && last == Some((re, -im)) {
+                continue;
+            }
+            last = Some((re, im));
+            wanted.push((s[c].re, im, Mat::from_fn(nf, 1, |i, _| u[(i, c)].re)));
+        }
+    }
+    let modes = wanted
+        .into_iter()
+        .map(|(mu, imag, y)| {
+            // φ = C⁻¹ L y = X y, mass-normalised
+            let xy = &x * &y;
+            let mut phi = vec![0.0; n];
+            for (i, &f) in free.iter().enumerate() {
+                phi[f] = xy[(i, 0)];
+            }
+            let mut mphi = vec![0.0; n];
+            m_band.mul_add(&phi, &mut mphi);
+            let norm: f64 = phi.iter().zip(&mphi).map(|(a, b)| a * b).sum::<f64>().sqrt();
+            if norm > 0.0 {
+                phi.iter_mut().for_each(|v| *v /= norm);
+            }
+            Mode { eigenvalue: SHIFT + 1.0 / mu, eigenvalue_imag: imag, vector: phi }
+        })
+        .collect();
+    Ok(Modes { modes, size: nf, asymmetry })
+}
+
+/// The line's tangent stiffness at the hang-off about `cfg` (eq. 8.6):
+/// S = K_bb − K_bi K_ii⁻¹ K_ib, the change of the support's reaction on the
+/// line per unit displacement of the hang-off with the other unknowns in
+/// equilibrium (the rest of the supports held), N/m. The force the line
+/// exerts on the vessel changes by −S δ.
+pub fn hang_off_stiffness<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M3, EigenError> {
+    let n = line.n_dof();
+    let fixed = line.fixed_dofs();
+    let b = line.hang_off_rows();
+    if b.iter().any(|i| fixed.binary_search(i).is_err()) {
+        return Err(EigenError::HangOffFree);
+    }
+    let mut sys = line.new_system().map_err(EigenError::Linear)?;
+    let mut r = vec![0.0; n];
+    line.static_tangent(cfg, &mut r, &mut sys);
+    let is_fixed = |i: usize| fixed.binary_search(&i).is_ok();
+    // K_bb, the rows K_b· and the columns K_·b before the supports are imposed
+    let mut s = M3::from_fn(|i, j| sys.get(b[i], b[j]));
+    let rows: Vec<Vec<f64>> = b.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
+    let cols: Vec<Vec<f64>> =
+        b.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
+    if !s.iter().all(|v| v.is_finite()) {
+        return Err(EigenError::NotFinite);
+    }
+    for &i in &fixed {
+        sys.constrain(i);
+    }
+    sys.factorize().map_err(EigenError::Linear)?;
+    for (j, mut dq) in cols.into_iter().enumerate() {
+        // K_ii Δq = −K_ib e_j
+        sys.solve_in_place(&mut dq).map_err(EigenError::Linear)?;
+        for (i, row) in rows.iter().enumerate() {
+            let mut v = 0.0;
+            for k in 0..n {
+                if !is_fixed(k) {
+                    v += row[k] * dq[k];
+                }
+            }
+            s[(i, j)] += v;
+        }
+    }
+    if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
+}

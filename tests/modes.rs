@@ -1,0 +1,234 @@
+//! Natural modes (solve::eigen::lowest_modes) against closed forms: the taut
+//! string, the hanging chain and the cantilever, rod and cable; the mass
+//! matrix against the kinetic energy; mesh convergence.
+
+mod common;
+
+use riser::loads::fluid::Fluid;
+use riser::loads::weight::VerticalLoad;
+use riser::math::{M3, V3, skew};
+use riser::model::cable::linearized::CableLinearized;
+use riser::model::cable::{Cable, CableModel};
+use riser::model::linearized::{Direction, Linearized};
+use riser::model::rod::linearized::RodLinearized;
+use riser::model::rod::statics::{StaticLoads, StaticProblem};
+use riser::model::rod::{EndBc, Rod, RodModel, Stiffness};
+use riser::model::statics::StaticOptions;
+use riser::model::{RodConfig, State};
+use riser::solve::eigen::{Modes, lowest_modes};
+use riser::solve::statics::solve;
+use std::f64::consts::PI;
+
+fn no_gravity() -> VerticalLoad {
+    VerticalLoad { uniform: 0.0, sections: vec![] }
+}
+
+/// Frequencies (Hz) of the modes moving the line mostly in `dir`.
+fn frequencies_in<L: Linearized>(line: &L, cfg: &RodConfig, modes: &Modes, dir: Direction, normal: V3) -> Vec<f64> {
+    modes
+        .modes
+        .iter()
+        .filter(|m| line.motion(cfg, &m.vector, &normal).direction() == dir)
+        .map(|m| m.frequency())
+        .collect()
+}
+
+fn check(what: &str, got: &[f64], exact: &[f64], tol: f64) {
+    assert!(got.len() >= exact.len(), "{what}: only {} modes found", got.len());
+    for (n, (f, e)) in got.iter().zip(exact).enumerate() {
+        let err = (f - e) / e;
+        eprintln!("{what} mode {}: {f:.6} Hz vs closed form {e:.6} Hz ({:+.4} %)", n + 1, 100.0 * err);
+        assert!(err.abs() < tol, "{what} mode {}: {f} Hz vs {e} Hz", n + 1);
+    }
+}
+
+/// A straight vertical rod from the origin down, stretched by `stretch`.
+fn vertical(rod: &Rod, stretch: f64) -> RodConfig {
+    let n_el = rod.n_el;
+    RodConfig {
+        x: (0..=n_el).map(|a| V3::z() * (-rod.s_node(a) * stretch)).collect(),
+        xp: vec![-V3::z() * stretch; n_el + 1],
+        d: vec![M3::from_columns(&[V3::y(), V3::x(), -V3::z()]); 2 * n_el + 1],
+    }
+}
+
+// Taut string with a little bending stiffness, pinned at both ends:
+// ω_n² = [T (nπ/ℓ)² + EI (nπ/ℓ)⁴] / μ, ℓ the stretched length, μ = m/λ.
+#[test]
+fn taut_string_rod_first_three_transverse_frequencies() {
+    let (l0, stretch, ea, ei, m) = (10.0, 1.01, 1e6, 1.0, 1.0);
+    let rod = Rod::new(40, l0, Stiffness::paper(ea, ei, 1.0), [EndBc::PINNED_NO_TWIST, EndBc::PINNED]);
+    let cfg = vertical(&rod, stretch);
+    let model = RodModel::new(rod, m, [1e-6, 1e-6], no_gravity(), Fluid::none());
+    let loads = StaticLoads::gravity_only(no_gravity());
+    let line = RodLinearized::new(&model, &loads);
+    let modes = lowest_modes(&line, &cfg, 12).unwrap();
+    let (t, span, mu) = (ea * (stretch - 1.0), l0 * stretch, m / stretch);
+    let exact: Vec<f64> = (1..=3)
+        .map(|n| {
+            let k = n as f64 * PI / span;
+            ((t * k * k + ei * k.powi(4)) / mu).sqrt() / (2.0 * PI)
+        })
+        .collect();
+    // a vertical line: ŷ is its "out-of-plane" direction, x̂ the in-plane one; the two are degenerate
+    let fy = frequencies_in(&line, &cfg, &modes, Direction::OutOfPlane, V3::y());
+    let fx = frequencies_in(&line, &cfg, &modes, Direction::InPlane, V3::y());
+    check("taut string (rod, y)", &fy, &exact, 0.005);
+    check("taut string (rod, x)", &fx, &exact, 0.005);
+}
+
+#[test]
+fn taut_string_cable_first_three_transverse_frequencies() {
+    let (l0, stretch, ea, m) = (10.0, 1.01, 1e6, 1.0);
+    let n_el = 60;
+    let cable = Cable::new(l0, n_el, ea, [true, true]);
+    let model = CableModel::new(cable, m, no_gravity(), Fluid::none());
+    let cfg = RodConfig {
+        x: (0..=n_el).map(|a| V3::z() * (-(a as f64) * l0 / n_el as f64 * stretch)).collect(),
+        xp: vec![],
+        d: vec![],
+    };
+    let line = CableLinearized::new(&model, false);
+    let modes = lowest_modes(&line, &cfg, 12).unwrap();
+    let (t, span, mu) = (ea * (stretch - 1.0), l0 * stretch, m / stretch);
+    // the discrete string of N segments with the cable's mass ρ̄ l/12 [[5, 1], [1, 5]]:
+    // ω² = (T/(μ ℓ_e²)) 2(1 − cos θ) / ((5 + cos θ)/6), θ = nπ/N — within 0.1 % of the
+    // continuous string for n ≤ 3 at N = 60; the test holds the continuous one to 0.5 %.
+    let exact: Vec<f64> = (1..=3).map(|n| n as f64 / (2.0 * span) * (t / mu).sqrt()).collect();
+    let fy = frequencies_in(&line, &cfg, &modes, Direction::OutOfPlane, V3::y());
+    check("taut string (cable)", &fy, &exact, 0.005);
+}
+
+// Hanging chain, free at the bottom: ω_n = (j_{0,n}/2) √(g/L).
+#[test]
+fn hanging_chain_rod_first_three_frequencies() {
+    let (l, m, g) = (10.0, 1.0, 9.81);
+    let rod = Rod::new(40, l, Stiffness::paper(1e7, 1e-3, 1e-3), [EndBc::PINNED_NO_TWIST, EndBc::FREE]);
+    let vertical_load = VerticalLoad { uniform: -m * g, sections: vec![] };
+    let loads = StaticLoads::gravity_only(vertical_load.clone());
+    let start = rod.straight(V3::zeros(), -V3::z(), V3::y());
+    let sol = solve(&StaticProblem::new(&rod, &loads), start, &StaticOptions::default()).unwrap();
+    let model = RodModel::new(rod, m, [1e-6, 1e-6], vertical_load, Fluid::none());
+    let line = RodLinearized::new(&model, &loads);
+    let modes = lowest_modes(&line, &sol.config, 10).unwrap();
+    let exact: Vec<f64> =
+        common::reference::bessel_j0_zeros(3).iter().map(|j| j / 2.0 * (g / l).sqrt() / (2.0 * PI)).collect();
+    let fy = frequencies_in(&line, &sol.config, &modes, Direction::OutOfPlane, V3::y());
+    check("hanging chain (rod)", &fy, &exact, 0.005);
+}
+
+#[test]
+fn hanging_chain_cable_first_three_frequencies() {
+    let (l, m, g) = (10.0, 1.0, 9.81);
+    let n_el = 80;
+    let cable = Cable::new(l, n_el, 1e7, [true, false]);
+    let model = CableModel::new(cable, m, VerticalLoad { uniform: -m * g, sections: vec![] }, Fluid::none());
+    // static state: the tension m g (L − S) stretches each segment
+    let mut x = vec![V3::zeros(); n_el + 1];
+    for a in 0..n_el {
+        let s_mid = (a as f64 + 0.5) * l / n_el as f64;
+        let stretch = 1.0 + m * g * (l - s_mid) / 1e7;
+        x[a + 1] = x[a] - V3::z() * (l / n_el as f64 * stretch);
+    }
+    let cfg = RodConfig { x, xp: vec![], d: vec![] };
+    let line = CableLinearized::new(&model, false);
+    let modes = lowest_modes(&line, &cfg, 10).unwrap();
+    let exact: Vec<f64> =
+        common::reference::bessel_j0_zeros(3).iter().map(|j| j / 2.0 * (g / l).sqrt() / (2.0 * PI)).collect();
+    let fy = frequencies_in(&line, &cfg, &modes, Direction::OutOfPlane, V3::y());
+    check("hanging chain (cable)", &fy, &exact, 0.005);
+}
+
+// Cantilever (Euler–Bernoulli): ω_n = (β_n L)² √(EI/(m L⁴)), (βL)² = 3.5160, 22.0345.
+#[test]
+fn cantilever_first_two_bending_frequencies() {
+    let (l, m, ei) = (10.0, 1.0, 1e3);
+    let rod = Rod::new(20, l, Stiffness::paper(1e9, ei, 1e3), [EndBc::CLAMPED, EndBc::FREE]);
+    let cfg = rod.straight(V3::zeros(), V3::x(), V3::y());
+    let model = RodModel::new(rod, m, [1e-8, 1e-8], no_gravity(), Fluid::none());
+    let loads = StaticLoads::gravity_only(no_gravity());
+    let line = RodLinearized::new(&model, &loads);
+    let modes = lowest_modes(&line, &cfg, 8).unwrap();
+    let exact: Vec<f64> = [3.5160, 22.0345].iter().map(|b| b * (ei / (m * l.powi(4))).sqrt() / (2.0 * PI)).collect();
+    // the line along x̂: ẑ × x̂ = ŷ is the out-of-plane direction
+    let fy = frequencies_in(&line, &cfg, &modes, Direction::OutOfPlane, V3::y());
+    check("cantilever (y)", &fy, &exact, 0.005);
+    let fz = frequencies_in(&line, &cfg, &modes, Direction::InPlane, V3::y());
+    check("cantilever (z)", &fz, &exact, 0.005);
+}
+
+// The mass matrix is the kinetic energy's: ½ φᵀ M φ = T(velocities φ), with
+// the director rates ḋ_i = θ × d_i, checked against the model's own energy.
+#[test]
+fn rod_mass_matrix_is_the_kinetic_energy() {
+    let rod = Rod::new(6, 12.0, Stiffness::paper(1e6, 1e3, 5e2), [EndBc::PINNED, EndBc::PINNED_NO_TWIST]);
+    let loads = StaticLoads::gravity_only(VerticalLoad { uniform: -100.0, sections: vec![] });
+    let start = riser::model::rod::statics::catenary_start(&rod, &loads.vertical, V3::zeros(), V3::new(8.0, 1.0, -6.0));
+    let fluid = Fluid { drag: None, added_mass: 0.0 };
+    let model = RodModel::new(rod, 30.0, [0.02, 0.03], loads.vertical.clone(), fluid);
+    let line = RodLinearized::new(&model, &loads);
+    let mut m = line.new_system().unwrap();
+    line.mass_matrix(&start, &mut m);
+    let n = line.n_dof();
+    let local = model.rod.local_basis_nodes();
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let phi: Vec<f64> = (0..n).map(|_| rnd()).collect();
+    let mut mphi = vec![0.0; n];
+    m.mul_add(&phi, &mut mphi);
+    let quad: f64 = phi.iter().zip(&mphi).map(|(a, b)| a * b).sum();
+    let mut s = State::at_rest(start.clone(), 0.0);
+    for a in 0..=model.rod.n_el {
+        let (i, ip) = (Rod::x_dof(a), Rod::xp_dof(a));
+        s.vel[a] = V3::new(phi[i], phi[i + 1], phi[i + 2]);
+        s.slope_vel[a] = V3::new(phi[ip], phi[ip + 1], phi[ip + 2]);
+    }
+    for j in 0..model.rod.n_director_nodes() {
+        let i = Rod::theta_dof(j);
+        let mut th = V3::new(phi[i], phi[i + 1], phi[i + 2]);
+        if local.contains(&j) {
+            th = start.d[j] * th;
+        }
+        s.director_vel[j] = skew(&th) * start.d[j];
+    }
+    let t = model.kinetic_energy(&s);
+    eprintln!("½ φᵀMφ = {:.15e}, T = {t:.15e}", 0.5 * quad);
+    assert!((0.5 * quad - t).abs() <= 1e-13 * t);
+}
+
+// Every mode returned solves K φ = λ M φ and is mass-normalised (the catenary
+// scene: the rod's spectrum spans many decades, the test of the shift-invert).
+#[test]
+fn catenary_modes_solve_the_eigenproblem() {
+    let scene = riser::scene::Scene::builtin("catenary").unwrap();
+    let statics = riser::sim::report::solve_scene(&scene).unwrap();
+    let loads = riser::sim::report::scene_static_loads(&scene);
+    let model = RodModel::from_scene(&scene);
+    let line = RodLinearized::new(&model, &loads);
+    let cfg = &statics.solution.config;
+    let modes = lowest_modes(&line, cfg, 12).unwrap();
+    let n = line.n_dof();
+    let (mut k, mut m) = (line.new_system().unwrap(), line.new_system().unwrap());
+    let mut r = vec![0.0; n];
+    line.static_tangent(cfg, &mut r, &mut k);
+    line.mass_matrix(cfg, &mut m);
+    let fixed = line.fixed_dofs();
+    eprintln!("{} free unknowns, asymmetry {:.1e}", modes.size, modes.asymmetry);
+    for md in &modes.modes {
+        let (mut kp, mut mp) = (vec![0.0; n], vec![0.0; n]);
+        k.mul_add(&md.vector, &mut kp);
+        m.mul_add(&md.vector, &mut mp);
+        let scale = kp.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let res = (0..n)
+            .filter(|i| fixed.binary_search(i).is_err())
+            .map(|i| (kp[i] - md.eigenvalue * mp[i]).abs())
+            .fold(0.0, f64::max);
+        let norm: f64 = md.vector.iter().zip(&mp).map(|(a, b)| a * b).sum();
+        eprintln!("T = {:8.4} s: |Kφ − λMφ|/|Kφ| = {:.1e}, φᵀMφ = {norm:.12}", md.period(), res / scale);
+        assert!(res <= 1e-8 * scale);
+        assert!((norm - 1.0).abs() < 1e-12);
+    }
+}
