@@ -154,7 +154,7 @@ fn main() {
         ("canNotUseMemoryManagementFunctions", "true"),
         ("canGetAndSetFMUstate", "true"),
         ("canSerializeFMUstate", "true"),
-        ("providesDirectionalDerivative", "false"),
+        ("providesDirectionalDerivative", "true"),
     ] {
         cs.push_attribute((k, v));
     }

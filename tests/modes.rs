@@ -232,3 +232,146 @@ fn catenary_modes_solve_the_eigenproblem() {
         assert!((norm - 1.0).abs() < 1e-12);
     }
 }
+
+/// Free vibration of a scene's line started with the velocity field of its
+/// first `k` modes (no drag, the conserving scheme): the frequencies of the
+/// modal responses against the modal analysis.
+fn modes_against_free_vibration(model_name: &str, k: usize, dt: f64, duration: f64) {
+    use riser::model::HangOff;
+    use riser::sim::{Engine, Simulation};
+    let scene = riser::scene::Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&[
+            format!("model={model_name}"),
+            "cd_normal=0".into(),
+            "cd_tangential=0".into(),
+            "rho_infinity=1".into(),
+            format!("time_step={dt}"),
+            "newton_tolerance=1e-10".into(),
+        ])
+        .unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let cfg = sim.state.config.clone();
+    let loads = riser::sim::report::scene_static_loads(&scene);
+    // the modes, and M φ of each (the modal coordinate of a displacement u is (Mφ)ᵀu)
+    let (modes, mphi, n_dof) = match &sim.integrator {
+        Engine::Rod(i) => {
+            let line = RodLinearized::new(&i.model, &loads);
+            let modes = lowest_modes(&line, &cfg, k).unwrap();
+            let mut m = line.new_system().unwrap();
+            line.mass_matrix(&cfg, &mut m);
+            let mphi: Vec<Vec<f64>> = modes
+                .modes
+                .iter()
+                .map(|md| {
+                    let mut v = vec![0.0; line.n_dof()];
+                    m.mul_add(&md.vector, &mut v);
+                    v
+                })
+                .collect();
+            (modes, mphi, line.n_dof())
+        }
+        Engine::Cable(i) => {
+            let line = CableLinearized::new(&i.model, false);
+            let modes = lowest_modes(&line, &cfg, k).unwrap();
+            let mut m = line.new_system().unwrap();
+            line.mass_matrix(&cfg, &mut m);
+            let mphi: Vec<Vec<f64>> = modes
+                .modes
+                .iter()
+                .map(|md| {
+                    let mut v = vec![0.0; line.n_dof()];
+                    m.mul_add(&md.vector, &mut v);
+                    v
+                })
+                .collect();
+            (modes, mphi, line.n_dof())
+        }
+    };
+    let rod = matches!(sim.integrator, Engine::Rod(_));
+    let stride = if rod { 12 } else { 3 };
+    let n_nodes = cfg.x.len();
+    // initial velocity: Σ_k v0 φ_k, each mode with a peak velocity of ~1 cm/s
+    let mut q0 = vec![0.0; n_dof];
+    for md in &modes.modes {
+        let big = md.vector.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for (q, v) in q0.iter_mut().zip(&md.vector) {
+            *q += 0.01 * v / big;
+        }
+    }
+    let s = &mut sim.state;
+    for a in 0..n_nodes {
+        let i = stride * a;
+        s.vel[a] = V3::new(q0[i], q0[i + 1], q0[i + 2]);
+        if rod {
+            s.slope_vel[a] = V3::new(q0[i + 3], q0[i + 4], q0[i + 5]);
+        }
+    }
+    if rod {
+        if let Engine::Rod(i) = &sim.integrator {
+            let local = i.model.rod.local_basis_nodes();
+            for j in 0..s.director_vel.len() {
+                let t = Rod::theta_dof(j);
+                let mut th = V3::new(q0[t], q0[t + 1], q0[t + 2]);
+                if local.contains(&j) {
+                    th = cfg.d[j] * th;
+                }
+                s.director_vel[j] = skew(&th) * cfg.d[j];
+            }
+        }
+    }
+    s.mean_vel.clone_from(&s.vel);
+    s.prev_mean_vel.clone_from(&s.vel);
+    s.mean_slope_vel.clone_from(&s.slope_vel);
+    s.prev_mean_slope_vel.clone_from(&s.slope_vel);
+    // modal coordinates from the node translations (and slopes)
+    let coords = |st: &State| -> Vec<f64> {
+        mphi.iter()
+            .map(|mp| {
+                let mut y = 0.0;
+                for a in 0..n_nodes {
+                    let i = stride * a;
+                    let u = st.config.x[a] - cfg.x[a];
+                    y += mp[i] * u.x + mp[i + 1] * u.y + mp[i + 2] * u.z;
+                    if rod {
+                        let up = st.config.xp[a] - cfg.xp[a];
+                        y += mp[i + 3] * up.x + mp[i + 4] * up.y + mp[i + 5] * up.z;
+                    }
+                }
+                y
+            })
+            .collect()
+    };
+    let steps = (duration / dt).round() as usize;
+    let mut series = vec![Vec::with_capacity(steps + 1); modes.modes.len()];
+    let still = |_t: f64| HangOff::default();
+    for step in 0..=steps {
+        if step > 0 {
+            sim.integrator.step(&mut sim.state, dt, &still).unwrap();
+        }
+        for (y, c) in series.iter_mut().zip(coords(&sim.state)) {
+            y.push(c);
+        }
+    }
+    for (md, y) in modes.modes.iter().zip(&series) {
+        let f = common::spectral::peak_near(y, dt, md.frequency());
+        let err = (f - md.frequency()) / md.frequency();
+        eprintln!(
+            "catenary ({model_name}): modal T = {:.4} s, free vibration T = {:.4} s ({:+.3} %)",
+            md.period(),
+            1.0 / f,
+            100.0 * err
+        );
+        assert!(err.abs() < 0.01);
+    }
+}
+
+#[test]
+fn catenary_rod_modes_match_free_vibration() {
+    modes_against_free_vibration("rod", 4, 0.05, 300.0);
+}
+
+#[test]
+fn catenary_cable_modes_match_free_vibration() {
+    modes_against_free_vibration("cable", 4, 0.05, 300.0);
+}

@@ -560,21 +560,35 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     }
 }
 
+/// The derivative of `top_force_*` with respect to `heave`, `surge`, `sway`
+/// (the line's stiffness at the hang-off); other variables get fmi2Error.
+///
 /// # Safety
-/// `c` a live handle; arrays valid for the given lengths.
+/// `c` a live handle; `unknown` and `dv_unknown` valid for `n_unknown`
+/// elements, `known` and `dv_known` for `n_known` (null only when the count is 0).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: Component,
-    _unknown: *const c_uint,
-    _n_unknown: size_t,
-    _known: *const c_uint,
-    _n_known: size_t,
-    _dv_known: *const c_double,
-    _dv_unknown: *mut c_double,
+    unknown: *const c_uint,
+    n_unknown: size_t,
+    known: *const c_uint,
+    n_known: size_t,
+    dv_known: *const c_double,
+    dv_unknown: *mut c_double,
 ) -> c_int {
     unsafe {
-        with(c, None, "fmi2GetDirectionalDerivative", |i| {
-            i.fail("fmi2GetDirectionalDerivative: providesDirectionalDerivative is false")
+        with(c, Some(Op::GetDirectionalDerivative), "fmi2GetDirectionalDerivative", |i| {
+            if (n_unknown > 0 && (unknown.is_null() || dv_unknown.is_null()))
+                || (n_known > 0 && (known.is_null() || dv_known.is_null()))
+            {
+                return i.fail("fmi2GetDirectionalDerivative: null array");
+            }
+            let slice = |p: *const c_uint, n: size_t| if n == 0 { &[][..] } else { std::slice::from_raw_parts(p, n) };
+            let unknowns = slice(unknown, n_unknown);
+            let knowns = slice(known, n_known);
+            let seeds = if n_known == 0 { &[][..] } else { std::slice::from_raw_parts(dv_known, n_known) };
+            let out = if n_unknown == 0 { &mut [][..] } else { std::slice::from_raw_parts_mut(dv_unknown, n_unknown) };
+            i.directional_derivative(unknowns, knowns, seeds, out)
         })
     }
 }

@@ -49,6 +49,7 @@ pub enum Op {
     SetFmuState,
     DoStep,
     GetStatus,
+    GetDirectionalDerivative,
 }
 
 use Mode::*;
@@ -69,6 +70,7 @@ pub fn allowed(op: Op) -> &'static [Mode] {
         Op::SetFmuState => &[StepComplete, StepFailed, Terminated, Error],
         Op::DoStep => &[StepComplete],
         Op::GetStatus => &[StepComplete, StepFailed, Terminated],
+        Op::GetDirectionalDerivative => &[InitializationMode, StepComplete, StepFailed, Terminated],
     }
 }
 
@@ -515,6 +517,67 @@ impl Instance {
                 _ => 0.0,
             },
         })
+    }
+
+    /// fmi2GetDirectionalDerivative: dv_unknown = J dv_known with J the
+    /// derivative of `top_force_*` (unknowns) with respect to `heave`,
+    /// `surge`, `sway` (knowns) at the current state: −S, S the line's tangent
+    /// stiffness at the hang-off (docs/theory.md §8.3). Any other variable is
+    /// an error naming it.
+    pub fn directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        dv_known: &[f64],
+        dv_unknown: &mut [f64],
+    ) -> Status {
+        const F: &str = "fmi2GetDirectionalDerivative";
+        const WHAT: &str = "only the derivatives of top_force_x, top_force_y, top_force_z with respect to heave, \
+                            surge, sway are provided";
+        // spatial axis of each variable: x, y, z
+        let axis = |name: &str, names: [&str; 3]| names.iter().position(|n| *n == name);
+        let mut rows = Vec::with_capacity(unknowns.len());
+        for &vr in unknowns {
+            match variable(vr) {
+                Some(v) => match axis(v.name, ["top_force_x", "top_force_y", "top_force_z"]) {
+                    Some(a) => rows.push(a),
+                    None => return self.fail(&format!("{F}: '{}' is not an unknown of it: {WHAT}", v.name)),
+                },
+                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
+            }
+        }
+        let mut cols = Vec::with_capacity(knowns.len());
+        for &vr in knowns {
+            match variable(vr) {
+                Some(v) => match axis(v.name, ["surge", "sway", "heave"]) {
+                    Some(a) => cols.push(a),
+                    None => return self.fail(&format!("{F}: '{}' is not a known of it: {WHAT}", v.name)),
+                },
+                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
+            }
+        }
+        if let Some(v) = dv_known.iter().find(|v| !v.is_finite()) {
+            return self.fail(&format!("{F}: seed value {v} is not finite"));
+        }
+        if self.mode == InitializationMode {
+            // the static state now, as for the outputs
+            let st = self.initialise();
+            if st != Status::Ok {
+                return st;
+            }
+        }
+        let stiffness = match &self.sim {
+            Some(sim) => sim.hang_off_stiffness(),
+            None => return self.fail(&format!("{F}: no state yet")),
+        };
+        let s = match stiffness {
+            Ok(s) => s,
+            Err(e) => return self.fail(&format!("{F}: {e}")),
+        };
+        for (out, &a) in dv_unknown.iter_mut().zip(&rows) {
+            *out = -cols.iter().zip(dv_known).map(|(&b, dv)| s[(a, b)] * dv).sum::<f64>();
+        }
+        Status::Ok
     }
 
     /// fmi2GetInteger / Boolean / String for one value reference.
