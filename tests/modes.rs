@@ -375,3 +375,52 @@ fn catenary_rod_modes_match_free_vibration() {
 fn catenary_cable_modes_match_free_vibration() {
     modes_against_free_vibration("cable", 4, 0.05, 300.0);
 }
+
+/// Periods of the first `k` modes of the catenary scene with `n` elements.
+fn catenary_periods(model: &str, n: usize, k: usize) -> Vec<f64> {
+    let scene = riser::scene::Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&[format!("model={model}"), format!("n_elements={n}")])
+        .unwrap();
+    riser::sim::modes::scene_modes(&scene, k).unwrap().modes.iter().map(|m| m.period).collect()
+}
+
+/// Mesh convergence of the catenary's first six periods, 10–80 elements,
+/// against 160 elements: the error falls at the order the elements promise.
+fn mesh_convergence(model: &str, min_order: f64, max_error_80: f64) {
+    let k = 6;
+    let reference = catenary_periods(model, 160, k);
+    let meshes = [10, 20, 40, 80];
+    let errors: Vec<Vec<f64>> = meshes
+        .iter()
+        .map(|&n| catenary_periods(model, n, k).iter().zip(&reference).map(|(t, r)| ((t - r) / r).abs()).collect())
+        .collect();
+    eprintln!("catenary ({model}): relative period error against 160 elements (observed order)");
+    for m in 0..k {
+        let mut line = format!("  mode {} (T = {:.4} s):", m + 1, reference[m]);
+        for (i, &n) in meshes.iter().enumerate() {
+            line += &format!(" {n} el {:.2e}", errors[i][m]);
+            if i > 0 {
+                line += &format!(" ({:.1})", (errors[i - 1][m] / errors[i][m]).log2());
+            }
+        }
+        eprintln!("{line}");
+    }
+    for m in 0..k {
+        assert!(errors[3][m] < max_error_80, "mode {}: {:.2e} at 80 elements", m + 1, errors[3][m]);
+        // the mean order from 20 to 80 elements (one step may be off where
+        // the error changes sign or is still pre-asymptotic)
+        let order = (errors[1][m] / errors[3][m]).log2() / 2.0;
+        assert!(order > min_order, "mode {}: order {order:.2}", m + 1);
+    }
+}
+
+#[test]
+fn catenary_rod_modes_converge_with_the_mesh() {
+    mesh_convergence("rod", 3.5, 1e-6);
+}
+
+#[test]
+fn catenary_cable_modes_converge_with_the_mesh() {
+    mesh_convergence("cable", 1.8, 1e-3);
+}
