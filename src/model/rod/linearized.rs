@@ -34,7 +34,7 @@ impl<'a> RodLinearized<'a> {
 /// The element mass matrix in the reduced unknowns (eq. 8.3): the Hermite
 /// mass ρ̄ ∫ N_k N_l dS of the centreline plus the added mass
 /// m_a ∫ N_k N_l (I − t tᵀ) dS, and for the directors, from
-/// ḋ_i = Σ_A L_A ω_A × d_iA, the rotary mass Σ_i J_i ∫ L_A L_B [d_iA]×ᵀ [d_iB]× dS.
+/// ḋ_i = Σ_A L_A ω_A × d_iA, the rotary mass Σ_i J_i ∫ L_A L_B skew(d_iA)ᵀ skew(d_iB) dS.
 pub fn element_mass(model: &RodModel, cfg: &RodConfig, e: usize) -> ElMat {
     let rod = &model.rod;
     let mut me = ElMat::zeros();
