@@ -103,3 +103,50 @@ fn run_rejects_bad_arguments_with_a_message() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--duration"));
 }
+
+#[test]
+fn modes_json_gives_the_periods_and_the_shapes() {
+    let out = riser(&["modes", "catenary", "--count", "4", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let periods: Vec<f64> = v["periods"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(periods.len(), 4);
+    // lowest first; the catenary's first period (tests/modes.rs: 11.04 s)
+    assert!(periods.windows(2).all(|w| w[0] > w[1]));
+    assert!(periods[0] > 5.0 && periods[0] < 30.0);
+    let shapes = v["shapes"].as_array().unwrap();
+    assert_eq!(shapes.len(), 4);
+    for s in shapes {
+        let rows = s.as_array().unwrap();
+        assert_eq!(rows.len(), 61);
+        assert!(rows.iter().all(|r| r.as_array().unwrap().len() == 8));
+    }
+    let dirs: Vec<&str> = v["directions"].as_array().unwrap().iter().map(|x| x.as_str().unwrap()).collect();
+    assert_eq!(dirs[0], "out-of-plane");
+    assert_eq!(dirs[1], "in-plane");
+}
+
+#[test]
+fn modes_of_the_cable_write_csv() {
+    let dir = std::env::temp_dir().join(format!("riser-cli-modes-{}", std::process::id()));
+    let out = riser(&["modes", "catenary", "--set", "model=cable", "--count", "3", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let modes = std::fs::read_to_string(dir.join("modes.csv")).unwrap();
+    assert_eq!(modes.lines().count(), 4);
+    assert!(modes.starts_with("mode,period_s,frequency_hz,direction,in_plane,out_of_plane,axial,torsion"));
+    let shapes = std::fs::read_to_string(dir.join("mode_shapes.csv")).unwrap();
+    assert_eq!(shapes.lines().count(), 1 + 3 * 61);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn modes_bad_input_is_a_clear_error() {
+    let out = riser(&["modes", "catenary", "--count", "0"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--count must be at least 1"));
+    // a line too short to reach its anchor: no static state to vibrate about
+    let out = riser(&["modes", "catenary", "--set", "length=10"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("riser: error:"));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
+}
