@@ -47,7 +47,7 @@ def render(binary):
     out += ["", "## Command line", ""]
     main = subprocess.run([binary, "--help"], check=True, capture_output=True, text=True).stdout
     out += ["```", main.rstrip(), "```", ""]
-    for cmd in ["statics", "run", "params", "model-description", "scene"]:
+    for cmd in ["statics", "run", "modes", "params", "model-description", "scene"]:
         text = subprocess.run([binary, cmd, "--help"], check=True, capture_output=True, text=True).stdout
         out += [f"### `riser {cmd}`", "", "```", text.rstrip(), "```", ""]
     return "\n".join(out)

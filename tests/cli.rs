@@ -1,4 +1,4 @@
-//! The command line as users call it: `riser statics` text, JSON and CSV.
+//! The command line as users call it: `riser statics`, `riser run` and `riser modes`: text, JSON, CSV and SVG.
 
 use std::process::Command;
 
@@ -109,17 +109,35 @@ fn modes_json_gives_the_periods_and_the_shapes() {
     let out = riser(&["modes", "catenary", "--count", "4", "--json"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let periods: Vec<f64> = v["periods"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(v["scene"], "catenary");
+    assert_eq!(v["model"], "rod");
+    assert!(v["unknowns"].as_u64().unwrap() > 0 && v["wall_time"].is_number());
+    let numbers = |key: &str| -> Vec<f64> {
+        v[key].as_array().unwrap_or_else(|| panic!("missing {key}")).iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    // "periods" and "shapes" are the names outside scripts rely on
+    let periods = numbers("periods");
     assert_eq!(periods.len(), 4);
-    // lowest first; the catenary's first period (tests/modes.rs: 11.04 s)
-    assert!(periods.windows(2).all(|w| w[0] > w[1]));
+    assert!(periods.iter().all(|t| t.is_finite() && *t > 0.0), "{periods:?}");
+    // lowest frequency first: the periods decrease; the catenary's first period (tests/modes.rs: 11.04 s)
+    assert!(periods.windows(2).all(|w| w[0] > w[1]), "{periods:?}");
     assert!(periods[0] > 5.0 && periods[0] < 30.0);
+    let freq = numbers("frequencies");
+    assert!(freq.iter().zip(&periods).all(|(f, t)| (f * t - 1.0).abs() < 1e-12));
+    let n_elements = v["n_elements"].as_u64().unwrap() as usize;
     let shapes = v["shapes"].as_array().unwrap();
     assert_eq!(shapes.len(), 4);
     for s in shapes {
         let rows = s.as_array().unwrap();
-        assert_eq!(rows.len(), 61);
-        assert!(rows.iter().all(|r| r.as_array().unwrap().len() == 8));
+        assert_eq!(rows.len(), n_elements + 1);
+        assert!(rows.iter().all(|r| r.as_array().unwrap().iter().filter(|x| x.is_f64() || x.is_i64()).count() == 8));
+    }
+    let fractions = v["fractions"].as_array().unwrap();
+    assert_eq!(fractions.len(), 4);
+    for f in fractions {
+        let f: Vec<f64> = f.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        assert_eq!(f.len(), 4);
+        assert!((f.iter().sum::<f64>() - 1.0).abs() < 0.02, "{f:?}");
     }
     let dirs: Vec<&str> = v["directions"].as_array().unwrap().iter().map(|x| x.as_str().unwrap()).collect();
     assert_eq!(dirs[0], "out-of-plane");
@@ -127,15 +145,53 @@ fn modes_json_gives_the_periods_and_the_shapes() {
 }
 
 #[test]
-fn modes_of_the_cable_write_csv() {
+fn modes_text_has_the_header_and_one_row_per_mode() {
+    let out = riser(&["modes", "catenary", "--set", "n_elements=20", "--count", "3"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].contains("'catenary'") && lines[0].contains("rod") && lines[0].contains("20 elements"), "{text}");
+    assert!(lines[0].contains("free unknowns") && lines[0].contains("without the current"), "{text}");
+    assert!(lines[1].contains("period s") && lines[1].contains("direction"), "{text}");
+    for (k, dir) in [(1, "out-of-plane"), (2, "in-plane"), (3, "out-of-plane")] {
+        let row: Vec<&str> = lines[1 + k].split_whitespace().collect();
+        assert_eq!(row[0], k.to_string(), "{text}");
+        assert!(row[1].parse::<f64>().unwrap() > 0.0);
+        assert_eq!(row[3], dir, "{text}");
+    }
+    assert!(lines[5].contains("statics and 3 modes in"), "{text}");
+    assert!(!text.contains("unstable") && !text.contains("wrote"), "{text}");
+}
+
+#[test]
+fn modes_of_the_cable_write_csv_and_svg() {
     let dir = std::env::temp_dir().join(format!("riser-cli-modes-{}", std::process::id()));
     let out = riser(&["modes", "catenary", "--set", "model=cable", "--count", "3", "--out", dir.to_str().unwrap()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let modes = std::fs::read_to_string(dir.join("modes.csv")).unwrap();
     assert_eq!(modes.lines().count(), 4);
-    assert!(modes.starts_with("mode,period_s,frequency_hz,direction,in_plane,out_of_plane,axial,torsion"));
+    assert!(modes.starts_with("mode,period_s,frequency_hz,direction,in_plane,out_of_plane,axial,torsion\n"));
+    let first: Vec<&str> = modes.lines().nth(1).unwrap().split(',').collect();
+    assert_eq!(first.len(), 8);
+    assert!(first[1].parse::<f64>().unwrap() > 5.0 && first[3] == "out-of-plane", "{modes}");
     let shapes = std::fs::read_to_string(dir.join("mode_shapes.csv")).unwrap();
+    assert!(shapes.starts_with("mode,S,x,y,z,ux,uy,uz,twist\n"));
     assert_eq!(shapes.lines().count(), 1 + 3 * 61);
+    assert!(shapes.lines().skip(1).all(|l| l.split(',').filter(|x| x.parse::<f64>().is_ok()).count() == 9));
+    let svg = std::fs::read_to_string(dir.join("modes.svg")).unwrap();
+    assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{}", &svg[..80]);
+    assert!(svg.trim_end().ends_with("</svg>"));
+    for k in 1..=3 {
+        assert!(svg.contains(&format!("mode {k}: T = ")), "no panel for mode {k}");
+    }
+    assert!(!svg.contains("mode 4:"));
+    // the cable has no twist: three components a panel
+    assert_eq!(svg.matches("<polyline").count(), 3 * 3);
+    assert!(!svg.contains("twist"));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for f in ["modes.csv", "mode_shapes.csv", "modes.svg"] {
+        assert!(text.contains(&format!("wrote {}", dir.join(f).display())), "{text}");
+    }
     std::fs::remove_dir_all(dir).ok();
 }
 
@@ -147,6 +203,13 @@ fn modes_bad_input_is_a_clear_error() {
     // a line too short to reach its anchor: no static state to vibrate about
     let out = riser(&["modes", "catenary", "--set", "length=10"]);
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("riser: error:"));
-    assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("riser: error:") && err.contains("anchor"), "{err}");
+    assert!(!err.contains("panicked"));
+    for args in [&["modes", "no_such_scene"][..], &["modes", "catenary", "--set", "no_such_parameter=1"]] {
+        let out = riser(args);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.starts_with("riser: error:") && !err.contains("panicked"), "{err}");
+    }
 }

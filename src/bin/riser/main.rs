@@ -2,7 +2,11 @@
 //!
 //! `riser statics SCENE [--set name=value]... [--json] [--out DIR]`
 //! `riser run SCENE [--set name=value]... --heave AMPLITUDE,PERIOD [--heave-until T] --duration D [--out DIR] [--json]`
-//! `riser modes SCENE [--set name=value]... [--count N] [--json] [--out DIR]`
+//! `riser modes SCENE [--set name=value]... [--count N] [--json] [--out DIR]` — natural periods and
+//! mode shapes about the static state (modes.rs: text, JSON, modes.csv, mode_shapes.csv, modes.svg)
+//! `riser params`, `riser model-description`, `riser scene SCENE [--set name=value]...`
+
+mod modes;
 
 use clap::{Parser, Subcommand};
 use riser::scene::{PARAMETER_NAMES, Scene};
@@ -68,22 +72,7 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Natural periods and mode shapes of the line about its static state (with added mass).
-    Modes {
-        /// Built-in scene (catenary, lazy_wave) or path to a scene file (TOML).
-        scene: String,
-        /// Override a parameter by name, e.g. --set model=cable (see `riser params`).
-        #[arg(long = "set", value_name = "NAME=VALUE")]
-        set: Vec<String>,
-        /// Number of modes, lowest first.
-        #[arg(long, value_name = "N", default_value_t = 10)]
-        count: usize,
-        /// Print one JSON object (periods, frequencies, directions, fractions, shapes).
-        #[arg(long)]
-        json: bool,
-        /// Write modes.csv and mode_shapes.csv into this directory.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-    },
+    Modes(modes::ModesArgs),
     /// List the parameter names accepted by --set (the FMU's parameters).
     Params,
     /// Print the FMU's modelDescription.xml (generated from modelDescription/variables.csv).
@@ -177,95 +166,6 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
         if let Some(p) = csv {
             println!("  wrote {}", p.display());
         }
-    }
-    Ok(())
-}
-
-fn write_modes_csv(dir: &Path, rep: &riser::sim::modes::ModalReport) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
-    let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("modes.csv"))?);
-    writeln!(f, "mode,period_s,frequency_hz,direction,in_plane,out_of_plane,axial,torsion")?;
-    for m in &rep.modes {
-        let [a, b, c, d] = m.fractions;
-        writeln!(f, "{},{},{},{},{a},{b},{c},{d}", m.number, m.period, m.frequency, m.direction.name())?;
-    }
-    f.flush()?;
-    let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("mode_shapes.csv"))?);
-    writeln!(f, "mode,S,x,y,z,ux,uy,uz,twist")?;
-    for m in &rep.modes {
-        for r in &m.shape {
-            let (p, u) = (r.position, r.displacement);
-            writeln!(f, "{},{},{},{},{},{},{},{},{}", m.number, r.s, p.x, p.y, p.z, u.x, u.y, u.z, r.twist)?;
-        }
-    }
-    f.flush()
-}
-
-fn modes(scene: &str, set: &[String], count: usize, json: bool, out: Option<PathBuf>) -> Result<(), String> {
-    if count == 0 {
-        return Err("--count must be at least 1".into());
-    }
-    let scene = load(scene, set).map_err(|e| e.to_string())?;
-    let t0 = std::time::Instant::now();
-    let rep = riser::sim::modes::scene_modes(&scene, count).map_err(|e| e.to_string())?;
-    let wall = t0.elapsed().as_secs_f64();
-    if let Some(dir) = &out {
-        write_modes_csv(dir, &rep).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
-    }
-    let finite = |v: f64| if v.is_finite() { serde_json::json!(v) } else { serde_json::Value::Null };
-    if json {
-        let v = serde_json::json!({
-            "scene": scene.name,
-            "model": if rep.model == riser::scene::Model::Cable { "cable" } else { "rod" },
-            "n_elements": scene.analysis.n_elements,
-            "unknowns": rep.unknowns,
-            "periods": rep.modes.iter().map(|m| finite(m.period)).collect::<Vec<_>>(),
-            "frequencies": rep.modes.iter().map(|m| m.frequency).collect::<Vec<_>>(),
-            "eigenvalues_imag": rep.modes.iter().map(|m| m.eigenvalue_imag).collect::<Vec<_>>(),
-            "directions": rep.modes.iter().map(|m| m.direction.name()).collect::<Vec<_>>(),
-            "fractions": rep.modes.iter().map(|m| m.fractions.to_vec()).collect::<Vec<_>>(),
-            "shapes": rep.modes.iter().map(|m| m.shape.iter().map(|r| {
-                let (p, u) = (r.position, r.displacement);
-                [r.s, p.x, p.y, p.z, u.x, u.y, u.z, r.twist]
-            }).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            "wall_time": wall,
-        });
-        println!("{v}");
-        return Ok(());
-    }
-    println!(
-        "riser modes: scene '{}' ({}, {} elements, {} free unknowns), about the static state {} the current",
-        scene.name,
-        if rep.model == riser::scene::Model::Cable { "cable" } else { "rod" },
-        scene.analysis.n_elements,
-        rep.unknowns,
-        if scene.analysis.static_current { "with" } else { "without" }
-    );
-    println!(
-        "  {:>4} {:>10} {:>10}  {:<13} {:>8} {:>8} {:>8} {:>8}",
-        "mode", "period s", "freq Hz", "direction", "in-pl %", "out-pl %", "axial %", "tors %"
-    );
-    for m in &rep.modes {
-        let [a, b, c, d] = m.fractions.map(|v| 100.0 * v);
-        let period = if m.eigenvalue > 0.0 {
-            format!("{:10.4}", m.period)
-        } else {
-            format!("unstable (λ = {:.3e})", m.eigenvalue)
-        };
-        print!(
-            "  {:>4} {period} {:>10.5}  {:<13} {a:8.2} {b:8.2} {c:8.2} {d:8.2}",
-            m.number,
-            m.frequency,
-            m.direction.name()
-        );
-        if m.eigenvalue_imag != 0.0 {
-            print!("  (flutter: Im λ = {:.3e} 1/s²)", m.eigenvalue_imag);
-        }
-        println!();
-    }
-    println!("  statics and {} modes in {:.1} ms", rep.modes.len(), wall * 1e3);
-    if let Some(dir) = out {
-        println!("  wrote {} and {}", dir.join("modes.csv").display(), dir.join("mode_shapes.csv").display());
     }
     Ok(())
 }
@@ -492,7 +392,7 @@ fn main() -> ExitCode {
         Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out } => {
             run(&scene, &set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
         }
-        Command::Modes { scene, set, count, json, out } => modes(&scene, &set, count, json, out),
+        Command::Modes(args) => modes::modes(args),
         Command::ModelDescription => {
             print!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())
