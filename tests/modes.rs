@@ -233,6 +233,24 @@ fn catenary_modes_solve_the_eigenproblem() {
     }
 }
 
+/// The `k` lowest modes of `line` about `cfg`, M φ of each (the modal
+/// coordinate of a displacement u is (Mφ)ᵀu) and the number of unknowns.
+fn modes_and_mass_products<L: Linearized>(line: &L, cfg: &RodConfig, k: usize) -> (Modes, Vec<Vec<f64>>, usize) {
+    let modes = lowest_modes(line, cfg, k).unwrap();
+    let mut m = line.new_system().unwrap();
+    line.mass_matrix(cfg, &mut m);
+    let mphi = modes
+        .modes
+        .iter()
+        .map(|md| {
+            let mut v = vec![0.0; line.n_dof()];
+            m.mul_add(&md.vector, &mut v);
+            v
+        })
+        .collect();
+    (modes, mphi, line.n_dof())
+}
+
 /// Free vibration of a scene's line started with the velocity field of its
 /// first `k` modes (no drag, the conserving scheme): the frequencies of the
 /// modal responses against the modal analysis.
@@ -255,38 +273,8 @@ fn modes_against_free_vibration(model_name: &str, k: usize, dt: f64, duration: f
     let loads = riser::sim::report::scene_static_loads(&scene);
     // the modes, and M φ of each (the modal coordinate of a displacement u is (Mφ)ᵀu)
     let (modes, mphi, n_dof) = match &sim.integrator {
-        Engine::Rod(i) => {
-            let line = RodLinearized::new(&i.model, &loads);
-            let modes = lowest_modes(&line, &cfg, k).unwrap();
-            let mut m = line.new_system().unwrap();
-            line.mass_matrix(&cfg, &mut m);
-            let mphi: Vec<Vec<f64>> = modes
-                .modes
-                .iter()
-                .map(|md| {
-                    let mut v = vec![0.0; line.n_dof()];
-                    m.mul_add(&md.vector, &mut v);
-                    v
-                })
-                .collect();
-            (modes, mphi, line.n_dof())
-        }
-        Engine::Cable(i) => {
-            let line = CableLinearized::new(&i.model, false);
-            let modes = lowest_modes(&line, &cfg, k).unwrap();
-            let mut m = line.new_system().unwrap();
-            line.mass_matrix(&cfg, &mut m);
-            let mphi: Vec<Vec<f64>> = modes
-                .modes
-                .iter()
-                .map(|md| {
-                    let mut v = vec![0.0; line.n_dof()];
-                    m.mul_add(&md.vector, &mut v);
-                    v
-                })
-                .collect();
-            (modes, mphi, line.n_dof())
-        }
+        Engine::Rod(i) => modes_and_mass_products(&RodLinearized::new(&i.model, &loads), &cfg, k),
+        Engine::Cable(i) => modes_and_mass_products(&CableLinearized::new(&i.model, false), &cfg, k),
     };
     let rod = matches!(sim.integrator, Engine::Rod(_));
     let stride = if rod { 12 } else { 3 };
