@@ -7,6 +7,7 @@ the committed file is what this script writes.
 Usage: python scripts/interface_doc.py [--bin target/release/riser] [--check]
 """
 import argparse
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -21,6 +22,17 @@ def variables():
             continue
         rows.append(line.split(";"))
     return rows[0], rows[1:]
+
+
+def num(v):
+    """A bound as the CLI prints it: plain between 1e-4 and 1e7, else scientific."""
+    if v == int(v) and abs(v) < 1e7:
+        return str(int(v))
+    if 1e-4 <= abs(v) < 1e7:
+        return repr(v)
+    m, e = f"{v:e}".split("e")
+    m = m.rstrip("0").rstrip(".")
+    return f"{m}e{int(e)}"
 
 
 def render(binary):
@@ -44,6 +56,33 @@ def render(binary):
     for vr, r in enumerate(rows):
         out.append(f"| {vr} | `{r[col['name']]}` | {r[col['causality']]} | {r[col['variability']]} | "
                    f"{r[col['start']]} | {r[col['unit']]} | {r[col['description']]} |")
+    out += ["", "## Parameter ranges", "",
+            "Every parameter (FMU, `--set`, and the scene file's key in the *field* column) must lie in its range:",
+            "the CLI refuses a value outside it naming the parameter and the range, the FMU returns fmi2Error",
+            "from fmi2SetReal/fmi2SetInteger with the same message. One table in the code (`src/scene/ranges.rs`)",
+            "serves all three; `riser params` prints it. Beyond these single-value ranges a scene must make a line:",
+            "the anchor within reach of the line (at most 5 % stretch) and at least 1e-3 of its length away, a",
+            "buoyancy section inside the line with end > start.",
+            "",
+            "| parameter | scene field | range | why |",
+            "|---|---|---|---|"]
+    params = json.loads(subprocess.run([binary, "params", "--json"], check=True, capture_output=True,
+                                       text=True).stdout)
+    for p in params:
+        if "min" in p:
+            unit = "" if p["unit"] == "-" else " " + p["unit"]
+            out.append(f"| `{p['name']}` | `{p['field']}` | [{num(p['min'])}, {num(p['max'])}]{unit} | "
+                       f"{p['reason']} |")
+        else:
+            out.append(f"| `{p['name']}` | | {p['unit'].replace('|', '&#124;')} | |")
+    out += ["",
+            "The FMU's inputs and calls have limits of the same kind: hang-off displacements within ±20 km,",
+            "velocities within ±100 m/s (input derivatives: velocities ±100 m/s, accelerations ±1000 m/s²), a",
+            "start time within ±1e10 s, and at most 1 000 000 internal steps per fmi2DoStep (or per `riser run`).",
+            "A last internal step shorter than 1 % of `time_step` is merged into the one before.",
+            "No output is ever returned with fmi2OK unless it is a finite number: a step whose state is not",
+            "finite is discarded (fmi2Discard, the state kept at the step's start), an initialisation whose",
+            "static state is not finite fails with fmi2Error and a message."]
     out += ["", "## Command line", ""]
     main = subprocess.run([binary, "--help"], check=True, capture_output=True, text=True).stdout
     out += ["```", main.rstrip(), "```", ""]

@@ -43,7 +43,7 @@ fn bad_input_fails_with_a_message_and_no_panic() {
     let out = riser(&["statics", "catenary", "--set", "length=-3"]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("line.length") && err.contains("must be > 0"), "{err}");
+    assert!(err.contains("--set length") && err.contains("is outside [1, 20000] m"), "{err}");
     assert!(!err.contains("panicked"));
     let out = riser(&["statics", "no_such_scene"]);
     assert!(!out.status.success());

@@ -7,8 +7,9 @@ use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
 use crate::model::{HangOff, Outputs, State};
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
+use crate::sim::error::RiserError;
 use std::path::PathBuf;
 
 /// fmi2Status.
@@ -139,6 +140,13 @@ pub struct Instance {
     /// the next step: they plan the hang-off's path (`input_path`).
     history: InputHistory,
     sim: Option<Simulation>,
+    /// The state at the start of the communication step in progress: a step
+    /// whose outputs come out non-finite is discarded back to it (allocated
+    /// at initialisation, copied without allocating in fmi2DoStep).
+    step_start: Option<State>,
+    /// The scene with the master's parameters, once built (parameters the
+    /// master did not set read back as its values).
+    scene: Option<Scene>,
     outputs: Option<Outputs>,
     start_time: f64,
     last_successful_time: f64,
@@ -154,6 +162,18 @@ impl Value {
             Value::Boolean(b) => format!("{b}"),
             Value::String(s) => s.clone(),
         }
+    }
+}
+
+/// Largest |start time| of an experiment, s: at 1e10 s (317 years) a double
+/// still resolves 2 µs, far below the smallest internal time step.
+const MAX_START_TIME: f64 = 1e10;
+
+/// The message of a refused override, without the command line's `--set NAME:`.
+fn override_message(e: &SceneError) -> String {
+    match e {
+        SceneError::Override { message, .. } => message.clone(),
+        other => other.to_string(),
     }
 }
 
@@ -192,6 +212,8 @@ impl Instance {
             inputs: [0.0; 6],
             history: InputHistory::new(),
             sim: None,
+            step_start: None,
+            scene: None,
             outputs: None,
             start_time: 0.0,
             last_successful_time: 0.0,
@@ -209,6 +231,8 @@ impl Instance {
         self.inputs = [0.0; 6];
         self.history = InputHistory::new();
         self.sim = None;
+        self.step_start = None;
+        self.scene = None;
         self.outputs = None;
         self.start_time = 0.0;
         self.last_successful_time = 0.0;
@@ -272,8 +296,12 @@ impl Instance {
 
     /// fmi2SetupExperiment.
     pub fn setup_experiment(&mut self, start_time: f64) -> Status {
-        if !start_time.is_finite() {
-            return self.fail(&format!("start time {start_time} is not finite"));
+        if !(start_time.is_finite() && start_time.abs() <= MAX_START_TIME) {
+            return self.fail(&format!(
+                "start time {} s is outside [-{MAX_START_TIME:e}, {MAX_START_TIME:e}] s (beyond, double precision \
+                 cannot resolve the internal time step)",
+                ranges::number(start_time)
+            ));
         }
         self.start_time = start_time;
         Status::Ok
@@ -340,6 +368,7 @@ impl Instance {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
+        self.scene = Some(scene.clone());
         let mut sim = match Simulation::from_scene(&scene) {
             Ok(s) => s,
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
@@ -359,7 +388,17 @@ impl Instance {
         }
         sim.start(m);
         sim.integrator.invalidate_tangent();
-        self.outputs = Some(sim.outputs());
+        let outputs = sim.outputs();
+        // the boundary's invariant: never an output that is not a number
+        if let Some(name) = outputs.first_non_finite() {
+            return self.fail(&format!(
+                "initialisation failed: the static state of scene '{}' gives a non-finite {name}; the parameters \
+                 are each within their ranges, but together they do not make a line the model can hang",
+                scene.name
+            ));
+        }
+        self.step_start = Some(sim.state.clone());
+        self.outputs = Some(outputs);
         self.log(
             Status::Ok,
             Category::Events,
@@ -399,6 +438,12 @@ impl Instance {
         let path = self.history.plan(now, h, &u, &vin, &sim.state.hang_off);
         let motion = |s: f64| path.at(s);
         let t_end = now + h;
+        if t_end <= now {
+            return self.fail(&format!(
+                "fmi2DoStep: communication step {} s is below the resolution of t = {now} s",
+                ranges::number(h)
+            ));
+        }
         let solver_log = self.logging_on && self.categories[Category::Solver as usize];
         let logger = self.logger.clone();
         let sim = self.sim.as_mut().unwrap();
@@ -408,11 +453,17 @@ impl Instance {
         } else {
             None
         });
+        if let Some(start) = self.step_start.as_mut() {
+            start.clone_from(&sim.state);
+        }
         // every communication step starts from a new tangent, so that results
         // depend on the state alone (a restored state continues bit for bit)
         sim.integrator.invalidate_tangent();
         let dt = sim.integrator.options().time_step;
-        let n = ((h / dt) - 1e-9).ceil().max(1.0) as u64;
+        let n = match crate::sim::internal_steps(h, dt) {
+            Ok(n) => n,
+            Err(m) => return self.fail(&format!("fmi2DoStep: communication step {m}")),
+        };
         let mut result = Ok(());
         for k in 1..=n {
             let target = if k == n { t_end } else { now + k as f64 * dt };
@@ -421,8 +472,20 @@ impl Instance {
                 break;
             }
         }
-        let reached = sim.state.time;
-        self.outputs = Some(sim.outputs());
+        let mut reached = sim.state.time;
+        let mut outputs = sim.outputs();
+        // the boundary's invariant: never an output that is not a number. A
+        // state that gives one is discarded, back to the step's start.
+        if let Some(name) = outputs.first_non_finite() {
+            if let Some(start) = &self.step_start {
+                sim.state.clone_from(start);
+            }
+            let at = reached;
+            reached = sim.state.time;
+            outputs = sim.outputs();
+            result = Err(RiserError::NonFinite { name, time: at });
+        }
+        self.outputs = Some(outputs);
         match result {
             Ok(()) => {
                 self.history.commit(now, &u, &vin, &path);
@@ -512,11 +575,49 @@ impl Instance {
                 }
                 self.output_value(v.name)
             }
-            Causality::Parameter => match &self.params[vr as usize] {
-                Some((Value::Real(x), _)) => *x,
+            Causality::Parameter => match self.param_value(vr, v)? {
+                Value::Real(x) => x,
                 _ => 0.0,
             },
         })
+        .and_then(|x| {
+            // the boundary's invariant, last line: never a NaN or ±∞ with fmi2OK
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(self.fail(&format!("internal error: {} is not finite ({x}); please report it", v.name)))
+            }
+        })
+    }
+
+    /// A parameter's value: the master's if it set it, otherwise the scene's
+    /// (the built-in or file scene named by `scene`, with the master's other
+    /// parameters) — not the start value of the model description, which is
+    /// the default scene's.
+    fn param_value(&mut self, vr: u32, v: &'static Variable) -> Result<Value, Status> {
+        match &self.params[vr as usize] {
+            Some((value, true)) => return Ok(value.clone()),
+            Some((value, false)) if v.name == "scene" => return Ok(value.clone()),
+            None => return Err(self.fail(&format!("value reference {vr} has no value"))),
+            _ => {}
+        }
+        if self.scene.is_none() {
+            match self.build_scene() {
+                Ok(s) => self.scene = Some(s),
+                Err(e) => return Err(self.fail(&format!("{} cannot be read: {e}", v.name))),
+            }
+        }
+        let text = self.scene.as_ref().and_then(|s| s.parameter(v.name));
+        let parsed = text.as_deref().and_then(|t| match v.kind {
+            Kind::Real => t.parse().ok().map(Value::Real),
+            Kind::Integer => t.parse().ok().map(Value::Integer),
+            Kind::Boolean => t.parse().ok().map(Value::Boolean),
+            Kind::String => Some(Value::String(t.to_string())),
+        });
+        match parsed {
+            Some(value) => Ok(value),
+            None => Err(self.fail(&format!("{}: the scene has no single value for it", v.name))),
+        }
     }
 
     /// fmi2GetDirectionalDerivative: dv_unknown = J dv_known with J the
@@ -582,11 +683,8 @@ impl Instance {
 
     /// fmi2GetInteger / Boolean / String for one value reference.
     pub fn get_param(&mut self, vr: u32, kind: Kind) -> Result<Value, Status> {
-        self.var(vr, kind)?;
-        match &self.params[vr as usize] {
-            Some((v, _)) => Ok(v.clone()),
-            None => Err(self.fail(&format!("value reference {vr} has no value"))),
-        }
+        let v = self.var(vr, kind)?;
+        self.param_value(vr, v)
     }
 
     /// fmi2SetReal for one value reference.
@@ -604,6 +702,10 @@ impl Instance {
                     return s;
                 }
                 let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
+                let range = if i < 3 { &ranges::INPUT_DISPLACEMENT } else { &ranges::INPUT_VELOCITY };
+                if let Err(m) = range.check(x) {
+                    return self.fail(&format!("{} = {m}", v.name));
+                }
                 self.inputs[i] = x;
                 if i >= 3 {
                     self.history.note_velocity(i - 3, x);
@@ -643,6 +745,10 @@ impl Instance {
             return self.fail(&format!("fmi2SetRealInputDerivatives: derivative of {} = {x} is not finite", v.name));
         }
         let i = INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0);
+        let range = if i < 3 && order == 1 { &ranges::INPUT_VELOCITY } else { &ranges::INPUT_ACCELERATION };
+        if let Err(m) = range.check(x) {
+            return self.fail(&format!("fmi2SetRealInputDerivatives: derivative of order {order} of {} = {m}", v.name));
+        }
         let slot = match (i < 3, order) {
             (true, 1) => &mut self.history.pending.first[i],
             (true, 2) | (false, 1) => &mut self.history.pending.second[i % 3],
@@ -680,28 +786,22 @@ impl Instance {
         if v.causality != Causality::Parameter {
             return self.fail(&format!("{} is not a parameter", v.name));
         }
-        // check the value now, against a scene with this one override
+        // the value's own range now (scene/ranges.rs, as `--set` checks it);
+        // the scene as a whole (the anchor within reach, ...) is checked at
+        // fmi2ExitInitializationMode, with every parameter set
         if v.name != "scene" {
             let text = value.to_text();
             let mut probe = Scene::builtin("catenary").expect("built-in scene");
             if let Err(e) = probe.set(v.name, &text) {
-                return self.fail(&e.to_string());
-            }
-            // range errors of this field alone (the whole scene is checked again
-            // at fmi2ExitInitializationMode, with every parameter set)
-            if let Err(crate::scene::SceneError::Invalid(errs)) = probe.validate() {
-                let dotted = v.name.replacen('_', ".", 1);
-                let own: Vec<String> = errs
-                    .iter()
-                    .filter(|e| e.field.ends_with(&format!(".{}", v.name)) || e.field.ends_with(&dotted))
-                    .map(|e| e.to_string())
-                    .collect();
-                if !own.is_empty() {
-                    return self.fail(&format!("{} = {text}: {}", v.name, own.join("; ")));
-                }
+                let shown = match value {
+                    Value::Real(x) => ranges::number(x),
+                    _ => text,
+                };
+                return self.fail(&format!("{} = {shown}: {}", v.name, override_message(&e)));
             }
         }
         self.params[vr as usize] = Some((value, true));
+        self.scene = None;
         self.sim = None;
         self.outputs = None;
         Status::Ok
@@ -829,23 +929,23 @@ mod discard_tests {
 
     #[test]
     fn a_step_newton_cannot_take_is_discarded_and_the_state_kept() {
-        // internal step 100 s (split down to 1.56 s) while the hang-off is thrown
+        // internal step 10 s (the largest; split down to 0.16 s) while the hang-off is thrown
         // 69 m down and 55 m towards the anchor: Newton gives up part-way
         let messages = Arc::new(Mutex::new(Vec::<String>::new()));
         let m2 = messages.clone();
         let mut i =
             Instance::new("t", GUID, None, Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into())), true)
                 .unwrap();
-        assert_eq!(i.set_param(vr_of("time_step").unwrap(), Value::Real(100.0)), Status::Ok);
+        assert_eq!(i.set_param(vr_of("time_step").unwrap(), Value::Real(10.0)), Status::Ok);
         assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
         i.enter_initialization_mode();
         assert_eq!(i.exit_initialization_mode(), Status::Ok);
         assert_eq!(i.set_real(vr_of("heave").unwrap(), -69.0), Status::Ok);
         assert_eq!(i.set_real(vr_of("surge").unwrap(), 55.0), Status::Ok);
-        assert_eq!(i.do_step(0.0, 100.0), Status::Discard);
+        assert_eq!(i.do_step(0.0, 10.0), Status::Discard);
         assert_eq!(i.mode, Mode::StepFailed);
         let t = i.last_successful_time();
-        assert!(t > 0.0 && t < 100.0, "{t}");
+        assert!(t > 0.0 && t < 10.0, "{t}");
         // the outputs are those of the last good state, finite
         for name in ["top_tension", "total_energy", "shape[10].z"] {
             assert!(i.get_real(vr_of(name).unwrap()).unwrap().is_finite());
@@ -853,5 +953,30 @@ mod discard_tests {
         assert!(messages.lock().unwrap().iter().any(|m| m.contains("discarded") && m.contains("Newton")));
         // no further step from a failed one
         assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+    }
+
+    #[test]
+    fn a_state_that_is_not_a_number_never_reads_as_ok() {
+        // a velocity corrupted behind the solver's back (as a bug in the core
+        // would): the step is not OK, and no output reads NaN with fmi2OK
+        let mut i = Instance::new("t", GUID, None, Arc::new(|_, _, _: &str| {}), false).unwrap();
+        assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+        i.enter_initialization_mode();
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        assert_eq!(i.do_step(0.0, 0.1), Status::Ok);
+        i.sim.as_mut().unwrap().state.vel[5].x = f64::NAN;
+        assert_ne!(i.do_step(0.1, 0.1), Status::Ok);
+        for v in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
+            if let Ok(x) = i.get_real(vr_of(v.name).unwrap()) {
+                assert!(x.is_finite(), "{} = {x} with fmi2OK", v.name);
+            }
+        }
+        // and fmi2Reset brings the instance back to a normal run
+        assert_eq!(i.reset(), Status::Ok);
+        assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+        i.enter_initialization_mode();
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        assert_eq!(i.do_step(0.0, 0.1), Status::Ok);
+        assert!(i.get_real(vr_of("top_tension").unwrap()).unwrap().is_finite());
     }
 }

@@ -258,6 +258,9 @@ pub enum DynamicsError {
     Inadmissible { time: f64, step: f64 },
     /// A bad request (non-finite input, non-positive step).
     BadInput(String),
+    /// The converged step gave a state that is not finite (NaN or ±∞) even
+    /// with the smallest sub-step.
+    NonFinite { time: f64, step: f64 },
 }
 
 impl std::fmt::Display for DynamicsError {
@@ -273,6 +276,11 @@ impl std::fmt::Display for DynamicsError {
                 f,
                 "time step from t = {time:.6} s failed with sub-step {step:.3e} s: {error}; the state is kept \
                  at t = {time:.6} s"
+            ),
+            DynamicsError::NonFinite { time, step } => write!(
+                f,
+                "time step from t = {time:.6} s failed: even with sub-step {step:.3e} s the new state is not \
+                 finite (NaN or infinite); the state is kept at t = {time:.6} s"
             ),
             DynamicsError::Inadmissible { time, step } => write!(
                 f,
@@ -332,8 +340,10 @@ pub trait StepEquations {
         target: HangOff,
         order: u32,
     );
-    /// Round-off level of the residual at `cfg`, N.
-    fn residual_roundoff(&self, cfg: &RodConfig) -> f64;
+    /// Round-off level of the residual at `cfg` for a step of `h` s, N: the
+    /// internal forces' and the inertia's (which grows as 1/h²,
+    /// [`inertia_roundoff`]).
+    fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64;
     /// Residual of the step equations at `cfg` into `lin.r` and, if
     /// `tangent`, its derivative into `lin.sys`; `eta` the damping time, s.
     #[allow(clippy::too_many_arguments)]
@@ -365,4 +375,13 @@ pub trait StepEquations {
     /// Velocities (with the high-frequency filter, §5.10), work and end data
     /// of the converged step into `trial`.
     fn finish(&self, ws: &mut Self::Workspace, prev: &State, trial: &mut State, h: f64, options: &DynamicOptions);
+}
+
+/// Round-off of the inertia part of a step residual, N: a node's inertial
+/// force is about 2 m l (Δx − h v)/h² (m the mass per length with the added
+/// mass, kg/m, l the element length, m), and Δx = x_{n+1} − x_n of
+/// coordinates as large as `extent` m carries a round-off of ε·extent. It
+/// exceeds the internal forces' round-off for steps below a few milliseconds.
+pub fn inertia_roundoff(mass_per_length: f64, element_length: f64, extent: f64, h: f64) -> f64 {
+    2.0 * mass_per_length * element_length * f64::EPSILON * extent / (h * h)
 }

@@ -82,6 +82,21 @@ impl Outputs {
         ]
     }
 
+    /// The name of the first output that is not a finite number (NaN, ±∞),
+    /// if any: the scalar outputs, then the shape points (`shape[k]`).
+    pub fn first_non_finite(&self) -> Option<&'static str> {
+        if let Some(i) = self.values().iter().position(|v| !v.is_finite()) {
+            return Some(Self::NAMES[i]);
+        }
+        if !self.work_anchor.is_finite() {
+            return Some("work_anchor");
+        }
+        if self.shape.iter().any(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite())) {
+            return Some("shape");
+        }
+        None
+    }
+
     /// E(t) − E(0) − W_top − W_hydro − W_anchor + D + D_alg: zero to the
     /// Newton tolerance (§5.5, §5.9, §5.10), J.
     pub fn energy_balance_residual(&self, e0: f64) -> f64 {

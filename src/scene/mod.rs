@@ -4,6 +4,7 @@
 //! by the FMU's parameter names (docs/interface.md).
 
 mod overrides;
+pub mod ranges;
 mod validate;
 
 pub use overrides::PARAMETER_NAMES;
@@ -316,15 +317,26 @@ impl Scene {
         if errs.is_empty() { Ok(()) } else { Err(SceneError::Invalid(errs)) }
     }
 
-    /// Applies `name=value` overrides (the FMU's parameter names), then validates.
+    /// Applies `name=value` overrides (the FMU's parameter names), then
+    /// validates; every refused override is listed (as `--set NAME`).
     pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<Scene, SceneError> {
+        let mut refused = Vec::new();
         for s in sets {
             let s = s.as_ref();
-            let (name, value) = s.split_once('=').ok_or_else(|| SceneError::Override {
-                name: s.to_string(),
-                message: "expected name=value".to_string(),
-            })?;
-            self.set(name.trim(), value.trim())?;
+            let Some((name, value)) = s.split_once('=') else {
+                refused.push(FieldError { field: format!("--set {s}"), message: "expected name=value".to_string() });
+                continue;
+            };
+            if let Err(e) = self.set(name.trim(), value.trim()) {
+                let message = match e {
+                    SceneError::Override { message, .. } => message,
+                    other => other.to_string(),
+                };
+                refused.push(FieldError { field: format!("--set {}", name.trim()), message });
+            }
+        }
+        if !refused.is_empty() {
+            return Err(SceneError::Invalid(refused));
         }
         self.validate()?;
         Ok(self)
@@ -333,6 +345,12 @@ impl Scene {
     /// Sets one parameter by its FMU parameter name (no validation of the whole scene).
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), SceneError> {
         overrides::set(self, name, value)
+    }
+
+    /// The scene's value of a parameter (FMU / `--set` name) as text, `None`
+    /// for an unknown name or where the scene has no single value.
+    pub fn parameter(&self, name: &str) -> Option<String> {
+        overrides::get(self, name)
     }
 
     /// Anchor position, m.

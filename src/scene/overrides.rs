@@ -1,7 +1,7 @@
 //! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
-use super::{Buoyancy, Model, ProfileKind, Scene, SceneError};
+use super::{Buoyancy, Model, ProfileKind, Scene, SceneError, ranges};
 
 /// Every parameter name that can be set, with its unit.
 pub const PARAMETER_NAMES: [(&str, &str); 29] = [
@@ -36,10 +36,19 @@ pub const PARAMETER_NAMES: [(&str, &str); 29] = [
     ("buoyancy_end", "m"),
 ];
 
+/// The value of a numeric parameter, checked against its range (ranges.rs).
 fn number(name: &str, value: &str) -> Result<f64, SceneError> {
-    value
+    let v = value
         .parse::<f64>()
-        .map_err(|_| SceneError::Override { name: name.to_string(), message: format!("'{value}' is not a number") })
+        .map_err(|_| SceneError::Override { name: name.to_string(), message: format!("'{value}' is not a number") })?;
+    in_range(name, v)
+}
+
+fn in_range(name: &str, v: f64) -> Result<f64, SceneError> {
+    match ranges::of_parameter(name).map(|r| r.check(v)) {
+        Some(Err(message)) => Err(SceneError::Override { name: name.to_string(), message }),
+        _ => Ok(v),
+    }
 }
 
 /// The single buoyancy section the `buoyancy_*` parameters act on (created
@@ -106,10 +115,12 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
             }
         }
         "n_elements" => {
-            s.analysis.n_elements = value.parse::<usize>().map_err(|_| SceneError::Override {
+            let n = value.parse::<usize>().map_err(|_| SceneError::Override {
                 name: name.into(),
                 message: format!("'{value}' is not a whole number of elements >= 2"),
-            })?
+            })?;
+            in_range(name, n as f64)?;
+            s.analysis.n_elements = n;
         }
         "time_step" => s.analysis.time_step = num()?,
         "newton_tolerance" => s.analysis.newton_tolerance = num()?,
@@ -163,4 +174,58 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         }
     }
     Ok(())
+}
+
+/// The scene's value of a parameter as `--set` would write it (`None` for an
+/// unknown name, or where the scene has no single value: a current table's
+/// ends, several buoyancy sections).
+pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
+    let num = |v: f64| Some(format!("{v}"));
+    let c = &s.current;
+    let end = |top: bool| match c.profile {
+        ProfileKind::None => num(0.0),
+        ProfileKind::Uniform => c.speed.and_then(num),
+        ProfileKind::LinearS | ProfileKind::LinearDepth => (if top { c.top } else { c.bottom }).and_then(num),
+        ProfileKind::Table => None,
+    };
+    let section = |f: fn(&Buoyancy) -> f64| match s.buoyancy.len() {
+        0 => num(0.0),
+        1 => num(f(&s.buoyancy[0])),
+        _ => None,
+    };
+    match name {
+        "model" => Some(match s.analysis.model {
+            Model::Rod => "rod".into(),
+            Model::Cable => "cable".into(),
+        }),
+        "n_elements" => Some(s.analysis.n_elements.to_string()),
+        "time_step" => num(s.analysis.time_step),
+        "newton_tolerance" => num(s.analysis.newton_tolerance),
+        "static_current" => Some(s.analysis.static_current.to_string()),
+        "structural_damping" => num(s.analysis.structural_damping),
+        "rho_infinity" => num(s.analysis.rho_infinity),
+        "length" => num(s.line.length),
+        "mass_per_length" => num(s.line.mass_per_length),
+        "outer_diameter" => num(s.line.outer_diameter),
+        "axial_stiffness" => num(s.line.axial_stiffness),
+        "bending_stiffness" => num(s.line.bending_stiffness),
+        "torsional_stiffness" => num(s.line.torsional_stiffness),
+        "cd_normal" => num(s.line.cd_normal),
+        "cd_tangential" => num(s.line.cd_tangential),
+        "ca_normal" => num(s.line.ca_normal),
+        "rotary_inertia" => num(s.rotary_inertia()),
+        "water_density" => num(s.environment.water_density),
+        "water_surface_z" => num(s.environment.water_surface_z),
+        "gravity" => num(s.environment.gravity),
+        "anchor_x" => num(s.anchor.x),
+        "anchor_y" => num(s.anchor.y),
+        "anchor_z" => num(s.anchor.z),
+        "current_top" => end(true),
+        "current_bottom" => end(false),
+        "current_direction" => num(c.direction[1].atan2(c.direction[0]).to_degrees()),
+        "buoyancy_load" => section(|b| b.load),
+        "buoyancy_start" => section(|b| b.start),
+        "buoyancy_end" => section(|b| b.end),
+        _ => None,
+    }
 }

@@ -18,6 +18,9 @@ pub enum RiserError {
     Linearized(EigenError),
     /// A feature the scene asks for that this version does not provide.
     Unsupported(String),
+    /// An output that is not a finite number at `time` s (the step that gave
+    /// it is discarded).
+    NonFinite { name: &'static str, time: f64 },
 }
 
 impl std::fmt::Display for RiserError {
@@ -28,6 +31,11 @@ impl std::fmt::Display for RiserError {
             RiserError::Dynamics(e) => e.fmt(f),
             RiserError::Linearized(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
+            RiserError::NonFinite { name, time } => write!(
+                f,
+                "the state at t = {time:.6} s gives a non-finite {name}; the step is discarded and the state kept \
+                 at its start"
+            ),
         }
     }
 }

@@ -147,6 +147,38 @@ impl Engine {
 }
 
 /// A scene set up for a dynamic run, starting from its static equilibrium.
+/// The most internal steps one call may ask for (a communication step of
+/// the FMU, a `riser run`): a million steps are 14 h of simulated time at the
+/// default 0.05 s; more is a mistake in the caller's units.
+pub const MAX_STEPS_PER_CALL: u64 = 1_000_000;
+
+/// A last internal step shorter than this fraction of `time_step` is merged
+/// into the one before: a span of 1.000001 steps takes one step of 1.000001
+/// dt, not a step of dt and one of 1e-6 dt, whose inertia term (∝ 1/h²)
+/// would magnify round-off into the reaction at the hang-off.
+pub const MERGE_FRACTION: f64 = 0.01;
+
+/// The number of internal steps of at most about `dt` that cover `span` s,
+/// or an error if that is more than [`MAX_STEPS_PER_CALL`] (`span` and `dt`
+/// positive and finite).
+pub fn internal_steps(span: f64, dt: f64) -> Result<u64, String> {
+    let n = (span / dt - MERGE_FRACTION).ceil().max(1.0);
+    if n.is_nan() || n > MAX_STEPS_PER_CALL as f64 {
+        return Err(format!(
+            "{} s at time_step {} s takes {n:.3e} internal steps; at most {MAX_STEPS_PER_CALL} per call",
+            crate::scene::ranges::number(span),
+            crate::scene::ranges::number(dt)
+        ));
+    }
+    Ok(n as u64)
+}
+
+/// The end time of internal step `k` of `n` from `start` over `span` s:
+/// multiples of `dt`, the last one ending exactly at `start + span`.
+pub fn internal_step_end(start: f64, span: f64, dt: f64, k: u64, n: u64) -> f64 {
+    if k == n { start + span } else { start + k as f64 * dt }
+}
+
 pub struct Simulation {
     pub integrator: Engine,
     pub state: State,

@@ -154,7 +154,7 @@ impl<M: StepEquations> Integrator<M> {
         model.begin(&mut self.ws, state, &self.options);
         model.predict(&mut self.ws, state, trial, h, self.origin, target, order);
         // below 10× the residual's round-off, stop when Newton stagnates
-        let roundoff = model.residual_roundoff(&state.config);
+        let roundoff = model.residual_roundoff(&state.config, h);
         let asked = self.options.newton_tolerance * self.force_scale;
         let tol = asked.max(roundoff);
         // asked for round-off: iterate until the residual stops falling, so
@@ -275,6 +275,12 @@ impl<M: StepEquations> Integrator<M> {
             return Err(DynamicsError::Inadmissible { time: state.time, step: h });
         }
         model.finish(&mut self.ws, state, trial, h, &self.options);
+        if !trial.is_finite() {
+            // never a state that is not a number: smaller steps, or an error
+            // with the state kept
+            self.factor_h = f64::NAN;
+            return Err(DynamicsError::NonFinite { time: state.time, step: h });
+        }
         trial.hang_off = target;
         trial.time = state.time + h;
         trial.steps += 1;

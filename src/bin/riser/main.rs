@@ -73,8 +73,12 @@ enum Command {
     },
     /// Natural periods and mode shapes of the line about its static state (with added mass).
     Modes(modes::ModesArgs),
-    /// List the parameter names accepted by --set (the FMU's parameters).
-    Params,
+    /// List the parameters accepted by --set (the FMU's parameters) with their units and allowed ranges.
+    Params {
+        /// Print a JSON array of {name, field, unit, min, max, reason} (min/max absent for non-numbers).
+        #[arg(long)]
+        json: bool,
+    },
     /// Print the FMU's modelDescription.xml (generated from modelDescription/variables.csv).
     ModelDescription,
     /// Print a scene file (built-in or path, after --set overrides) as TOML.
@@ -85,6 +89,30 @@ enum Command {
     },
 }
 
+/// `riser params`: every `--set` name with its unit, range and the range's reason.
+fn params(json: bool) {
+    use riser::scene::ranges;
+    let rows: Vec<serde_json::Value> = PARAMETER_NAMES
+        .iter()
+        .map(|(name, unit)| match ranges::of_parameter(name) {
+            Some(r) => serde_json::json!({
+                "name": name, "field": r.field, "unit": r.unit, "min": r.min, "max": r.max, "reason": r.reason,
+            }),
+            None => serde_json::json!({ "name": name, "unit": unit }),
+        })
+        .collect();
+    if json {
+        println!("{}", serde_json::Value::Array(rows));
+        return;
+    }
+    for (name, unit) in PARAMETER_NAMES {
+        match ranges::of_parameter(name) {
+            Some(r) => println!("{name:20} {:34} {}", r.interval(), r.reason),
+            None => println!("{name:20} {unit}"),
+        }
+    }
+}
+
 fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != 2 {
@@ -92,9 +120,10 @@ fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     }
     let a: f64 = parts[0].trim().parse().map_err(|_| format!("'{}' is not a number", parts[0]))?;
     let t: f64 = parts[1].trim().parse().map_err(|_| format!("'{}' is not a number", parts[1]))?;
-    if !(a.is_finite() && t.is_finite() && t > 0.0) {
-        return Err(format!("amplitude must be finite and period positive, got {a}, {t}"));
+    if !(t.is_finite() && t > 0.0) {
+        return Err(format!("the period must be positive and finite, got {t} s"));
     }
+    riser::scene::ranges::INPUT_DISPLACEMENT.check(a).map_err(|m| format!("amplitude {m}"))?;
     Ok((a, t))
 }
 
@@ -238,7 +267,14 @@ fn run(
     if !(ramp.is_finite() && ramp >= 0.0) {
         return Err(format!("--ramp must be zero or positive, got {ramp}"));
     }
+    if let Some(u) = heave_until
+        && !u.is_finite()
+    {
+        return Err(format!("--heave-until must be finite, got {u}"));
+    }
     let scene = load(scene, set).map_err(|e| e.to_string())?;
+    // refused before the statics: a duration of more steps than a call may take
+    riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
@@ -270,9 +306,9 @@ fn run(
     let mut progress = Progress::new(!json);
     let mut failure = None;
     let dt = sim.integrator.options().time_step;
-    let n_steps = (duration / dt - 1e-9).ceil().max(1.0) as u64;
+    let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
     for k in 1..=n_steps {
-        let target = if k == n_steps { duration } else { k as f64 * dt };
+        let target = riser::sim::internal_step_end(0.0, duration, dt, k, n_steps);
         if let Err(e) = sim.advance_to(target, &motion_fn) {
             failure = Some(e.to_string());
             break;
@@ -397,10 +433,8 @@ fn main() -> ExitCode {
             print!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())
         }
-        Command::Params => {
-            for (n, u) in PARAMETER_NAMES {
-                println!("{n:22} {u}");
-            }
+        Command::Params { json } => {
+            params(json);
             Ok(())
         }
         Command::Scene { scene, set } => {

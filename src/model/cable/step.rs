@@ -13,7 +13,7 @@ use crate::model::RodConfig;
 use crate::model::dissipation::{self, HighFrequency, TripleLayout};
 use crate::model::outputs::{Outputs, SHAPE_POINTS};
 use crate::model::{HangOff, State};
-use crate::model::{Linear, StepEquations};
+use crate::model::{Linear, StepEquations, inertia_roundoff};
 use nalgebra::SMatrix;
 
 /// Scratch data of a cable step beyond the linear system, allocated once.
@@ -119,8 +119,10 @@ impl StepEquations for CableModel {
         }
     }
 
-    fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
-        self.cable.residual_roundoff(&cfg.x)
+    fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
+        let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.cable.length);
+        let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.cable.l, extent, h);
+        self.cable.residual_roundoff(&cfg.x).max(inertia)
     }
 
     fn assemble(

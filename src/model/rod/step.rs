@@ -22,7 +22,7 @@ use crate::model::rod::element::{
 };
 use crate::model::rod::gauss::{self, F4, GaussFields, GaussShapes};
 use crate::model::rod::{Rod, RotationBc};
-use crate::model::{DynamicOptions, HangOff, Linear, State, StepEquations};
+use crate::model::{DynamicOptions, HangOff, Linear, State, StepEquations, inertia_roundoff};
 
 /// Scratch data of a rod step beyond the linear system, allocated once.
 pub struct RodWorkspace {
@@ -196,8 +196,10 @@ impl StepEquations for RodModel {
         }
     }
 
-    fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
-        self.rod.residual_roundoff(cfg)
+    fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
+        let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.rod.length);
+        let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.rod.h, extent, h);
+        self.rod.residual_roundoff(cfg).max(inertia)
     }
 
     /// The midpoint residual (5.3) at the trial configuration `cfg` and, if

@@ -1,0 +1,148 @@
+"""Every FMU parameter at the bounds of its range (`riser params --json`, the
+one table in src/scene/ranges.rs), through fmpy as a master drives it: at each
+bound the instance initialises and takes three steps with finite outputs; just
+outside, fmi2SetReal / fmi2SetInteger returns fmi2Error and the logged message
+names the parameter and the range. (tests/parameter_ranges.rs does the same
+through the command line, for the rod and the cable.)
+"""
+import json
+import math
+import subprocess
+
+import pytest
+from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+
+# parameters a bound needs to make a line at all (as in tests/parameter_ranges.rs)
+COMPANIONS = {
+    ("length", "min"): {"anchor_x": 0.6, "anchor_z": -0.7},
+    ("length", "max"): {"anchor_x": 15000.0, "anchor_z": -10000.0},
+    ("anchor_x", "min"): {"length": 20000.0},
+    ("anchor_x", "max"): {"length": 20000.0},
+    ("anchor_y", "min"): {"length": 20000.0},
+    ("anchor_y", "max"): {"length": 20000.0},
+    ("anchor_z", "min"): {"length": 20000.0},
+    ("anchor_z", "max"): {"length": 20000.0},
+    ("buoyancy_load", "min"): {"buoyancy_start": 30.0, "buoyancy_end": 60.0},
+    ("buoyancy_load", "max"): {"buoyancy_start": 30.0, "buoyancy_end": 60.0},
+    ("buoyancy_start", "min"): {"buoyancy_end": 60.0, "buoyancy_load": 100.0},
+    ("buoyancy_end", "max"): {"length": 20000.0, "anchor_x": 15000.0, "anchor_z": -10000.0,
+                              "buoyancy_load": 100.0},
+}
+# bounds the scene's own checks refuse (a section must have end > start)
+NOT_A_LINE = {("buoyancy_start", "max"), ("buoyancy_end", "min")}
+
+
+@pytest.fixture(scope="module")
+def ranges(riser_bin):
+    rows = json.loads(subprocess.run([riser_bin, "params", "--json"], check=True, capture_output=True,
+                                     text=True).stdout)
+    return {r["name"]: r for r in rows if "min" in r}
+
+
+@pytest.fixture(scope="module")
+def fmu(fmu_path, unzipped):
+    md = read_model_description(fmu_path)
+    vars_ = {v.name: v for v in md.modelVariables}
+    return md, unzipped, vars_
+
+
+def slave(fmu):
+    md, unzipped, _ = fmu
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="ranges")
+    s.instantiate(loggingOn=True)
+    return s
+
+
+def set_value(s, var, value):
+    if var.type == "Integer":
+        s.setInteger([var.valueReference], [int(value)])
+    else:
+        s.setReal([var.valueReference], [float(value)])
+
+
+def outside(name, r, bound):
+    if name == "n_elements":
+        return r[bound] + (1 if bound == "max" else -1)
+    step = max(abs(r[bound]), 1.0) * 1e-6
+    return r[bound] + (step if bound == "max" else -step)
+
+
+def fmu_parameters(fmu, ranges):
+    _, _, vars_ = fmu
+    return [(n, vars_[n]) for n in ranges if n in vars_ and vars_[n].causality == "parameter"]
+
+
+def test_every_fmu_parameter_runs_at_its_bounds(fmu, ranges):
+    _, _, vars_ = fmu
+    checked = 0
+    for name, var in fmu_parameters(fmu, ranges):
+        for bound in ["min", "max"]:
+            if (name, bound) in NOT_A_LINE:
+                continue
+            s = slave(fmu)
+            set_value(s, vars_["n_elements"], 10)
+            for other, value in COMPANIONS.get((name, bound), {}).items():
+                set_value(s, vars_[other], value)
+            set_value(s, var, ranges[name][bound])
+            s.setupExperiment(startTime=0.0)
+            s.enterInitializationMode()
+            s.exitInitializationMode()
+            t = 0.0
+            for k in range(3):
+                s.setReal([vars_["heave"].valueReference], [0.05 * k])
+                s.doStep(t, 0.1)
+                t += 0.1
+            outs = [v.valueReference for v in vars_.values() if v.causality == "output"]
+            values = s.getReal(outs)
+            assert all(math.isfinite(x) for x in values), (name, bound)
+            # the parameter reads back as set
+            got = (s.getInteger if var.type == "Integer" else s.getReal)([var.valueReference])[0]
+            assert got == ranges[name][bound], (name, bound, got)
+            s.terminate()
+            s.freeInstance()
+            checked += 1
+    assert checked >= 2 * len(fmu_parameters(fmu, ranges)) - len(NOT_A_LINE)
+
+
+def test_every_fmu_parameter_just_outside_its_range_is_an_error_naming_it(fmu, ranges, capfd):
+    for name, var in fmu_parameters(fmu, ranges):
+        r = ranges[name]
+        for bound in ["min", "max"]:
+            s = slave(fmu)
+            capfd.readouterr()
+            with pytest.raises(FMICallException):
+                set_value(s, var, outside(name, r, bound))
+            logged = capfd.readouterr().out
+            # the table's range and its reason, as the CLI prints them
+            assert name in logged and "is outside [" in logged and r["reason"][:40] in logged, logged
+            # fmi2Reset brings the instance back to a normal run
+            s.reset()
+            set_value(s, vars_n(fmu), 10)
+            s.setupExperiment(startTime=0.0)
+            s.enterInitializationMode()
+            s.exitInitializationMode()
+            s.doStep(0.0, 0.1)
+            s.freeInstance()
+
+
+def vars_n(fmu):
+    return fmu[2]["n_elements"]
+
+
+def test_unset_parameters_read_back_the_scene_values_not_the_start_values(fmu):
+    # lazy_wave's anchor is at (50, 0, -40) and its modules carry 670 N/m; the
+    # model description's start values are the default scene's (60, -70, 0)
+    _, _, vars_ = fmu
+    s = slave(fmu)
+    s.setString([vars_["scene"].valueReference], ["lazy_wave"])
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    names = ["anchor_x", "anchor_z", "buoyancy_load"]
+    assert s.getReal([vars_[n].valueReference for n in names]) == [50.0, -40.0, 670.0]
+    s.exitInitializationMode()
+    assert s.getReal([vars_[n].valueReference for n in names]) == [50.0, -40.0, 670.0]
+    assert s.getInteger([vars_["n_elements"].valueReference]) == [60]
+    s.freeInstance()
