@@ -213,3 +213,22 @@ fn modes_bad_input_is_a_clear_error() {
         assert!(err.starts_with("riser: error:") && !err.contains("panicked"), "{err}");
     }
 }
+
+#[test]
+fn a_reader_that_goes_away_is_not_a_panic() {
+    // `riser modes ... --json | head -c 10`: 350 kB of JSON into a pipe whose
+    // reader closes after 10 bytes; the command finishes quietly
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_riser"))
+        .args(["modes", "catenary", "--count", "40", "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("riser runs");
+    let mut head = [0u8; 10];
+    child.stdout.take().unwrap().read_exact(&mut head).unwrap();
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !err.contains("panicked"), "{:?}: {err}", out.status);
+    assert_eq!(&head[..2], b"{\"");
+}

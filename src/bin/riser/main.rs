@@ -6,7 +6,43 @@
 //! mode shapes about the static state (modes.rs: text, JSON, modes.csv, mode_shapes.csv, modes.svg)
 //! `riser params`, `riser model-description`, `riser scene SCENE [--set name=value]...`
 
+/// `println!` for the command's output on stdout, which a closed pipe
+/// (`riser statics catenary --json | head -c 100`) silences instead of
+/// panicking: the command goes on (and writes its files), only the printing
+/// stops.
+macro_rules! outln {
+    () => {
+        $crate::emit(format_args!("\n"))
+    };
+    ($($t:tt)*) => {
+        $crate::emit(format_args!("{}\n", format_args!($($t)*)))
+    };
+}
+
+/// `print!` on stdout as [`outln!`].
+macro_rules! out {
+    ($($t:tt)*) => {
+        $crate::emit(format_args!($($t)*))
+    };
+}
+
 mod modes;
+
+/// Writes to stdout; a reader that has gone away (broken pipe) is not an
+/// error of the command, any other failure is reported once on stderr.
+fn emit(args: std::fmt::Arguments) {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static SILENT: AtomicBool = AtomicBool::new(false);
+    if SILENT.load(Ordering::Relaxed) {
+        return;
+    }
+    if let Err(e) = std::io::stdout().lock().write_fmt(args) {
+        SILENT.store(true, Ordering::Relaxed);
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("riser: cannot write to stdout: {e}");
+        }
+    }
+}
 
 use clap::{Parser, Subcommand};
 use riser::scene::{PARAMETER_NAMES, Scene};
@@ -102,13 +138,13 @@ fn params(json: bool) {
         })
         .collect();
     if json {
-        println!("{}", serde_json::Value::Array(rows));
+        outln!("{}", serde_json::Value::Array(rows));
         return;
     }
     for (name, unit) in PARAMETER_NAMES {
         match ranges::of_parameter(name) {
-            Some(r) => println!("{name:20} {:34} {}", r.interval(), r.reason),
-            None => println!("{name:20} {unit}"),
+            Some(r) => outln!("{name:20} {:34} {}", r.interval(), r.reason),
+            None => outln!("{name:20} {unit}"),
         }
     }
 }
@@ -167,33 +203,36 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
             "wall_time": wall,
             "shape": rep.shape.iter().map(|r| [r.s, r.x, r.y, r.z, r.tension]).collect::<Vec<_>>(),
         });
-        println!("{v}");
+        outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
-        println!(
+        outln!(
             "riser statics: scene '{}' ({} elements, EA {:.4e} N, EI {:.4e} N m^2)",
-            scene.name, scene.analysis.n_elements, scene.line.axial_stiffness, scene.line.bending_stiffness
+            scene.name,
+            scene.analysis.n_elements,
+            scene.line.axial_stiffness,
+            scene.line.bending_stiffness
         );
-        println!(
+        outln!(
             "  Newton: {} iterations, {} continuation step(s), relative residual {:.2e}, {:.1} ms",
             rep.iterations,
             rep.continuation_steps,
             rep.residual,
             wall * 1e3
         );
-        println!("  top tension     {:10.3} kN", kn(rep.top_tension));
-        println!(
+        outln!("  top tension     {:10.3} kN", kn(rep.top_tension));
+        outln!(
             "  force on vessel ({:.3}, {:.3}, {:.3}) kN",
             kn(rep.top_force.x),
             kn(rep.top_force.y),
             kn(rep.top_force.z)
         );
-        println!("  bottom tension  {:10.3} kN", kn(rep.bottom_tension));
-        println!("  min tension     {:10.3} kN", kn(rep.min_tension));
+        outln!("  bottom tension  {:10.3} kN", kn(rep.bottom_tension));
+        outln!("  min tension     {:10.3} kN", kn(rep.min_tension));
         let low = rep.shape.iter().fold(f64::INFINITY, |m, r| m.min(r.z));
-        println!("  lowest point    {:10.3} m", low);
+        outln!("  lowest point    {:10.3} m", low);
         if let Some(p) = csv {
-            println!("  wrote {}", p.display());
+            outln!("  wrote {}", p.display());
         }
     }
     Ok(())
@@ -361,10 +400,10 @@ fn run(
             "solve_wall_time": solve_wall,
             "real_time_factor": simulated / solve_wall.max(1e-12),
         });
-        println!("{v}");
+        outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
-        println!(
+        outln!(
             "riser run: scene '{}' ({} elements, time step {} s), heave {} m / {} s{}{}",
             scene.name,
             scene.analysis.n_elements,
@@ -374,10 +413,10 @@ fn run(
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
             if ramp > 0.0 { format!(", ramped over {ramp} s") } else { String::new() }
         );
-        println!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
-        println!("  top tension min/mean/max {:.3} / {:.3} / {:.3} kN", kn(t_min), kn(t_mean), kn(t_max));
-        println!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
-        println!(
+        outln!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
+        outln!("  top tension min/mean/max {:.3} / {:.3} / {:.3} kN", kn(t_min), kn(t_mean), kn(t_max));
+        outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
+        outln!(
             "  {} steps, {:.2} Newton iterations/step, {} split steps; {:.2} s wall, {:.0}x real time",
             st.steps,
             st.newton_iterations as f64 / (st.steps.max(1)) as f64,
@@ -386,7 +425,7 @@ fn run(
             simulated / solve_wall.max(1e-12)
         );
         if let Some(dir) = &out {
-            println!("  wrote {}/timeseries.csv and shapes.csv", dir.display());
+            outln!("  wrote {}/timeseries.csv and shapes.csv", dir.display());
         }
     }
     match failure {
@@ -430,16 +469,14 @@ fn main() -> ExitCode {
         }
         Command::Modes(args) => modes::modes(args),
         Command::ModelDescription => {
-            print!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
+            out!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())
         }
         Command::Params { json } => {
             params(json);
             Ok(())
         }
-        Command::Scene { scene, set } => {
-            load(&scene, &set).map(|s| print!("{}", s.to_toml())).map_err(|e| e.to_string())
-        }
+        Command::Scene { scene, set } => load(&scene, &set).map(|s| out!("{}", s.to_toml())).map_err(|e| e.to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

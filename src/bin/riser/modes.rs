@@ -52,7 +52,7 @@ pub fn modes(args: ModesArgs) -> Result<(), String> {
         None => Vec::new(),
     };
     if json {
-        println!("{}", to_json(&scene, &rep, wall));
+        outln!("{}", to_json(&scene, &rep, wall));
     } else {
         print_text(&scene, &rep, wall, &written);
     }
@@ -82,7 +82,7 @@ fn to_json(scene: &Scene, rep: &ModalReport, wall: f64) -> serde_json::Value {
 }
 
 fn print_text(scene: &Scene, rep: &ModalReport, wall: f64, written: &[PathBuf]) {
-    println!(
+    outln!(
         "riser modes: scene '{}' ({}, {} elements, {} free unknowns), about the static state {} the current",
         scene.name,
         model_name(rep.model),
@@ -90,30 +90,37 @@ fn print_text(scene: &Scene, rep: &ModalReport, wall: f64, written: &[PathBuf]) 
         rep.unknowns,
         if scene.analysis.static_current { "with" } else { "without" }
     );
-    println!(
+    outln!(
         "  {:>4} {:>10} {:>10}  {:<13} {:>8} {:>8} {:>8} {:>8}",
-        "mode", "period s", "freq Hz", "direction", "in-pl %", "out-pl %", "axial %", "tors %"
+        "mode",
+        "period s",
+        "freq Hz",
+        "direction",
+        "in-pl %",
+        "out-pl %",
+        "axial %",
+        "tors %"
     );
     for m in &rep.modes {
         let [a, b, c, d] = m.fractions.map(|v| 100.0 * v);
         let period = if m.period.is_finite() { format!("{:10.4}", m.period) } else { format!("{:>10}", "inf") };
-        print!(
+        out!(
             "  {:>4} {period} {:>10.5}  {:<13} {a:8.2} {b:8.2} {c:8.2} {d:8.2}",
             m.number,
             m.frequency,
             m.direction.name()
         );
         if m.eigenvalue <= 0.0 {
-            print!("  unstable (λ = {:.3e} 1/s²)", m.eigenvalue);
+            out!("  unstable (λ = {:.3e} 1/s²)", m.eigenvalue);
         }
         if m.eigenvalue_imag != 0.0 {
-            print!("  flutter (Im λ = {:.3e} 1/s²)", m.eigenvalue_imag);
+            out!("  flutter (Im λ = {:.3e} 1/s²)", m.eigenvalue_imag);
         }
-        println!();
+        outln!();
     }
-    println!("  statics and {} modes in {:.1} ms", rep.modes.len(), wall * 1e3);
+    outln!("  statics and {} modes in {:.1} ms", rep.modes.len(), wall * 1e3);
     for p in written {
-        println!("  wrote {}", p.display());
+        outln!("  wrote {}", p.display());
     }
 }
 
