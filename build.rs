@@ -75,9 +75,30 @@ fn parse(text: &str) -> Vec<Var> {
     vars
 }
 
+/// The physical ranges (the same file src/scene/ranges.rs includes): the
+/// parameters' and inputs' min and max in modelDescription.xml.
+#[allow(dead_code)]
+mod range_table {
+    include!("src/scene/range_table.rs");
+}
+
+/// The `[min, max]` of a variable, formatted for the XML (integers plain).
+fn variable_range(v: &Var) -> Option<(String, String)> {
+    use range_table::*;
+    let r = match (v.causality.as_str(), v.name.as_str()) {
+        ("input", "heave" | "surge" | "sway") => &INPUT_DISPLACEMENT,
+        ("input", _) => &INPUT_VELOCITY,
+        ("parameter", name) => RANGES.iter().find(|r| r.parameter == Some(name))?,
+        _ => return None,
+    };
+    let f = |x: f64| if v.typ == "Integer" { format!("{}", x as i64) } else { format!("{x:e}") };
+    Some((f(r.min), f(r.max)))
+}
+
 fn main() {
     let table = "modelDescription/variables.csv";
     println!("cargo:rerun-if-changed={table}");
+    println!("cargo:rerun-if-changed=src/scene/range_table.rs");
     println!("cargo:rerun-if-changed=build.rs");
     let text = std::fs::read_to_string(table).expect("read modelDescription/variables.csv");
     let vars = parse(&text);
@@ -213,6 +234,10 @@ fn main() {
         let mut t = BytesStart::new(v.typ.as_str());
         if !v.unit.is_empty() {
             t.push_attribute(("unit", v.unit.as_str()));
+        }
+        if let Some((min, max)) = variable_range(v) {
+            t.push_attribute(("min", min.as_str()));
+            t.push_attribute(("max", max.as_str()));
         }
         if !v.start.is_empty() {
             t.push_attribute(("start", v.start.as_str()));

@@ -146,3 +146,13 @@ def test_unset_parameters_read_back_the_scene_values_not_the_start_values(fmu):
     assert s.getReal([vars_[n].valueReference for n in names]) == [50.0, -40.0, 670.0]
     assert s.getInteger([vars_["n_elements"].valueReference]) == [60]
     s.freeInstance()
+
+
+def test_the_model_description_declares_the_same_ranges(fmu, ranges):
+    # masters read min/max from modelDescription.xml (build.rs writes them from
+    # the same table the FMU checks against)
+    for name, var in fmu_parameters(fmu, ranges):
+        assert (float(var.min), float(var.max)) == (ranges[name]["min"], ranges[name]["max"]), name
+    _, _, vars_ = fmu
+    for name in ["heave", "surge", "sway"]:
+        assert (float(vars_[name].min), float(vars_[name].max)) == (-2e4, 2e4)

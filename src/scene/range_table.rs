@@ -1,0 +1,314 @@
+// The table of physical ranges: data only, no imports, so that build.rs
+// includes the same file to write the bounds into modelDescription.xml as
+// the variables' min and max (src/scene/ranges.rs explains the table).
+
+/// The closed interval `[min, max]` a scene value must lie in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Dotted path in the scene file, e.g. `line.length`.
+    pub field: &'static str,
+    /// The FMU parameter and `--set` name, if the value has one.
+    pub parameter: Option<&'static str>,
+    /// SI unit ("-" for a ratio).
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+    /// Why these bounds.
+    pub reason: &'static str,
+}
+
+/// Largest |coordinate| of the anchor, the free surface and the hang-off's
+/// displacement, m.
+pub const MAX_COORDINATE: f64 = 20_000.0;
+/// Largest current speed, m/s.
+pub const MAX_CURRENT: f64 = 10.0;
+/// Largest number of elements.
+pub const MAX_ELEMENTS: f64 = 2000.0;
+
+const LENGTH_REASON: &str = "from a 1 m jumper to the longest umbilicals and moorings (about 20 km)";
+const COORD_REASON: &str = "20 km either way: deeper than any ocean, within the longest line";
+const CURRENT_REASON: &str = "the strongest tidal streams reach about 5 m/s";
+
+/// Every range. Scene fields without a parameter name (`current.speed`,
+/// `current.depth`, the table's rows, `buoyancy[i].*`) are checked with the
+/// entry of their field.
+pub const RANGES: &[Range] = &[
+    Range {
+        field: "line.length",
+        parameter: Some("length"),
+        unit: "m",
+        min: 1.0,
+        max: 20_000.0,
+        reason: LENGTH_REASON,
+    },
+    Range {
+        field: "line.mass_per_length",
+        parameter: Some("mass_per_length"),
+        unit: "kg/m",
+        min: 0.01,
+        max: 1e5,
+        reason: "from an optical fibre cable (about 0.1 kg/m) to a hundred times the heaviest chains and \
+                 steel pipes (about 1 t/m)",
+    },
+    Range {
+        field: "line.outer_diameter",
+        parameter: Some("outer_diameter"),
+        unit: "m",
+        min: 0.001,
+        max: 5.0,
+        reason: "Morison's slender-body loads need a diameter small against the length and the waves; the \
+                 largest buoyancy-clad risers are about 2 m",
+    },
+    Range {
+        field: "line.axial_stiffness",
+        parameter: Some("axial_stiffness"),
+        unit: "N",
+        min: 1e3,
+        max: 1e12,
+        reason: "from a thin fibre rope to thirty times a 1 m steel pipe (3e10 N)",
+    },
+    Range {
+        field: "line.bending_stiffness",
+        parameter: Some("bending_stiffness"),
+        unit: "N m^2",
+        min: 0.0,
+        max: 1e11,
+        reason: "0 for a cable-like rod up to thirty times a 1 m steel pipe (3.5e9 N m^2)",
+    },
+    Range {
+        field: "line.torsional_stiffness",
+        parameter: Some("torsional_stiffness"),
+        unit: "N m^2",
+        min: 0.0,
+        max: 1e11,
+        reason: "0 up to thirty times a 1 m steel pipe (2.7e9 N m^2)",
+    },
+    Range {
+        field: "line.cd_normal",
+        parameter: Some("cd_normal"),
+        unit: "-",
+        min: 0.0,
+        max: 5.0,
+        reason: "measured cylinder drag is 0.5-1.2, up to about 2.5 with vortex-induced vibration or strakes",
+    },
+    Range {
+        field: "line.cd_tangential",
+        parameter: Some("cd_tangential"),
+        unit: "-",
+        min: 0.0,
+        max: 5.0,
+        reason: "skin friction coefficients are 0.01-0.1 on diameter D; bounded like the normal one",
+    },
+    Range {
+        field: "line.ca_normal",
+        parameter: Some("ca_normal"),
+        unit: "-",
+        min: 0.0,
+        max: 5.0,
+        reason: "a cylinder's potential-flow added mass is 1, near a wall or with modules up to about 2",
+    },
+    Range {
+        field: "line.rotary_inertia",
+        parameter: Some("rotary_inertia"),
+        unit: "kg m",
+        min: 0.0,
+        max: 1e5,
+        reason: "the default m D^2/8 of a 2 m riser of 2 t/m is 1000 kg m; a hundred times that",
+    },
+    Range {
+        field: "environment.water_density",
+        parameter: Some("water_density"),
+        unit: "kg/m^3",
+        min: 0.0,
+        max: 2000.0,
+        reason: "0 for a line in air, sea water 1025, up to drilling mud",
+    },
+    Range {
+        field: "environment.gravity",
+        parameter: Some("gravity"),
+        unit: "m/s^2",
+        min: 1.0,
+        max: 30.0,
+        reason: "the statics need a distributed load to define the hanging shape; Earth's 9.81 with room \
+                 for test values",
+    },
+    Range {
+        field: "environment.water_surface_z",
+        parameter: Some("water_surface_z"),
+        unit: "m",
+        min: -MAX_COORDINATE,
+        max: MAX_COORDINATE,
+        reason: COORD_REASON,
+    },
+    Range {
+        field: "anchor.x",
+        parameter: Some("anchor_x"),
+        unit: "m",
+        min: -MAX_COORDINATE,
+        max: MAX_COORDINATE,
+        reason: COORD_REASON,
+    },
+    Range {
+        field: "anchor.y",
+        parameter: Some("anchor_y"),
+        unit: "m",
+        min: -MAX_COORDINATE,
+        max: MAX_COORDINATE,
+        reason: COORD_REASON,
+    },
+    Range {
+        field: "anchor.z",
+        parameter: Some("anchor_z"),
+        unit: "m",
+        min: -MAX_COORDINATE,
+        max: MAX_COORDINATE,
+        reason: COORD_REASON,
+    },
+    Range {
+        field: "current.speed",
+        parameter: None,
+        unit: "m/s",
+        min: -MAX_CURRENT,
+        max: MAX_CURRENT,
+        reason: CURRENT_REASON,
+    },
+    Range {
+        field: "current.top",
+        parameter: Some("current_top"),
+        unit: "m/s",
+        min: -MAX_CURRENT,
+        max: MAX_CURRENT,
+        reason: CURRENT_REASON,
+    },
+    Range {
+        field: "current.bottom",
+        parameter: Some("current_bottom"),
+        unit: "m/s",
+        min: -MAX_CURRENT,
+        max: MAX_CURRENT,
+        reason: CURRENT_REASON,
+    },
+    Range { field: "current.depth", parameter: None, unit: "m", min: 0.01, max: MAX_COORDINATE, reason: COORD_REASON },
+    Range {
+        field: "current.table.depth",
+        parameter: None,
+        unit: "m",
+        min: 0.0,
+        max: MAX_COORDINATE,
+        reason: COORD_REASON,
+    },
+    Range {
+        field: "current.table.speed",
+        parameter: None,
+        unit: "m/s",
+        min: -MAX_CURRENT,
+        max: MAX_CURRENT,
+        reason: CURRENT_REASON,
+    },
+    Range {
+        field: "current.direction",
+        parameter: Some("current_direction"),
+        unit: "deg",
+        min: -360.0,
+        max: 360.0,
+        reason: "one turn either way from +x",
+    },
+    Range {
+        field: "buoyancy.load",
+        parameter: Some("buoyancy_load"),
+        unit: "N/m",
+        min: -1e5,
+        max: 1e5,
+        reason: "net upward load of the modules (negative: ballast); 1e5 N/m exceeds the buoyancy of a \
+                 continuous string of 3 m modules (71 kN/m)",
+    },
+    Range {
+        field: "buoyancy.start",
+        parameter: Some("buoyancy_start"),
+        unit: "m",
+        min: 0.0,
+        max: 20_000.0,
+        reason: "arc length from the hang-off; within the line (checked against its length too)",
+    },
+    Range {
+        field: "buoyancy.end",
+        parameter: Some("buoyancy_end"),
+        unit: "m",
+        min: 0.0,
+        max: 20_000.0,
+        reason: "arc length from the hang-off; within the line (checked against its length too)",
+    },
+    Range {
+        field: "analysis.n_elements",
+        parameter: Some("n_elements"),
+        unit: "-",
+        min: 2.0,
+        max: MAX_ELEMENTS,
+        reason: "two elements are the fewest that bend; the modes and the statics converge long before 2000 \
+                 (docs/performance.md), which cost seconds per simulated second",
+    },
+    Range {
+        field: "analysis.time_step",
+        parameter: Some("time_step"),
+        unit: "s",
+        min: 1e-4,
+        max: 10.0,
+        reason: "0.1 ms resolves the axial waves of short elements; a step above 10 s is longer than sea \
+                 waves and resolves nothing",
+    },
+    Range {
+        field: "analysis.newton_tolerance",
+        parameter: Some("newton_tolerance"),
+        unit: "-",
+        min: 1e-14,
+        max: 1e-2,
+        reason: "relative to the line's weight; below round-off Newton iterates until the residual stops \
+                 falling; above 1 % the run is not an equilibrium",
+    },
+    Range {
+        field: "analysis.structural_damping",
+        parameter: Some("structural_damping"),
+        unit: "s",
+        min: 0.0,
+        max: 10.0,
+        reason: "damping time eta: 10 s critically damps every mode above 0.03 Hz",
+    },
+    Range {
+        field: "analysis.rho_infinity",
+        parameter: Some("rho_infinity"),
+        unit: "-",
+        min: 0.01,
+        max: 1.0,
+        reason: "the spectral radius at infinite frequency: 1 conserves energy, smaller values damp the \
+                 unresolved modes faster (theory 5.10)",
+    },
+];
+
+/// The hang-off inputs of the FMU (m and m/s): checked when a master sets them.
+pub const INPUT_DISPLACEMENT: Range = Range {
+    field: "hang-off displacement",
+    parameter: None,
+    unit: "m",
+    min: -MAX_COORDINATE,
+    max: MAX_COORDINATE,
+    reason: COORD_REASON,
+};
+/// The hang-off velocity inputs of the FMU, m/s.
+pub const INPUT_VELOCITY: Range = Range {
+    field: "hang-off velocity",
+    parameter: None,
+    unit: "m/s",
+    min: -100.0,
+    max: 100.0,
+    reason: "ten times the fastest vessel motion",
+};
+
+/// The hang-off accelerations a master may give as input derivatives, m/s².
+pub const INPUT_ACCELERATION: Range = Range {
+    field: "hang-off acceleration",
+    parameter: None,
+    unit: "m/s^2",
+    min: -1000.0,
+    max: 1000.0,
+    reason: "a hundred times gravity",
+};
