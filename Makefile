@@ -6,17 +6,18 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn fuzz valgrind
 
 all: build
 
 build:
 	$(CARGO) build --release
 
-$(VENV)/.installed: requirements.txt
+$(VENV)/.installed: requirements.txt python/riser_sweep/pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -r requirements.txt
+	$(PY) -m pip install --quiet -e python/riser_sweep
 	touch $@
 
 venv: $(VENV)/.installed
@@ -57,6 +58,13 @@ moordyn: build venv
 stability: build venv
 	$(PY) scripts/stability.py
 
+# riser-sweep on Dask (issue 15): 48 cases as a plain loop and on a local
+# cluster of 1 and 2 workers; the "Sweeps on Dask" figures of docs/performance.md
+# (5 to 8 minutes; run it on a quiet machine, it measures wall time).
+.PHONY: bench-sweep
+bench-sweep: venv fmu
+	$(PY) scripts/bench_sweep.py
+
 lint:
 	$(CARGO) fmt --check
 	$(CARGO) clippy --release --all-targets -- -D warnings
@@ -83,3 +91,15 @@ test: lint doc rust-test fmu-test
 clean:
 	$(CARGO) clean
 	rm -rf out $(VENV) fmu/riser.fmu
+
+# The long fuzz run of the FMU's C ABI (robustness issue): 5000 seeded random
+# FMI call sequences, each in a child process; the result in docs/fuzz.md
+# (~8 minutes on a quiet machine). `make test` runs 400 of them (tests/python/test_fuzz.py).
+fuzz: fmu
+	$(PY) scripts/fuzz_fmu.py
+
+# riser.so under valgrind memcheck: an fmpy run and a sample of the fuzz
+# sequences; errors and leaks attributed by their stacks (docs/fuzz.md,
+# 'valgrind'; ~7 minutes).
+valgrind: fmu
+	$(PY) scripts/valgrind_fmu.py
