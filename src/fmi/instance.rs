@@ -675,8 +675,13 @@ impl Instance {
             Ok(s) => s,
             Err(e) => return self.fail(&format!("{F}: {e}")),
         };
+        let value = |a: usize| -cols.iter().zip(dv_known).map(|(&b, dv)| s[(a, b)] * dv).sum::<f64>();
+        // never a non-finite number with fmi2OK: a seed of 1e308 overflows
+        if let Some(x) = rows.iter().map(|&a| value(a)).find(|x| !x.is_finite()) {
+            return self.fail(&format!("{F}: the derivative times the seed is {x} (the seed is too large)"));
+        }
         for (out, &a) in dv_unknown.iter_mut().zip(&rows) {
-            *out = -cols.iter().zip(dv_known).map(|(&b, dv)| s[(a, b)] * dv).sum::<f64>();
+            *out = value(a);
         }
         Status::Ok
     }
@@ -844,7 +849,18 @@ impl Instance {
         if s.state.mesh() != sim.state.mesh() {
             return self.fail("the FMU state has another mesh");
         }
+        if !s.state.is_finite() || !s.inputs.iter().all(|x| x.is_finite()) {
+            return self.fail("the FMU state holds numbers that are not finite");
+        }
+        // a state whose outputs are not finite (a crafted or corrupted blob
+        // with a valid checksum) is refused, the instance's state kept
+        let start = self.step_start.get_or_insert_with(State::default);
+        start.clone_from(&sim.state);
         sim.state.clone_from(&s.state);
+        if let Some(name) = sim.outputs().first_non_finite() {
+            sim.state.clone_from(start);
+            return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
+        }
         sim.integrator.invalidate_tangent();
         self.inputs = s.inputs;
         self.history = s.history;
