@@ -94,7 +94,7 @@ clean:
 
 # The long fuzz run of the FMU's C ABI (robustness issue): 5000 seeded random
 # FMI call sequences, each in a child process; the result in docs/fuzz.md
-# (~8 minutes on a quiet machine). `make test` runs 400 of them (tests/python/test_fuzz.py).
+# (~6 minutes on a quiet machine). `make test` runs 400 of them (tests/python/test_fuzz.py).
 fuzz: fmu
 	$(PY) scripts/fuzz_fmu.py
 
