@@ -20,7 +20,7 @@ struct Var {
 }
 
 /// (unit, [kg, m, s]) exponents of the SI base units.
-const UNITS: [(&str, [i32; 3]); 10] = [
+const UNITS: [(&str, [i32; 3]); 12] = [
     ("m", [0, 1, 0]),
     ("m/s", [0, 1, -1]),
     ("m/s2", [0, 1, -2]),
@@ -31,6 +31,8 @@ const UNITS: [(&str, [i32; 3]); 10] = [
     ("N.m2", [1, 3, -2]),
     ("kg/m", [1, -1, 0]),
     ("kg/m3", [1, -3, 0]),
+    ("Pa/m", [1, -2, -2]),
+    ("Pa.s/m", [1, -2, -1]),
 ];
 
 /// 64-bit FNV-1a with a seed.

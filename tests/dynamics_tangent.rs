@@ -40,11 +40,27 @@ fn check_tangent(eta: f64, corotated: bool) {
     check_tangent_rho(eta, corotated, 1.0);
 }
 
+/// The seabed (§9): some Gauss points in contact, some crossing the plane,
+/// moving in and out of it and sliding (damping, friction in both
+/// directions, axial and lateral coefficients different).
+#[test]
+fn step_tangent_with_seabed_contact_damping_and_friction_matches_finite_differences() {
+    let scene = Scene::builtin("steel_catenary").unwrap().with_overrides(&["n_elements=12"]).unwrap();
+    for (corotated, rho) in [(false, 1.0), (true, 0.8)] {
+        check_tangent_scene(&scene, 0.0, corotated, rho);
+    }
+}
+
 fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = Scene::builtin("catenary")
         .unwrap()
         .with_overrides(&["n_elements=4", "ca_normal=1.0", "current_direction=40"])
         .unwrap();
+    check_tangent_scene(&scene, eta, corotated, rho_infinity);
+}
+
+fn check_tangent_scene(scene: &Scene, eta: f64, corotated: bool, rho_infinity: f64) {
+    let scene = scene.clone();
     let report = solve_scene(&scene).unwrap();
     let model = RodModel::from_scene(&scene);
     let opts =

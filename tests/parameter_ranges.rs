@@ -14,7 +14,7 @@ fn riser(args: &[String]) -> std::process::Output {
 
 /// Other parameters a bound needs to make a line at all: the anchor within
 /// reach of the shortest and the longest line, a buoyancy section to carry
-/// the `buoyancy_*` bounds.
+/// the `buoyancy_*` bounds, a line resting on the seabed for its contact law.
 fn companions(parameter: &str, value: f64) -> Vec<String> {
     let v = |s: &str| s.to_string();
     match (parameter, value) {
@@ -29,6 +29,12 @@ fn companions(parameter: &str, value: f64) -> Vec<String> {
         // an anchor 20 km away needs a line as long
         ("anchor_x" | "anchor_y" | "anchor_z", _) => vec![v("length=20000")],
         ("current_top" | "current_bottom", _) => vec![v("static_current=true")],
+        // a seabed at the hang-off's height: the line taut along it
+        ("seabed_z", z) if z > -1.0 => vec![v("anchor_x=100.5"), v("anchor_z=0")],
+        // the contact law's bounds on a line resting on the seabed
+        ("seabed_stiffness" | "seabed_damping" | "seabed_friction", _) => {
+            vec![v("anchor_x=85"), v("anchor_z=-40"), v("seabed_z=-40")]
+        }
         _ => vec![],
     }
 }

@@ -545,6 +545,8 @@ impl Instance {
             "work_hydro" => o.work_hydro,
             "dissipated_energy" => o.dissipated_energy,
             "algorithmic_dissipation" => o.algorithmic_dissipation,
+            "touchdown_s" => o.touchdown_s,
+            "work_seabed" => o.work_seabed,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

@@ -1,10 +1,12 @@
 //! Loads per unit length, evaluated at the same points by both line models:
 //! weight and buoyancy (with buoyancy modules), current profiles, Morison drag
-//! (paper eqs. 13–17) and added mass; built here from a scene.
+//! (paper eqs. 13–17), added mass and the seabed's contact; built here from
+//! a scene.
 
 pub mod current;
 pub mod fluid;
 pub mod morison;
+pub mod seabed;
 pub mod weight;
 
 use crate::math::V3;
@@ -12,6 +14,7 @@ use crate::scene::{ProfileKind, Scene};
 use current::{Current, CurrentProfile};
 use fluid::Fluid;
 use morison::DragCoefficients;
+use seabed::Seabed;
 use weight::{BuoyancySection, VerticalLoad};
 
 /// Weight, buoyancy and buoyancy modules.
@@ -24,6 +27,21 @@ pub fn vertical_load(scene: &Scene) -> VerticalLoad {
     );
     v.sections = scene.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
     v
+}
+
+/// The seabed's contact law on the line (None: the scene has no seabed).
+pub fn seabed(scene: &Scene) -> Option<Seabed> {
+    scene.seabed.as_ref().map(|b| {
+        Seabed::new(
+            b.z,
+            b.slope,
+            b.stiffness,
+            b.damping,
+            b.friction_coefficients(),
+            b.slip_velocity,
+            scene.line.outer_diameter,
+        )
+    })
 }
 
 /// Morison drag coefficients ½ ρw D C_D.

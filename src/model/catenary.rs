@@ -149,6 +149,80 @@ impl Catenary {
     }
 }
 
+/// A line resting partly on a flat seabed (the start of the statics with a
+/// seabed, docs/theory.md §9.3): the suspended catenary from the hang-off to
+/// the touchdown, where its tangent is horizontal (n_z = 0), then the rest
+/// lying straight from the touchdown to the anchor under the tension H.
+#[derive(Debug, Clone)]
+pub struct Touchdown {
+    /// The suspended part, S ∈ [0, `suspended`].
+    pub cat: Catenary,
+    /// Its unstretched length L_s, m.
+    pub suspended: f64,
+    /// The touchdown point in the plane (horizontal, vertical), m.
+    pub point: (f64, f64),
+    /// Unit direction of the lying part in the plane, towards the anchor.
+    pub direction: (f64, f64),
+}
+
+impl Touchdown {
+    /// Solves for the line of unstretched `length` with load `load` from
+    /// (0, 0) to the anchor at (`span`, `dz`), over a flat seabed at height
+    /// `bed` (≤ dz) in the plane; None if the hanging catenary does not reach
+    /// the seabed or no touchdown closes. Bisection on the lying length L_b:
+    /// n_z at the end of the suspended part is > 0 for L_b = 0 (the line
+    /// would dip below the seabed) and < 0 for a taut suspended part.
+    pub fn solve(length: f64, load: &VerticalLoad, ea: f64, span: f64, dz: f64, bed: f64) -> Option<Touchdown> {
+        let rise = dz - bed;
+        if !(rise >= 0.0 && bed < 0.0) {
+            return None;
+        }
+        // the suspended catenary for a lying length lb, and n_z at its end
+        let part = |lb: f64| -> Option<(Catenary, f64, f64)> {
+            let lying_h = if lb > rise { (lb * lb - rise * rise).sqrt() } else { 0.0 };
+            let ls = length - lb;
+            let cat = Catenary::solve(ls, load, ea, span - lying_h, bed)?;
+            let nz = cat.at(ls).n_z;
+            Some((cat, lying_h, nz))
+        };
+        let (_, _, nz0) = part(0.0)?;
+        if nz0 <= 0.0 {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, length);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            match part(mid) {
+                Some((_, _, nz)) if nz > 0.0 => lo = mid,
+                _ => hi = mid,
+            }
+        }
+        let (cat, lying_h, _) = part(lo)?;
+        let ls = length - lo;
+        let end = cat.at(ls);
+        let (dxl, dzl) = (span - end.x, dz - end.z);
+        let dl = dxl.hypot(dzl);
+        let direction = if dl > 0.0 && lying_h > 0.0 { (dxl / dl, dzl / dl) } else { (1.0, 0.0) };
+        Some(Touchdown { cat, suspended: ls, point: (end.x, end.z), direction })
+    }
+
+    /// Point (position and internal force) at reference arc length s.
+    pub fn at(&self, s: f64) -> CablePoint {
+        if s <= self.suspended {
+            return self.cat.at(s);
+        }
+        let h = self.cat.h;
+        let stretch = 1.0 + h / self.cat.ea;
+        let ds = (s - self.suspended) * stretch;
+        CablePoint {
+            x: self.point.0 + self.direction.0 * ds,
+            z: self.point.1 + self.direction.1 * ds,
+            n_h: h * self.direction.0,
+            n_z: h * self.direction.1,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -61,6 +61,8 @@ pub struct State {
     pub work_anchor: f64,
     /// Energy removed by the high-frequency dissipation since t = 0, J (≥ 0; §5.10).
     pub algorithmic: f64,
+    /// Work of the seabed's damping and friction on the line since t = 0, J (≤ 0; §7).
+    pub work_seabed: f64,
     /// Velocity increments over the last step, (v_n − v_{n−1})/h, per velocity
     /// triple (the node velocities, then the slope velocities), m/s² and 1/s²:
     /// the history of the velocity filter's weights (§5.10).
@@ -108,6 +110,7 @@ impl Clone for State {
             dissipated,
             work_anchor,
             algorithmic,
+            work_seabed,
             hf_accel,
             hf_weight,
             end_accel,
@@ -131,6 +134,7 @@ impl Clone for State {
         self.dissipated = *dissipated;
         self.work_anchor = *work_anchor;
         self.algorithmic = *algorithmic;
+        self.work_seabed = *work_seabed;
         self.hf_accel.clone_from(hf_accel);
         self.hf_weight.clone_from(hf_weight);
         self.end_accel = *end_accel;
@@ -199,9 +203,17 @@ impl State {
             && self.director_vel.iter().all(|d| d.iter().all(|c| c.is_finite()))
             && self.hf_accel.iter().all(|v| v.iter().all(|c| c.is_finite()))
             && self.hf_weight.iter().all(|w| w.is_finite())
-            && [self.time, self.work_top, self.work_hydro, self.work_anchor, self.dissipated, self.algorithmic]
-                .iter()
-                .all(|v| v.is_finite())
+            && [
+                self.time,
+                self.work_top,
+                self.work_hydro,
+                self.work_anchor,
+                self.dissipated,
+                self.algorithmic,
+                self.work_seabed,
+            ]
+            .iter()
+            .all(|v| v.is_finite())
     }
 }
 

@@ -26,7 +26,8 @@ pub struct Outputs {
     pub total_energy: f64,
     pub kinetic_energy: f64,
     pub strain_energy: f64,
-    /// Potential of gravity and buoyancy, −∫ q z dS (z from the origin), J.
+    /// Potential of gravity and buoyancy, −∫ q z dS (z from the origin),
+    /// and the seabed's elastic energy, J.
     pub potential_energy: f64,
     /// Work of the hang-off on the line since t = 0, J.
     pub work_top: f64,
@@ -39,13 +40,18 @@ pub struct Outputs {
     /// Energy removed by the scheme's high-frequency dissipation since t = 0,
     /// J (≥ 0; 0 with ρ∞ = 1).
     pub algorithmic_dissipation: f64,
+    /// Work of the seabed's damping and friction on the line since t = 0, J (≤ 0).
+    pub work_seabed: f64,
+    /// Arc length from the hang-off to the first seabed contact, m (the
+    /// line's length when it touches nowhere).
+    pub touchdown_s: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 14] = [
+    pub const NAMES: [&'static str; 16] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -60,10 +66,12 @@ impl Outputs {
         "work_hydro",
         "dissipated_energy",
         "algorithmic_dissipation",
+        "touchdown_s",
+        "work_seabed",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 14] {
+    pub fn values(&self) -> [f64; 16] {
         [
             self.top_tension,
             self.top_force.x,
@@ -79,6 +87,8 @@ impl Outputs {
             self.work_hydro,
             self.dissipated_energy,
             self.algorithmic_dissipation,
+            self.touchdown_s,
+            self.work_seabed,
         ]
     }
 
@@ -97,10 +107,10 @@ impl Outputs {
         None
     }
 
-    /// E(t) − E(0) − W_top − W_hydro − W_anchor + D + D_alg: zero to the
-    /// Newton tolerance (§5.5, §5.9, §5.10), J.
+    /// E(t) − E(0) − W_top − W_hydro − W_anchor − W_seabed + D + D_alg: zero
+    /// to the Newton tolerance (§5.5, §5.9, §5.10, §9), J.
     pub fn energy_balance_residual(&self, e0: f64) -> f64 {
-        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor
+        self.total_energy - e0 - self.work_top - self.work_hydro - self.work_anchor - self.work_seabed
             + self.dissipated_energy
             + self.algorithmic_dissipation
     }
@@ -109,12 +119,14 @@ impl Outputs {
 impl Outputs {
     /// The outputs of state `s` from its end `reactions` (force of the supports
     /// on the line, N), smallest axial force (N), energies [kinetic, strain,
-    /// potential] (J) and shape points; the work terms are the state's.
+    /// potential] (J), the touchdown's arc length (m) and shape points; the
+    /// work terms are the state's.
     pub fn of_state(
         s: &State,
         reactions: [V3; 2],
         min_tension: f64,
         energy: [f64; 3],
+        touchdown_s: f64,
         shape: [V3; SHAPE_POINTS],
     ) -> Self {
         let [kinetic, strain, potential] = energy;
@@ -134,6 +146,8 @@ impl Outputs {
             work_anchor: s.work_anchor,
             dissipated_energy: s.dissipated,
             algorithmic_dissipation: s.algorithmic,
+            work_seabed: s.work_seabed,
+            touchdown_s,
             shape,
         }
     }

@@ -12,7 +12,7 @@ use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 3;
+const VERSION: u32 = 4;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -162,7 +162,8 @@ impl State {
         }
         w.v3(&self.hang_off.displacement);
         w.v3(&self.hang_off.velocity);
-        for v in [self.work_top, self.work_hydro, self.dissipated, self.work_anchor, self.algorithmic] {
+        for v in [self.work_top, self.work_hydro, self.dissipated, self.work_anchor, self.algorithmic, self.work_seabed]
+        {
             w.f(v);
         }
         for v in &self.hf_accel {
@@ -232,7 +233,7 @@ impl State {
         let prev_mean_slope_vel = r.vec3(np)?;
         let hang_off = HangOff { displacement: r.v3()?, velocity: r.v3()? };
         let (work_top, work_hydro, dissipated, work_anchor) = (r.f()?, r.f()?, r.f()?, r.f()?);
-        let algorithmic = r.f()?;
+        let (algorithmic, work_seabed) = (r.f()?, r.f()?);
         let hf_accel = r.vec3(n + np)?;
         let hf_weight = (0..n + np).map(|_| r.f()).collect::<Result<Vec<_>, _>>()?;
         let mut end_accel = [[V3::zeros(); 4]; 2];
@@ -262,6 +263,7 @@ impl State {
             dissipated,
             work_anchor,
             algorithmic,
+            work_seabed,
             hf_accel,
             hf_weight,
             end_accel,

@@ -14,9 +14,10 @@ use crate::math::V3;
 use serde::{Deserialize, Serialize};
 
 /// Built-in scenes: (name, TOML text).
-pub const BUILTIN: [(&str, &str); 2] = [
+pub const BUILTIN: [(&str, &str); 3] = [
     ("catenary", include_str!("../../scenes/catenary.toml")),
     ("lazy_wave", include_str!("../../scenes/lazy_wave.toml")),
+    ("steel_catenary", include_str!("../../scenes/steel_catenary.toml")),
 ];
 
 /// The default scene.
@@ -159,6 +160,84 @@ pub struct Buoyancy {
     pub load: f64,
 }
 
+/// The seabed (docs/theory.md §9): a plane through (0, 0, `z`) rising by
+/// `slope` degrees towards +x, with MoorDyn's contact law (kBot `stiffness`,
+/// cBot `damping`, per unit contact area D·dS) and regularised Coulomb friction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeabedSpec {
+    /// Height of the seabed below the hang-off (at x = y = 0), m.
+    pub z: f64,
+    /// Slope, deg (+: the seabed rises towards +x).
+    #[serde(default)]
+    pub slope: f64,
+    /// Penetration stiffness per unit contact area (MoorDyn's kBot), Pa/m.
+    #[serde(default = "default_seabed_stiffness")]
+    pub stiffness: f64,
+    /// Penetration damping per unit contact area (MoorDyn's cBot), Pa s/m.
+    #[serde(default = "default_seabed_damping")]
+    pub damping: f64,
+    /// Coulomb friction coefficient, axial and lateral (0: frictionless).
+    #[serde(default)]
+    pub friction: f64,
+    /// Axial friction coefficient (default `friction`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_axial: Option<f64>,
+    /// Lateral friction coefficient (default `friction`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_lateral: Option<f64>,
+    /// Regularisation velocity of the friction v_ε, m/s: the friction
+    /// reaches μN smoothly over a few v_ε of slip speed (docs/theory.md §9).
+    #[serde(default = "default_slip_velocity")]
+    pub slip_velocity: f64,
+}
+
+/// MoorDyn's default kBot, Pa/m.
+pub const DEFAULT_SEABED_STIFFNESS: f64 = 3.0e6;
+/// MoorDyn's default cBot, Pa s/m.
+pub const DEFAULT_SEABED_DAMPING: f64 = 3.0e5;
+/// The default regularisation velocity of the friction, m/s.
+pub const DEFAULT_SLIP_VELOCITY: f64 = 0.01;
+/// The height of the seabed an FMU or `--set` reads when the scene has none,
+/// m: the lowest the range allows, below every line (no contact).
+pub const NO_SEABED_Z: f64 = -20_000.0;
+
+fn default_seabed_stiffness() -> f64 {
+    DEFAULT_SEABED_STIFFNESS
+}
+fn default_seabed_damping() -> f64 {
+    DEFAULT_SEABED_DAMPING
+}
+fn default_slip_velocity() -> f64 {
+    DEFAULT_SLIP_VELOCITY
+}
+
+impl SeabedSpec {
+    /// A flat seabed at `z` with the default contact law and no friction.
+    pub fn flat(z: f64) -> Self {
+        SeabedSpec {
+            z,
+            slope: 0.0,
+            stiffness: DEFAULT_SEABED_STIFFNESS,
+            damping: DEFAULT_SEABED_DAMPING,
+            friction: 0.0,
+            friction_axial: None,
+            friction_lateral: None,
+            slip_velocity: DEFAULT_SLIP_VELOCITY,
+        }
+    }
+
+    /// Friction coefficients [axial, lateral].
+    pub fn friction_coefficients(&self) -> [f64; 2] {
+        [self.friction_axial.unwrap_or(self.friction), self.friction_lateral.unwrap_or(self.friction)]
+    }
+
+    /// Height of the seabed under (x, y), m.
+    pub fn height_at(&self, x: f64, _y: f64) -> f64 {
+        self.z + x * self.slope.to_radians().tan()
+    }
+}
+
 /// Which line model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -247,6 +326,9 @@ pub struct Scene {
     pub current: CurrentSpec,
     #[serde(default)]
     pub buoyancy: Vec<Buoyancy>,
+    /// The seabed (none: the line never touches bottom, at no cost).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seabed: Option<SeabedSpec>,
     #[serde(default)]
     pub analysis: Analysis,
 }

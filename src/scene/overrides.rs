@@ -1,10 +1,10 @@
 //! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
-use super::{Buoyancy, Model, ProfileKind, Scene, SceneError, ranges};
+use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 29] = [
+pub const PARAMETER_NAMES: [(&str, &str); 33] = [
     ("model", "rod | cable"),
     ("n_elements", "-"),
     ("time_step", "s"),
@@ -34,7 +34,18 @@ pub const PARAMETER_NAMES: [(&str, &str); 29] = [
     ("buoyancy_load", "N/m"),
     ("buoyancy_start", "m"),
     ("buoyancy_end", "m"),
+    ("seabed_z", "m"),
+    ("seabed_stiffness", "Pa/m"),
+    ("seabed_damping", "Pa s/m"),
+    ("seabed_friction", "-"),
 ];
+
+/// The seabed the `seabed_*` parameters act on: a scene without one gets a
+/// flat seabed at [`NO_SEABED_Z`] (below every line) with the default
+/// contact law, so that the parameters need no order.
+fn seabed(s: &mut Scene) -> &mut SeabedSpec {
+    s.seabed.get_or_insert_with(|| SeabedSpec::flat(NO_SEABED_Z))
+}
 
 /// The value of a numeric parameter, checked against its range (ranges.rs).
 fn number(name: &str, value: &str) -> Result<f64, SceneError> {
@@ -163,6 +174,14 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "buoyancy_load" => buoyancy_section(s, name)?.load = num()?,
         "buoyancy_start" => buoyancy_section(s, name)?.start = num()?,
         "buoyancy_end" => buoyancy_section(s, name)?.end = num()?,
+        "seabed_z" => seabed(s).z = num()?,
+        "seabed_stiffness" => seabed(s).stiffness = num()?,
+        "seabed_damping" => seabed(s).damping = num()?,
+        "seabed_friction" => {
+            let mu = num()?;
+            let b = seabed(s);
+            (b.friction, b.friction_axial, b.friction_lateral) = (mu, None, None);
+        }
         _ => {
             return Err(SceneError::Override {
                 name: name.into(),
@@ -226,6 +245,16 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "buoyancy_load" => section(|b| b.load),
         "buoyancy_start" => section(|b| b.start),
         "buoyancy_end" => section(|b| b.end),
+        "seabed_z" => num(s.seabed.as_ref().map_or(NO_SEABED_Z, |b| b.z)),
+        "seabed_stiffness" => num(s.seabed.as_ref().map_or(super::DEFAULT_SEABED_STIFFNESS, |b| b.stiffness)),
+        "seabed_damping" => num(s.seabed.as_ref().map_or(super::DEFAULT_SEABED_DAMPING, |b| b.damping)),
+        "seabed_friction" => match &s.seabed {
+            None => num(0.0),
+            Some(b) => {
+                let [a, l] = b.friction_coefficients();
+                if a == l { num(a) } else { None }
+            }
+        },
         _ => None,
     }
 }

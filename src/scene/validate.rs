@@ -147,6 +147,37 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
             }
         }
     }
+    if let Some(b) = &s.seabed {
+        let ok = c.range("seabed.z", b.z) & c.range("seabed.slope", b.slope);
+        c.range("seabed.stiffness", b.stiffness);
+        c.range("seabed.damping", b.damping);
+        c.range("seabed.friction", b.friction);
+        if let Some(m) = b.friction_axial {
+            c.range("seabed.friction_axial", m);
+        }
+        if let Some(m) = b.friction_lateral {
+            c.range("seabed.friction_lateral", m);
+        }
+        c.range("seabed.slip_velocity", b.slip_velocity);
+        let anchor_ok = [a.x, a.y, a.z].iter().all(|v| v.is_finite());
+        if ok && anchor_ok {
+            // the hang-off is the origin: above the seabed or on it
+            let under_anchor = b.height_at(a.x, a.y);
+            if under_anchor > a.z + 1e-9 * a.z.abs().max(1.0) {
+                c.err(
+                    "seabed.z",
+                    format!(
+                        "the seabed is at z = {} m under the anchor ({}, {}) m, above the anchor (z = {} m): the \
+                         anchor must be on the seabed or above it",
+                        ranges::number(under_anchor),
+                        a.x,
+                        a.y,
+                        a.z
+                    ),
+                );
+            }
+        }
+    }
     let an = &s.analysis;
     c.range("analysis.n_elements", an.n_elements as f64);
     c.range("analysis.time_step", an.time_step);

@@ -4,9 +4,9 @@
 use super::error::RiserError;
 use crate::loads;
 use crate::math::V3;
-use crate::model::cable::statics::{CableStatics, hanging_chain_start};
+use crate::model::cable::statics::{CableStatics, hanging_chain_start, touchdown_start};
 use crate::model::cable::{Cable, CableModel};
-use crate::model::rod::statics::{StaticLoads, StaticProblem, catenary_start};
+use crate::model::rod::statics::{StaticLoads, StaticProblem, seabed_start};
 use crate::model::rod::{self, Rod};
 use crate::model::statics::{StaticOptions, StaticSolution};
 use crate::scene::{Model, Scene};
@@ -107,6 +107,7 @@ impl StaticReport {
 /// when the scene's `static_current` asks for it (docs/theory.md §4).
 pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
     let mut loads = StaticLoads::gravity_only(loads::vertical_load(scene));
+    loads.seabed = loads::seabed(scene);
     let current = loads::current(scene);
     let k = loads::drag_coefficients(scene);
     if scene.analysis.static_current && !current.is_none() && !k.is_zero() {
@@ -119,11 +120,17 @@ pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
 pub fn solve_scene(scene: &Scene) -> Result<StaticReport, RiserError> {
     let rod = rod::of_scene(scene);
     let loads = scene_static_loads(scene);
-    let start = catenary_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor());
+    let start = seabed_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor(), loads.seabed.as_ref());
     let tolerance = scene.analysis.newton_tolerance.min(1e-10);
     if scene.analysis.model == Model::Cable {
         let model = CableModel::from_scene(scene);
-        let x0 = hanging_chain_start(&model, scene.hang_off(), scene.anchor()).unwrap_or(start.x);
+        let (top, anchor) = (scene.hang_off(), scene.anchor());
+        let hanging = hanging_chain_start(&model, top, anchor);
+        let below = |x: &Vec<V3>| model.seabed.as_ref().is_some_and(|b| x.iter().any(|p| b.penetration(p) > 0.0));
+        let x0 = match hanging {
+            Some(x) if !below(&x) => x,
+            other => touchdown_start(&model, top, anchor).or(other).unwrap_or(start.x),
+        };
         // Newton, with pseudo-transient continuation if Newton alone fails
         let sol = relax(&CableStatics::new(&model, loads.drag.is_some()), x0, tolerance)?;
         return Ok(StaticReport::of_cable(&model.cable, sol));

@@ -230,6 +230,70 @@ pub fn elastic_catenary(length: f64, w: f64, ea: f64, span_h: f64, dz: f64) -> R
     Ok(CatenaryForces { h, v_top, v_bottom, top_tension: h.hypot(v_top), bottom_tension: h.hypot(v_bottom) })
 }
 
+/// An elastic catenary whose lower part rests on a flat, frictionless,
+/// rigid seabed (MoorPy's `catenary()` with `CB = 0`): the fairlead forces
+/// and the length on the seabed.
+#[derive(Debug, Clone, Copy)]
+pub struct SeabedCatenary {
+    /// Horizontal force, N (uniform along the line without friction).
+    pub h: f64,
+    /// Vertical force at the fairlead, N (= w times the suspended length).
+    pub v_top: f64,
+    /// Unstretched length resting on the seabed, m.
+    pub lying: f64,
+}
+
+/// The elastic catenary with a length on the seabed (Irvine's equations with
+/// the touchdown where the suspended part's tangent is horizontal; the
+/// lying part straight under the tension H):
+///
+///   L_B = L − V/w
+///   X   = L_B + (H/w) asinh(V/H) + H L/EA
+///   Z   = (H/w) (√(1 + (V/H)²) − 1) + V²/(2 EA w)
+///
+/// * `length` [m], `w` [N/m] submerged weight, `ea` [N];
+/// * `span_h` [m]: horizontal distance from the fairlead to the anchor;
+/// * `depth` [m]: height of the fairlead above the seabed (the anchor is on it).
+///
+/// Solved by nested bisection: V from Z for a given H (Z grows with V), then
+/// H from X (X grows with H at the touchdown solution), each to the
+/// resolution of the double. Err when no part of the line would rest on the
+/// seabed (V ≥ w L) or the line cannot reach.
+pub fn catenary_on_seabed(length: f64, w: f64, ea: f64, span_h: f64, depth: f64) -> Result<SeabedCatenary, String> {
+    require_positive("length", length)?;
+    require_positive("w", w)?;
+    require_positive("ea", ea)?;
+    require_positive("span_h", span_h)?;
+    require_positive("depth", depth)?;
+    let z_of = |h: f64, v: f64| h / w * ((1.0 + (v / h).powi(2)).sqrt() - 1.0) + v * v / (2.0 * ea * w);
+    let v_of = |h: f64| {
+        let (mut lo, mut hi) = (0.0, w * length);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if z_of(h, mid) < depth { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
+    };
+    let x_of = |h: f64| {
+        let v = v_of(h);
+        length - v / w + h / w * (v / h).asinh() + h * length / ea
+    };
+    let (mut lo, mut hi) = (1e-9 * w * length, 1e3 * w * length);
+    if x_of(lo) > span_h || x_of(hi) < span_h {
+        return Err(format!("catenary_on_seabed: no touchdown solution for span {span_h} m"));
+    }
+    for _ in 0..300 {
+        let mid = (lo * hi).sqrt();
+        if x_of(mid) < span_h { lo = mid } else { hi = mid }
+    }
+    let h = (lo * hi).sqrt();
+    let v = v_of(h);
+    if v >= w * length * (1.0 - 1e-12) {
+        return Err("catenary_on_seabed: the whole line is suspended".to_string());
+    }
+    Ok(SeabedCatenary { h, v_top: v, lying: length - v / w })
+}
+
 /// Position `(x, z)` [m] of the elastic catenary at unstretched arc length `s`
 /// [m] from the top (closed form, Irvine), for the end forces `forces`
 /// returned by [`elastic_catenary`] with the same `length`, `w` [N/m] and

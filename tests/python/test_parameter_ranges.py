@@ -47,7 +47,13 @@ COMPANIONS = {
     ("buoyancy_start", "min"): {"buoyancy_end": 60.0, "buoyancy_load": 100.0},
     ("buoyancy_end", "max"): {"length": 20000.0, "anchor_x": 15000.0, "anchor_z": -10000.0,
                               "buoyancy_load": 100.0},
+    # a seabed at the hang-off's height: the line taut along it
+    ("seabed_z", "max"): {"anchor_x": 100.5, "anchor_z": 0.0},
 }
+# the contact law's bounds on a line resting on the seabed
+for _p in ["seabed_stiffness", "seabed_damping", "seabed_friction"]:
+    for _b in ["min", "max"]:
+        COMPANIONS[(_p, _b)] = {"anchor_x": 85.0, "anchor_z": -40.0, "seabed_z": -40.0}
 # bounds the scene's own checks refuse (a section must have end > start)
 NOT_A_LINE = {("buoyancy_start", "max"), ("buoyancy_end", "min")}
 

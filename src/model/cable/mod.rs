@@ -17,6 +17,7 @@ mod step;
 
 pub use step::CableWorkspace;
 
+use crate::loads::seabed::{self, Seabed};
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::band::{BandedSystem, LinearSolveError};
@@ -199,6 +200,8 @@ pub struct CableModel {
     pub mass: [[f64; 2]; 2],
     pub vertical: VerticalLoad,
     pub fluid: Fluid,
+    /// The seabed (None: no contact anywhere, no cost).
+    pub seabed: Option<Seabed>,
     /// Nodal vertical load ∫ N_a q dS, N (z components).
     f_grav: Vec<f64>,
 }
@@ -207,13 +210,20 @@ impl CableModel {
     pub fn new(cable: Cable, mass_per_length: f64, vertical: VerticalLoad, fluid: Fluid) -> Self {
         let m = mass_per_length * cable.l / 12.0;
         let f_grav = nodal_vertical_load(&cable, &vertical);
-        CableModel { cable, mass_per_length, mass: [[5.0 * m, m], [m, 5.0 * m]], vertical, fluid, f_grav }
+        CableModel { cable, mass_per_length, mass: [[5.0 * m, m], [m, 5.0 * m]], vertical, fluid, seabed: None, f_grav }
+    }
+
+    /// The same line on a seabed.
+    pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
+        self.seabed = seabed;
+        self
     }
 
     /// The cable of a scene: the scene's line without its bending and torsion.
     pub fn from_scene(scene: &Scene) -> Self {
         let cable = Cable::new(scene.line.length, scene.analysis.n_elements, scene.line.axial_stiffness, [true, true]);
         CableModel::new(cable, scene.line.mass_per_length, loads::vertical_load(scene), loads::fluid(scene))
+            .with_seabed(loads::seabed(scene))
     }
 
     /// Nodal vertical load, N (one value per node: the z component).
@@ -221,9 +231,15 @@ impl CableModel {
         &self.f_grav
     }
 
-    /// Potential of the vertical load, −∫ q z dS, J (exact for linear z).
+    /// Potential of the vertical load, −∫ q z dS (exact for linear z), and
+    /// the seabed's elastic energy ∫ V dS (9.2), J.
     pub fn potential_energy(&self, x: &[V3]) -> f64 {
-        -x.iter().zip(&self.f_grav).map(|(p, f)| p.z * f).sum::<f64>()
+        let mut v = -x.iter().zip(&self.f_grav).map(|(p, f)| p.z * f).sum::<f64>();
+        if let Some(bed) = &self.seabed {
+            let (l, shapes) = (self.cable.l, seabed::linear_at_gauss(self.cable.l));
+            v += (0..self.cable.n_el).map(|e| seabed::element_energy(bed, &[x[e], x[e + 1]], &shapes, l)).sum::<f64>();
+        }
+        v
     }
 
     /// Kinetic energy ½ vᵀ M v, J.

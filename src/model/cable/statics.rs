@@ -8,8 +8,18 @@ use crate::loads::fluid::{Fluid, FluidFactors, segment_fluid_force};
 use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::{M3, V3};
 use crate::model::RodConfig;
-use crate::model::catenary::Catenary;
+use crate::model::catenary::{Catenary, Touchdown};
 use crate::model::statics::{StaticEquations, StaticSolution};
+
+/// The chord from `top` to `anchor`, its horizontal span (m) and the unit
+/// horizontal direction of the vertical plane through both; None for an
+/// anchor (nearly) straight below the top.
+fn vertical_plane(top: V3, anchor: V3, length: f64) -> Option<(V3, f64, V3)> {
+    let chord = anchor - top;
+    let horiz = V3::new(chord.x, chord.y, 0.0);
+    let span = horiz.norm();
+    (span > 1e-9 * length).then(|| (chord, span, horiz / span))
+}
 
 /// The start of the cable's statics (docs/theory.md §6.3): the discrete
 /// chain itself hanging under its nodal loads f_a, shot from the hang-off so
@@ -23,13 +33,7 @@ use crate::model::statics::{StaticEquations, StaticSolution};
 /// None if the chain cannot be closed (then the caller starts elsewhere).
 pub fn hanging_chain_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3>> {
     let c = &model.cable;
-    let chord = anchor - top;
-    let horiz = V3::new(chord.x, chord.y, 0.0);
-    let span = horiz.norm();
-    if span <= 1e-9 * c.length {
-        return None;
-    }
-    let eh = horiz / span;
+    let (chord, span, eh) = vertical_plane(top, anchor, c.length)?;
     let cat = Catenary::solve(c.length, &model.vertical, c.axial_stiffness, span, chord.z)?;
     let f = model.gravity_vector();
     // the chain from (H, N): node positions in the plane (along eh, z)
@@ -81,6 +85,37 @@ pub fn hanging_chain_start(model: &CableModel, top: V3, anchor: V3) -> Option<Ve
     None
 }
 
+/// The start of the cable's statics on a seabed (§9.3), where the hanging
+/// chain would dip below it: the line resting on the seabed from its
+/// touchdown ([`Touchdown`], the seabed taken flat at its height under the
+/// anchor). The suspended nodes are marched along the continuous curve, each
+/// segment at its stretched length l(1 + T/EA) (so that none is slack), and
+/// the rest spread evenly from the last of them to the anchor.
+pub fn touchdown_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3>> {
+    let c = &model.cable;
+    let bed = model.seabed.as_ref()?;
+    let (chord, span, eh) = vertical_plane(top, anchor, c.length)?;
+    let level = bed.height_at(anchor.x, anchor.y) - top.z;
+    let td = Touchdown::solve(c.length, &model.vertical, c.axial_stiffness, span, chord.z, level)?;
+    let to3 = |p: &crate::model::catenary::CablePoint| top + eh * p.x + V3::z() * p.z;
+    let mut x = vec![top];
+    let mut a = 0;
+    while a < c.n_el && c.s_node(a + 1) <= td.suspended {
+        let target = to3(&td.at(c.s_node(a + 1)));
+        let t = td.at(c.s_node(a) + 0.5 * c.l).tension();
+        let dir = (target - x[a]).try_normalize(0.0)?;
+        x.push(x[a] + dir * (c.l * (1.0 + t / c.axial_stiffness)));
+        a += 1;
+    }
+    let last = x[a];
+    let rest = c.n_el - a;
+    for k in 1..=rest {
+        x.push(last + (anchor - last) * (k as f64 / rest as f64));
+    }
+    x[c.n_el] = anchor;
+    x.iter().all(|p| p.iter().all(|v| v.is_finite())).then_some(x)
+}
+
 /// The static problem of a cable: internal force, the vertical load and,
 /// if given, the drag of a steady current on the motionless line.
 pub struct CableStatics<'a> {
@@ -110,6 +145,27 @@ impl<'a> CableStatics<'a> {
         c.add_static_internal_force(x, r, sys.as_deref_mut());
         for (a, f) in self.model.gravity_vector().iter().enumerate() {
             r[NODE_DOF * a + 2] -= f;
+        }
+        if let Some(bed) = &self.model.seabed {
+            let shapes = crate::loads::seabed::linear_at_gauss(c.l);
+            for e in 0..c.n_el {
+                if crate::loads::seabed::clear_of(bed, &x[e..e + 2], 0.0) {
+                    continue;
+                }
+                let mut f = [V3::zeros(); 2];
+                let mut k = [[M3::zeros(); 2]; 2];
+                let want = sys.is_some();
+                let seg = [x[e], x[e + 1]];
+                crate::loads::seabed::element_static_force(bed, &seg, &shapes, c.l, &mut f, want.then_some(&mut k));
+                for i in 0..2 {
+                    for j in 0..3 {
+                        r[NODE_DOF * (e + i) + j] -= f[i][j];
+                    }
+                }
+                if let Some(s) = sys.as_deref_mut() {
+                    s.add_block(e, |i, j| k[i / 3][j / 3][(i % 3, j % 3)]);
+                }
+            }
         }
         if self.water.drag.is_some() {
             let fac = FluidFactors { position: 1.0, velocity: 0.0, acceleration: 0.0 };
@@ -194,7 +250,10 @@ impl StaticEquations for CableStatics<'_> {
     }
 
     fn roundoff(&self, x: &Vec<V3>) -> f64 {
-        self.model.cable.residual_roundoff(x) / self.scale
+        let c = &self.model.cable;
+        let extent = x.iter().fold(0.0f64, |m, p| m.max(p.norm())).max(c.length);
+        let bed = self.model.seabed.as_ref().map_or(0.0, |b| b.roundoff(c.l, extent));
+        c.residual_roundoff(x).max(bed) / self.scale
     }
 
     fn solution(&self, x: Vec<V3>, r: &[f64], iterations: usize, steps: usize, residual: f64) -> StaticSolution {

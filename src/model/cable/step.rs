@@ -6,6 +6,7 @@
 
 use super::{CableModel, NODE_DOF};
 use crate::loads::fluid::{FluidFactors, segment_fluid_force};
+use crate::loads::seabed::{self, linear_at_gauss};
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, V3};
 use crate::model::DynamicOptions;
@@ -20,6 +21,10 @@ use nalgebra::SMatrix;
 pub struct CableWorkspace {
     /// Global fluid force vector, N.
     fluid: Vec<f64>,
+    /// Global force vector of the seabed's damping and friction, N (§9),
+    /// and the segments' shape values at the Gauss points.
+    seabed: Vec<f64>,
+    seabed_shapes: [([f64; 2], [f64; 2]); 4],
     /// Candidate new node velocities, m/s.
     vnew: Vec<V3>,
     /// Stretches of x_n and of the trial x_{n+1}.
@@ -54,6 +59,8 @@ impl StepEquations for CableModel {
         let lin = Linear::new(c.new_system()?, c.fixed_dofs());
         let ws = CableWorkspace {
             fluid: vec![0.0; c.n_dof()],
+            seabed: vec![0.0; if self.seabed.is_some() { c.n_dof() } else { 0 }],
+            seabed_shapes: linear_at_gauss(c.l),
             vnew: vec![V3::zeros(); c.n_el + 1],
             lam_n: vec![1.0; c.n_el],
             lam_1: vec![1.0; c.n_el],
@@ -122,7 +129,8 @@ impl StepEquations for CableModel {
     fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
         let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.cable.length);
         let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.cable.l, extent, h);
-        self.cable.residual_roundoff(&cfg.x).max(inertia)
+        let bed = self.seabed.as_ref().map_or(0.0, |b| b.roundoff(self.cable.l, extent));
+        self.cable.residual_roundoff(&cfg.x).max(inertia).max(bed)
     }
 
     fn assemble(
@@ -141,6 +149,7 @@ impl StepEquations for CableModel {
         let (x0, x1) = (&prev.config.x, &cfg.x);
         lin.r.iter_mut().for_each(|v| *v = 0.0);
         ws.fluid.iter_mut().for_each(|v| *v = 0.0);
+        ws.seabed.iter_mut().for_each(|v| *v = 0.0);
         if tangent {
             lin.sys.clear();
         }
@@ -222,6 +231,25 @@ impl StepEquations for CableModel {
                     }
                 }
             }
+            // seabed: the discrete gradient of its elastic energy, damping and friction (§9)
+            if let Some(bed) = &self.seabed
+                && !seabed::clear_of(bed, &[x0[a], x0[b], x1[a], x1[b]], 0.0)
+            {
+                let (mut fs, mut fd) = ([V3::zeros(); 2], [V3::zeros(); 2]);
+                let mut ks = [[M3::zeros(); 2]; 2];
+                let k = if tangent { Some(&mut ks) } else { None };
+                let sh = &ws.seabed_shapes;
+                seabed::element_step_force(bed, &[x0[a], x0[b]], &[x1[a], x1[b]], sh, cable.l, h, &mut fs, &mut fd, k);
+                for i in 0..2 {
+                    fe[i] -= fs[i] + fd[i];
+                    for c in 0..3 {
+                        ws.seabed[off + NODE_DOF * i + c] += fd[i][c];
+                    }
+                    for j in 0..2 {
+                        kb[i][j] += ks[i][j];
+                    }
+                }
+            }
             for i in 0..2 {
                 for c in 0..3 {
                     lin.r[off + NODE_DOF * i + c] += fe[i][c];
@@ -280,6 +308,9 @@ impl StepEquations for CableModel {
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
         trial.work_hydro += w_hydro;
+        if !ws.seabed.is_empty() {
+            trial.work_seabed += (0..=self.cable.n_el).map(|a| (x1[a] - x0[a]).dot(&node(&ws.seabed, a))).sum::<f64>();
+        }
         if eta > 0.0 {
             for e in 0..self.cable.n_el {
                 trial.dissipated += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], eta / h);
@@ -343,6 +374,12 @@ impl CableModel {
                 );
                 f -= ff[row];
             }
+            if let Some(bed) = &self.seabed {
+                let mut fs = [V3::zeros(); 2];
+                let shapes = linear_at_gauss(c.l);
+                seabed::element_state_force(bed, &[x[e], x[e + 1]], &[s.vel[e], s.vel[e + 1]], &shapes, c.l, &mut fs);
+                f -= fs[row];
+            }
             out[end] = f;
         }
         out
@@ -364,6 +401,10 @@ impl CableModel {
         for (k, p) in shape.iter_mut().enumerate() {
             *p = c.position_at(x, c.length * k as f64 / (SHAPE_POINTS - 1) as f64);
         }
-        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], shape)
+        let touchdown = match &self.seabed {
+            Some(bed) => seabed::touchdown(bed, x, |a| c.s_node(a), c.length),
+            None => c.length,
+        };
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)
     }
 }

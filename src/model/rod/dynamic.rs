@@ -4,6 +4,7 @@
 use super::mass::ElementMass;
 use super::statics::vertical_load_vector;
 use super::{Rod, of_scene};
+use crate::loads::seabed::{self, Seabed};
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::{M3, V3};
@@ -22,6 +23,8 @@ pub struct RodModel {
     pub vertical: VerticalLoad,
     /// Drag and added mass.
     pub fluid: Fluid,
+    /// The seabed (None: no contact anywhere, no cost).
+    pub seabed: Option<Seabed>,
     /// Consistent nodal vector of the vertical load, N (and N m on r' rows).
     f_grav: Vec<f64>,
 }
@@ -31,7 +34,13 @@ impl RodModel {
     pub fn new(rod: Rod, mass_per_length: f64, rotary: [f64; 2], vertical: VerticalLoad, fluid: Fluid) -> Self {
         let mass = ElementMass::new(mass_per_length, rotary, rod.h);
         let f_grav = vertical_load_vector(&rod, &vertical);
-        RodModel { rod, mass_per_length, mass, vertical, fluid, f_grav }
+        RodModel { rod, mass_per_length, mass, vertical, fluid, seabed: None, f_grav }
+    }
+
+    /// The same line on a seabed.
+    pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
+        self.seabed = seabed;
+        self
     }
 
     /// The line of a scene: its rod, section, weight, drag, current and added mass.
@@ -44,6 +53,7 @@ impl RodModel {
             loads::vertical_load(scene),
             loads::fluid(scene),
         )
+        .with_seabed(loads::seabed(scene))
     }
 
     /// Consistent nodal vertical load vector.
@@ -51,11 +61,19 @@ impl RodModel {
         &self.f_grav
     }
 
-    /// Potential of the vertical load, −∫ q(S) z(S) dS, J (z from the origin).
+    /// Potential of the vertical load, −∫ q(S) z(S) dS (z from the origin),
+    /// and the seabed's elastic energy ∫ V dS (9.2), J.
     pub fn potential_energy(&self, cfg: &RodConfig) -> f64 {
         let mut v = 0.0;
         for a in 0..=self.rod.n_el {
             v -= self.f_grav[Rod::x_dof(a) + 2] * cfg.x[a].z + self.f_grav[Rod::xp_dof(a) + 2] * cfg.xp[a].z;
+        }
+        if let Some(bed) = &self.seabed {
+            let shapes = crate::loads::fluid::hermite_at_gauss(self.rod.h);
+            for e in 0..self.rod.n_el {
+                let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+                v += seabed::element_energy(bed, &c, &shapes, self.rod.h);
+            }
         }
         v
     }

@@ -3,6 +3,7 @@
 use super::element::{self, ElVec, ElemDofs, Factors};
 use super::{Rod, RodModel};
 use crate::loads::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss};
+use crate::loads::seabed;
 use crate::math::V3;
 use crate::model::State;
 use crate::model::outputs::{Outputs, SHAPE_POINTS};
@@ -55,6 +56,12 @@ impl RodModel {
                 );
                 f -= ff[k];
             }
+            if let Some(bed) = &self.seabed {
+                let mut fs = [V3::zeros(); 4];
+                let v = s.hermite_velocity(e);
+                seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), rod.h, &mut fs);
+                f -= fs[k];
+            }
             out[end] = f;
         }
         out
@@ -75,6 +82,10 @@ impl RodModel {
         for (k, p) in shape.iter_mut().enumerate() {
             *p = rod.position_at(cfg, rod.length * k as f64 / (SHAPE_POINTS - 1) as f64);
         }
-        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], shape)
+        let touchdown = match &self.seabed {
+            Some(bed) => seabed::touchdown(bed, &cfg.x, |a| rod.s_node(a), rod.length),
+            None => rod.length,
+        };
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)
     }
 }

@@ -5,7 +5,9 @@
 use super::Rod;
 use super::element::{ElemDofs, NGP};
 use crate::loads::current::Current;
+use crate::loads::fluid::hermite_at_gauss;
 use crate::loads::morison::{DragCoefficients, drag};
+use crate::loads::seabed::{self, Seabed};
 use crate::loads::weight::VerticalLoad;
 use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::shape::{GAUSS4, hermite, hermite_ds};
@@ -23,11 +25,13 @@ pub struct StaticLoads {
     pub point_forces: Vec<(usize, V3)>,
     /// Steady current drag (the current is included only when asked).
     pub drag: Option<(DragCoefficients, Current)>,
+    /// The seabed's elastic support (frictionless: docs/theory.md §9.3).
+    pub seabed: Option<Seabed>,
 }
 
 impl StaticLoads {
     pub fn gravity_only(vertical: VerticalLoad) -> Self {
-        StaticLoads { vertical, point_forces: Vec::new(), drag: None }
+        StaticLoads { vertical, point_forces: Vec::new(), drag: None, seabed: None }
     }
 }
 
@@ -96,15 +100,45 @@ pub fn add_static_drag(
             }
         }
         if let Some(sys) = sys.as_deref_mut() {
-            for a in 0..4 {
-                for b in 0..4 {
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            sys.add(dofs[a] + i, dofs[b] + j, ke[a][b][(i, j)]);
-                        }
-                    }
+            add_centreline_blocks(sys, &dofs, &ke);
+        }
+    }
+}
+
+/// Adds an element's 4 × 4 blocks (3 × 3 each) on its centreline unknowns
+/// `dofs` (r_a, r'_a, r_b, r'_b) to the tangent.
+fn add_centreline_blocks(sys: &mut BandedSystem, dofs: &[usize; 4], ke: &[[M3; 4]; 4]) {
+    for a in 0..4 {
+        for b in 0..4 {
+            for i in 0..3 {
+                for j in 0..3 {
+                    sys.add(dofs[a] + i, dofs[b] + j, ke[a][b][(i, j)]);
                 }
             }
+        }
+    }
+}
+
+/// Adds the seabed's elastic force to the residual (r −= f) and its
+/// derivative to the tangent (§9.3).
+pub fn add_static_seabed(rod: &Rod, cfg: &RodConfig, bed: &Seabed, r: &mut [f64], mut sys: Option<&mut BandedSystem>) {
+    let shapes = hermite_at_gauss(rod.h);
+    for e in 0..rod.n_el {
+        if seabed::clear_of(bed, &[cfg.x[e], cfg.x[e + 1]], rod.h) {
+            continue;
+        }
+        let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+        let mut f = [V3::zeros(); 4];
+        let mut ke = [[M3::zeros(); 4]; 4];
+        seabed::element_static_force(bed, &c, &shapes, rod.h, &mut f, sys.is_some().then_some(&mut ke));
+        let dofs = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
+        for a in 0..4 {
+            for i in 0..3 {
+                r[dofs[a] + i] -= f[a][i];
+            }
+        }
+        if let Some(sys) = sys.as_deref_mut() {
+            add_centreline_blocks(sys, &dofs, &ke);
         }
     }
 }
@@ -147,6 +181,9 @@ impl<'a> StaticProblem<'a> {
         }
         if let Some((k, current)) = &self.loads.drag {
             add_static_drag(self.rod, cfg, k, current, r, sys.as_deref_mut());
+        }
+        if let Some(bed) = &self.loads.seabed {
+            add_static_seabed(self.rod, cfg, bed, r, sys.as_deref_mut());
         }
         self.rod.to_local_basis(cfg, r, sys);
     }
@@ -233,7 +270,7 @@ impl StaticEquations for StaticProblem<'_> {
     }
 
     fn roundoff(&self, cfg: &RodConfig) -> f64 {
-        self.rod.residual_roundoff(cfg) / self.force_scale.max(f64::MIN_POSITIVE)
+        Homotopy::residual_roundoff(self, cfg) / self.force_scale.max(f64::MIN_POSITIVE)
     }
 
     fn solution(&self, cfg: RodConfig, r: &[f64], iterations: usize, steps: usize, residual: f64) -> StaticSolution {
@@ -246,17 +283,25 @@ impl StaticEquations for StaticProblem<'_> {
 /// Falls back to the straight chord when the catenary has no solution (for
 /// example an anchor straight below the hang-off).
 pub fn catenary_start(rod: &Rod, load: &VerticalLoad, top: V3, anchor: V3) -> RodConfig {
+    seabed_start(rod, load, top, anchor, None)
+}
+
+/// The start of the statics on a seabed (§9.3): where the hanging catenary
+/// would dip below the seabed, the line resting on it from its touchdown
+/// ([`catenary::Touchdown`], the seabed taken flat at its height under the
+/// anchor); otherwise [`catenary_start`].
+pub fn seabed_start(rod: &Rod, load: &VerticalLoad, top: V3, anchor: V3, bed: Option<&Seabed>) -> RodConfig {
     let chord = anchor - top;
     let horiz = V3::new(chord.x, chord.y, 0.0);
     let span = horiz.norm();
     let eh = if span > 1e-9 * rod.length { horiz / span } else { V3::x() };
     let d2_hint = V3::z().cross(&eh);
-    if let Some(cat) = Catenary::solve(rod.length, load, rod.stiffness.axial, span, chord.z) {
-        let point = |s: f64| cat.at(s);
+    let ea = rod.stiffness.axial;
+    let on_curve = |point: &dyn Fn(f64) -> catenary::CablePoint| {
         let to3 = |h: f64, z: f64| top + eh * h + V3::z() * z;
         let tangent = |p: &catenary::CablePoint| {
             let t = p.tension();
-            let stretch = 1.0 + t / rod.stiffness.axial;
+            let stretch = 1.0 + t / ea;
             (eh * p.n_h + V3::z() * p.n_z) / t * stretch
         };
         let mut cfg = RodConfig { x: Vec::new(), xp: Vec::new(), d: Vec::new() };
@@ -271,6 +316,23 @@ pub fn catenary_start(rod: &Rod, load: &VerticalLoad, top: V3, anchor: V3) -> Ro
         for j in 0..rod.n_director_nodes() {
             let p = point(0.5 * j as f64 * rod.h);
             cfg.d.push(frame_from_tangent(&tangent(&p), &d2_hint));
+        }
+        cfg
+    };
+    if let Some(cat) = Catenary::solve(rod.length, load, ea, span, chord.z) {
+        let cfg = on_curve(&|s| cat.at(s));
+        let below = |c: &RodConfig| bed.is_some_and(|b| c.x.iter().any(|x| b.penetration(x) > 0.0));
+        if cfg.is_finite() && !below(&cfg) {
+            return cfg;
+        }
+        if let Some(b) = bed {
+            let level = b.height_at(anchor.x, anchor.y) - top.z;
+            if let Some(td) = catenary::Touchdown::solve(rod.length, load, ea, span, chord.z, level) {
+                let cfg = on_curve(&|s| td.at(s));
+                if cfg.is_finite() {
+                    return cfg;
+                }
+            }
         }
         if cfg.is_finite() {
             return cfg;
@@ -295,6 +357,8 @@ impl Homotopy for StaticProblem<'_> {
     }
 
     fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
-        self.rod.residual_roundoff(cfg)
+        let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.rod.length);
+        let bed = self.loads.seabed.as_ref().map_or(0.0, |b| b.roundoff(self.rod.h, extent));
+        self.rod.residual_roundoff(cfg).max(bed)
     }
 }

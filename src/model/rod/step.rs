@@ -13,6 +13,7 @@ use super::RodModel;
 use crate::loads::fluid::{
     FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, gauss_point_fluid_force, hermite_at_gauss,
 };
+use crate::loads::seabed;
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, V3, cayley, skew};
 use crate::model::RodConfig;
@@ -28,6 +29,8 @@ use crate::model::{DynamicOptions, HangOff, Linear, State, StepEquations, inerti
 pub struct RodWorkspace {
     /// Global fluid force vector (centreline rows), N.
     fluid: Vec<f64>,
+    /// Global force vector of the seabed's damping and friction, N (§9).
+    seabed: Vec<f64>,
     /// Candidate new centreline velocities.
     vnew: Vec<V3>,
     vpnew: Vec<V3>,
@@ -83,6 +86,7 @@ impl StepEquations for RodModel {
         let lin = Linear::new(rod.new_system()?, fixed.clone());
         let ws = RodWorkspace {
             fluid: vec![0.0; n],
+            seabed: vec![0.0; if self.seabed.is_some() { n } else { 0 }],
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
             shapes: GaussShapes::new(rod.h),
@@ -199,7 +203,8 @@ impl StepEquations for RodModel {
     fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
         let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.rod.length);
         let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.rod.h, extent, h);
-        self.rod.residual_roundoff(cfg).max(inertia)
+        let bed = self.seabed.as_ref().map_or(0.0, |b| b.roundoff(self.rod.h, extent));
+        self.rod.residual_roundoff(cfg).max(inertia).max(bed)
     }
 
     /// The midpoint residual (5.3) at the trial configuration `cfg` and, if
@@ -222,6 +227,7 @@ impl StepEquations for RodModel {
         let mass = &model.mass;
         lin.r.iter_mut().for_each(|v| *v = 0.0);
         buf.fluid.iter_mut().for_each(|v| *v = 0.0);
+        buf.seabed.iter_mut().for_each(|v| *v = 0.0);
         if want_k {
             lin.sys.clear();
         }
@@ -365,6 +371,29 @@ impl StepEquations for RodModel {
                         for m in 0..4 {
                             let mut blk = ke.fixed_view_mut::<3, 3>(C_OFF[k], C_OFF[m]);
                             blk += kf[k][m];
+                        }
+                    }
+                }
+            }
+            // seabed: the discrete gradient of its elastic energy, damping and
+            // friction over the step (§9, (9.5), (9.6))
+            if let Some(bed) = &model.seabed
+                && !seabed::clear_of(bed, &[eln.c[0], eln.c[2], el1.c[0], el1.c[2]], rod.h)
+            {
+                let (mut fe, mut fd) = ([V3::zeros(); 4], [V3::zeros(); 4]);
+                let mut kb = [[M3::zeros(); 4]; 4];
+                let k = if want_k { Some(&mut kb) } else { None };
+                seabed::element_step_force(bed, &eln.c, &el1.c, &buf.fluid_shapes, rod.h, h, &mut fe, &mut fd, k);
+                let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
+                for k in 0..4 {
+                    for c in 0..3 {
+                        re[C_OFF[k] + c] -= fe[k][c] + fd[k][c];
+                        buf.seabed[gdof[k] + c] += fd[k][c];
+                    }
+                    if want_k {
+                        for m in 0..4 {
+                            let mut blk = ke.fixed_view_mut::<3, 3>(C_OFF[k], C_OFF[m]);
+                            blk += kb[k][m];
                         }
                     }
                 }
@@ -514,6 +543,16 @@ impl StepEquations for RodModel {
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
         trial.work_hydro += w_hydro;
+        if !ws.seabed.is_empty() {
+            let mut w = 0.0;
+            for a in 0..=rod.n_el {
+                let (dx, dp) = (cfg1.x[a] - cfg0.x[a], cfg1.xp[a] - cfg0.xp[a]);
+                for c in 0..3 {
+                    w += dx[c] * ws.seabed[Rod::x_dof(a) + c] + dp[c] * ws.seabed[Rod::xp_dof(a) + c];
+                }
+            }
+            trial.work_seabed += w;
+        }
         if eta > 0.0 {
             for e in 0..rod.n_el {
                 trial.dissipated += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], eta / h);
