@@ -8,6 +8,12 @@ use riser::sim::{Heave, Simulation};
 
 /// Runs `duration` s of heave from the static state; returns the outcome.
 fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String {
+    cell_dropped(scene, sets, heave, duration, 0.0)
+}
+
+/// The same, with every free node of the line given a downward velocity of
+/// `drop` m/s at t = 0 (a line slamming onto the seabed).
+fn cell_dropped(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64, drop: f64) -> String {
     let mut all = vec!["n_elements=20".to_string()];
     all.extend(sets.iter().map(|s| s.to_string()));
     let scene = Scene::builtin(scene).unwrap().with_overrides(&all).unwrap();
@@ -22,6 +28,15 @@ fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String 
     let h = Heave { amplitude: heave.0, period: heave.1, until: None, ramp: 0.0 };
     let motion = move |t: f64| h.at(t);
     sim.start(h.at(0.0));
+    if drop != 0.0 {
+        let last = sim.state.vel.len() - 1;
+        for v in &mut sim.state.vel[1..last] {
+            *v = riser::math::V3::new(0.0, 0.0, -drop);
+        }
+        sim.state.mean_vel.clone_from(&sim.state.vel);
+        sim.state.prev_mean_vel.clone_from(&sim.state.vel);
+        sim.initial_energy = sim.outputs().total_energy;
+    }
     let e0 = sim.initial_energy;
     let dt = sim.integrator.options().time_step;
     let n = (duration / dt).ceil() as u64;
@@ -38,7 +53,7 @@ fn cell(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64) -> String 
             return format!("clean stop at t = {:.3} s: {msg}", sim.state.time);
         }
         worst = worst.max(o.energy_balance_residual(e0).abs());
-        exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs());
+        exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs() + o.work_seabed.abs());
     }
     assert!(worst <= 1e-6 * exchanged.max(1.0), "energy balance {worst:e} of {exchanged:e}");
     "completes".to_string()
@@ -75,6 +90,27 @@ fn violent_heave_and_strong_currents() {
     for c in ["-3", "3"] {
         let r = cell("catenary", &[&format!("current_top={c}"), &format!("current_bottom={c}")], (2.5, 20.0), 1.0);
         eprintln!("current {c} m/s: {r}");
+    }
+}
+
+/// The seabed's cells (issue 17): the stiffest seabed (1e8 Pa/m), friction
+/// 1, and the line slamming down onto it at 2 m/s, rod and cable, on the
+/// steel catenary (about 110 m on the seabed) with the heave of 3 m / 10 s.
+#[test]
+fn seabed_extremes() {
+    for model in ["rod", "cable"] {
+        let m = format!("model={model}");
+        for (label, sets, drop) in [
+            ("stiff seabed 1e8 Pa/m", vec!["seabed_stiffness=1e8"], 0.0),
+            ("friction 1", vec!["seabed_friction=1"], 0.0),
+            ("slamming at 2 m/s", vec![], 2.0),
+            ("stiff seabed, friction 1, slamming at 2 m/s", vec!["seabed_stiffness=1e8", "seabed_friction=1"], 2.0),
+        ] {
+            let mut all = vec![m.as_str()];
+            all.extend(sets);
+            let r = cell_dropped("steel_catenary", &all, (3.0, 10.0), 3.0, drop);
+            eprintln!("{model}, {label}: {r}");
+        }
     }
 }
 
