@@ -51,6 +51,18 @@ fn step_tangent_with_seabed_contact_damping_and_friction_matches_finite_differen
     }
 }
 
+/// The free surface (§10) through the line: elements in the band, the
+/// correction's discrete gradient, drag and added mass scaled by the
+/// submerged fraction.
+#[test]
+fn step_tangent_through_the_free_surface_matches_finite_differences() {
+    let scene = Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&["n_elements=6", "ca_normal=1.0", "current_direction=40", "water_surface_z=-30"])
+        .unwrap();
+    check_tangent_scene(&scene, 0.0, true, 0.8);
+}
+
 fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = Scene::builtin("catenary")
         .unwrap()

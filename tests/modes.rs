@@ -164,7 +164,7 @@ fn rod_mass_matrix_is_the_kinetic_energy() {
     let rod = Rod::new(6, 12.0, Stiffness::paper(1e6, 1e3, 5e2), [EndBc::PINNED, EndBc::PINNED_NO_TWIST]);
     let loads = StaticLoads::gravity_only(VerticalLoad { uniform: -100.0, sections: vec![] });
     let start = riser::model::rod::statics::catenary_start(&rod, &loads.vertical, V3::zeros(), V3::new(8.0, 1.0, -6.0));
-    let fluid = Fluid { drag: None, added_mass: 0.0 };
+    let fluid = Fluid::none();
     let model = RodModel::new(rod, 30.0, [0.02, 0.03], loads.vertical.clone(), fluid);
     let line = RodLinearized::new(&model, &loads);
     let mut m = line.new_system().unwrap();

@@ -13,6 +13,7 @@
 
 use super::current::Current;
 use super::morison::{DragCoefficients, drag, drag_force};
+use super::surface::FreeSurface;
 use crate::math::shape::{GAUSS4, hermite, hermite_ds};
 use crate::math::{M3, V3};
 
@@ -23,11 +24,14 @@ pub struct Fluid {
     pub drag: Option<(DragCoefficients, Current)>,
     /// Normal added mass per unit length m_a = C_a ρ_w π D²/4, kg/m (0: none).
     pub added_mass: f64,
+    /// The free surface: drag and added mass act on the submerged fraction
+    /// of the line (docs/theory.md §10; None: submerged everywhere).
+    pub surface: Option<FreeSurface>,
 }
 
 impl Fluid {
     pub fn none() -> Self {
-        Fluid { drag: None, added_mass: 0.0 }
+        Fluid { drag: None, added_mass: 0.0, surface: None }
     }
 
     /// True if the water exerts no force beyond weight and buoyancy.
@@ -141,6 +145,11 @@ pub fn gauss_point_fluid_force<const K: usize>(
             force[g] -= (a - t[g] * t[g].dot(&a)) * fluid.added_mass;
         }
     }
+    if let Some(s) = &fluid.surface {
+        for g in 0..4 {
+            force[g] *= s.submerged(x[g].z).0;
+        }
+    }
     for g in 0..4 {
         let (n, _) = &shapes[g];
         let wg = GAUSS4.w[g] * h;
@@ -221,6 +230,15 @@ fn interpolated_fluid_force<const K: usize>(
             df_da -= proj * ma;
             // ∂(−m_a (I − t tᵀ) a)/∂t = m_a ((t·a) I + t aᵀ), ∂t/∂p = (I − t tᵀ)/|p|
             df_dp += (M3::identity() * t.dot(&a) + t * a.transpose()) * proj * (ma / len);
+        }
+        if let Some(s) = &fluid.surface {
+            // only the submerged fraction s(z) feels the water (§10)
+            let (sub, dsub) = s.submerged(x.z);
+            df_dx = df_dx * sub + force * V3::z().transpose() * dsub;
+            df_dv *= sub;
+            df_da *= sub;
+            df_dp *= sub;
+            force *= sub;
         }
         for i in 0..K {
             f[i] += force * (wg * n[i]);

@@ -7,6 +7,7 @@ pub mod current;
 pub mod fluid;
 pub mod morison;
 pub mod seabed;
+pub mod surface;
 pub mod weight;
 
 use crate::math::V3;
@@ -15,6 +16,7 @@ use current::{Current, CurrentProfile};
 use fluid::Fluid;
 use morison::DragCoefficients;
 use seabed::Seabed;
+use surface::FreeSurface;
 use weight::{BuoyancySection, VerticalLoad};
 
 /// Weight, buoyancy and buoyancy modules.
@@ -60,7 +62,18 @@ pub fn fluid(scene: &Scene) -> Fluid {
     let drag = if k.is_zero() { None } else { Some((k, current(scene))) };
     let d = scene.line.outer_diameter;
     let added_mass = scene.line.ca_normal * scene.environment.water_density * std::f64::consts::PI * d * d / 4.0;
-    Fluid { drag, added_mass }
+    Fluid { drag, added_mass, surface: Some(free_surface(scene)) }
+}
+
+/// The free surface as the line feels it (docs/theory.md §10): its buoyancy
+/// fades over max(D/2, 5 cm) either side.
+pub fn free_surface(scene: &Scene) -> FreeSurface {
+    let d = scene.line.outer_diameter;
+    FreeSurface {
+        z: scene.environment.water_surface_z,
+        half_width: (0.5 * d).max(0.05),
+        buoyancy: scene.environment.water_density * scene.environment.gravity * std::f64::consts::PI * d * d / 4.0,
+    }
 }
 
 /// The current profile.

@@ -108,6 +108,7 @@ impl StaticReport {
 pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
     let mut loads = StaticLoads::gravity_only(loads::vertical_load(scene));
     loads.seabed = loads::seabed(scene);
+    loads.surface = Some(loads::free_surface(scene));
     let current = loads::current(scene);
     let k = loads::drag_coefficients(scene);
     if scene.analysis.static_current && !current.is_none() && !k.is_zero() {

@@ -5,3 +5,61 @@
 
 pub mod reference;
 pub mod spectral;
+
+use riser::math::V3;
+use riser::model::cable::CableModel;
+use riser::model::{DynamicOptions, HangOff, State};
+use riser::scene::Scene;
+use riser::solve::Integrator;
+
+/// The cable's step tangent against central differences of the step
+/// residual, from the static state of `scene` (a cable) given a moving,
+/// out-of-plane velocity and a generic trial configuration: the largest
+/// error relative to each row's largest entry.
+pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
+    let rep = riser::sim::report::solve_scene(scene).unwrap();
+    let model = CableModel::from_scene(scene);
+    let opts = DynamicOptions { time_step: 0.05, ..Default::default() };
+    let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
+    let mut prev = State::at_rest(rep.solution.config.clone(), 0.0);
+    for (a, v) in prev.vel.iter_mut().enumerate() {
+        *v = V3::new(0.3, 0.2, -0.1) * (a as f64 * 0.7).sin();
+    }
+    let h = 0.05;
+    let target = HangOff { displacement: V3::new(0.05, 0.0, 0.1), velocity: V3::new(0.2, 0.0, 0.6) };
+    let mut cfg = integ.begin_step(&prev, h, target);
+    let n_nodes = cfg.x.len();
+    for (a, x) in cfg.x.iter_mut().enumerate().skip(1).take(n_nodes - 2) {
+        *x += V3::new(0.01, -0.008, 0.004) * (a as f64).cos();
+    }
+    let n = integ.n_unknowns();
+    integ.step_residual(&prev, &cfg, h, target, true);
+    let k: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| integ.tangent_entry(i, j)).collect()).collect();
+    let eps = 1e-7;
+    let mut worst = 0.0f64;
+    for j in 3..n - 3 {
+        let mut col = [vec![], vec![]];
+        let mut moved = [0.0; 2];
+        for (s, sign) in [1.0, -1.0].into_iter().enumerate() {
+            let mut du = vec![0.0; n];
+            du[j] = sign * eps;
+            let mut c = cfg.clone();
+            integ.apply_step_increment(&prev, &mut c, &du);
+            moved[s] = c.x[j / 3][j % 3];
+            col[s] = integ.step_residual(&prev, &c, h, target, false);
+        }
+        // the step as represented: coordinates of a few hundred metres
+        // quantise a 1e-7 m step by ~3e-7 of itself
+        let step = moved[0] - moved[1];
+        for i in 3..n - 3 {
+            let fd = (col[0][i] - col[1][i]) / step;
+            let row_scale = k[i].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let rel = (fd - k[i][j]).abs() / row_scale;
+            if rel > 1e-6 {
+                eprintln!("K[{i}][{j}] = {:.6e}, FD {fd:.6e}, row scale {row_scale:.3e}", k[i][j]);
+            }
+            worst = worst.max(rel);
+        }
+    }
+    worst
+}

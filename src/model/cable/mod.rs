@@ -18,6 +18,7 @@ mod step;
 pub use step::CableWorkspace;
 
 use crate::loads::seabed::{self, Seabed};
+use crate::loads::surface;
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::band::{BandedSystem, LinearSolveError};
@@ -231,13 +232,19 @@ impl CableModel {
         &self.f_grav
     }
 
-    /// Potential of the vertical load, −∫ q z dS (exact for linear z), and
-    /// the seabed's elastic energy ∫ V dS (9.2), J.
+    /// Potential of the vertical load, −∫ q z dS (exact for linear z), the
+    /// seabed's elastic energy ∫ V dS (9.2) and the free surface's
+    /// correction ∫ V_s dS (10.1), J.
     pub fn potential_energy(&self, x: &[V3]) -> f64 {
         let mut v = -x.iter().zip(&self.f_grav).map(|(p, f)| p.z * f).sum::<f64>();
+        let (l, shapes) = (self.cable.l, seabed::linear_at_gauss(self.cable.l));
         if let Some(bed) = &self.seabed {
-            let (l, shapes) = (self.cable.l, seabed::linear_at_gauss(self.cable.l));
             v += (0..self.cable.n_el).map(|e| seabed::element_energy(bed, &[x[e], x[e + 1]], &shapes, l)).sum::<f64>();
+        }
+        if let Some(s) = &self.fluid.surface {
+            v += (0..self.cable.n_el)
+                .map(|e| surface::element_energy(s, &[x[e], x[e + 1]], surface::linear, l))
+                .sum::<f64>();
         }
         v
     }

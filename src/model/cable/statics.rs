@@ -130,7 +130,8 @@ pub struct CableStatics<'a> {
 impl<'a> CableStatics<'a> {
     /// `with_current`: include the current's drag (the scene's `static_current`).
     pub fn new(model: &'a CableModel, with_current: bool) -> Self {
-        let water = Fluid { drag: if with_current { model.fluid.drag.clone() } else { None }, added_mass: 0.0 };
+        let drag = if with_current { model.fluid.drag.clone() } else { None };
+        let water = Fluid { drag, added_mass: 0.0, surface: model.fluid.surface };
         let scale = crate::model::StepEquations::force_scale(model);
         CableStatics { model, water, scale, fixed: model.cable.fixed_dofs() }
     }
@@ -157,6 +158,27 @@ impl<'a> CableStatics<'a> {
                 let want = sys.is_some();
                 let seg = [x[e], x[e + 1]];
                 crate::loads::seabed::element_static_force(bed, &seg, &shapes, c.l, &mut f, want.then_some(&mut k));
+                for i in 0..2 {
+                    for j in 0..3 {
+                        r[NODE_DOF * (e + i) + j] -= f[i][j];
+                    }
+                }
+                if let Some(s) = sys.as_deref_mut() {
+                    s.add_block(e, |i, j| k[i / 3][j / 3][(i % 3, j % 3)]);
+                }
+            }
+        }
+        if let Some(fs) = &self.water.surface {
+            use crate::loads::surface::linear;
+            for e in 0..c.n_el {
+                if fs.below(&x[e..e + 2], 0.0) {
+                    continue;
+                }
+                let mut f = [V3::zeros(); 2];
+                let mut k = [[M3::zeros(); 2]; 2];
+                let want = sys.is_some();
+                let seg = [x[e], x[e + 1]];
+                crate::loads::surface::element_static_force(fs, &seg, linear, c.l, &mut f, want.then_some(&mut k));
                 for i in 0..2 {
                     for j in 0..3 {
                         r[NODE_DOF * (e + i) + j] -= f[i][j];

@@ -7,6 +7,7 @@
 use super::{CableModel, NODE_DOF};
 use crate::loads::fluid::{FluidFactors, segment_fluid_force};
 use crate::loads::seabed::{self, linear_at_gauss};
+use crate::loads::surface;
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, V3};
 use crate::model::DynamicOptions;
@@ -250,6 +251,29 @@ impl StepEquations for CableModel {
                     }
                 }
             }
+            // the free surface: the emerged part's buoyancy taken off (§10)
+            if let Some(fs) = &self.fluid.surface
+                && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], 0.0)
+            {
+                let mut fsv = [V3::zeros(); 2];
+                let mut ks = [[M3::zeros(); 2]; 2];
+                let k = if tangent { Some(&mut ks) } else { None };
+                surface::element_step_force(
+                    fs,
+                    &[x0[a], x0[b]],
+                    &[x1[a], x1[b]],
+                    surface::linear,
+                    cable.l,
+                    &mut fsv,
+                    k,
+                );
+                for i in 0..2 {
+                    fe[i] -= fsv[i];
+                    for j in 0..2 {
+                        kb[i][j] += ks[i][j];
+                    }
+                }
+            }
             for i in 0..2 {
                 for c in 0..3 {
                     lin.r[off + NODE_DOF * i + c] += fe[i][c];
@@ -373,6 +397,11 @@ impl CableModel {
                     None,
                 );
                 f -= ff[row];
+            }
+            if let Some(fsurf) = &self.fluid.surface {
+                let mut fs = [V3::zeros(); 2];
+                surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, &mut fs, None);
+                f -= fs[row];
             }
             if let Some(bed) = &self.seabed {
                 let mut fs = [V3::zeros(); 2];

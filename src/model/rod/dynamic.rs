@@ -62,17 +62,26 @@ impl RodModel {
     }
 
     /// Potential of the vertical load, −∫ q(S) z(S) dS (z from the origin),
-    /// and the seabed's elastic energy ∫ V dS (9.2), J.
+    /// the seabed's elastic energy ∫ V dS (9.2) and the free surface's
+    /// correction ∫ V_s dS (10.1), J.
     pub fn potential_energy(&self, cfg: &RodConfig) -> f64 {
         let mut v = 0.0;
         for a in 0..=self.rod.n_el {
             v -= self.f_grav[Rod::x_dof(a) + 2] * cfg.x[a].z + self.f_grav[Rod::xp_dof(a) + 2] * cfg.xp[a].z;
         }
-        if let Some(bed) = &self.seabed {
-            let shapes = crate::loads::fluid::hermite_at_gauss(self.rod.h);
-            for e in 0..self.rod.n_el {
-                let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+        let shapes = crate::loads::fluid::hermite_at_gauss(self.rod.h);
+        for e in 0..self.rod.n_el {
+            let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+            if let Some(bed) = &self.seabed {
                 v += seabed::element_energy(bed, &c, &shapes, self.rod.h);
+            }
+            if let Some(s) = &self.fluid.surface {
+                v += crate::loads::surface::element_energy(
+                    s,
+                    &c,
+                    |xi| crate::math::shape::hermite(xi, self.rod.h),
+                    self.rod.h,
+                );
             }
         }
         v

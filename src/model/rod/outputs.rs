@@ -3,7 +3,7 @@
 use super::element::{self, ElVec, ElemDofs, Factors};
 use super::{Rod, RodModel};
 use crate::loads::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss};
-use crate::loads::seabed;
+use crate::loads::{seabed, surface};
 use crate::math::V3;
 use crate::model::State;
 use crate::model::outputs::{Outputs, SHAPE_POINTS};
@@ -55,6 +55,18 @@ impl RodModel {
                     None,
                 );
                 f -= ff[k];
+            }
+            if let Some(fsurf) = &self.fluid.surface {
+                let mut fs = [V3::zeros(); 4];
+                surface::element_static_force(
+                    fsurf,
+                    &el.c,
+                    |xi| crate::math::shape::hermite(xi, rod.h),
+                    rod.h,
+                    &mut fs,
+                    None,
+                );
+                f -= fs[k];
             }
             if let Some(bed) = &self.seabed {
                 let mut fs = [V3::zeros(); 4];

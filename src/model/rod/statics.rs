@@ -8,6 +8,7 @@ use crate::loads::current::Current;
 use crate::loads::fluid::hermite_at_gauss;
 use crate::loads::morison::{DragCoefficients, drag};
 use crate::loads::seabed::{self, Seabed};
+use crate::loads::surface::{self, FreeSurface};
 use crate::loads::weight::VerticalLoad;
 use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::shape::{GAUSS4, hermite, hermite_ds};
@@ -27,11 +28,13 @@ pub struct StaticLoads {
     pub drag: Option<(DragCoefficients, Current)>,
     /// The seabed's elastic support (frictionless: docs/theory.md §9.3).
     pub seabed: Option<Seabed>,
+    /// The free surface: the emerged part without buoyancy (§10).
+    pub surface: Option<FreeSurface>,
 }
 
 impl StaticLoads {
     pub fn gravity_only(vertical: VerticalLoad) -> Self {
-        StaticLoads { vertical, point_forces: Vec::new(), drag: None, seabed: None }
+        StaticLoads { vertical, point_forces: Vec::new(), drag: None, seabed: None, surface: None }
     }
 }
 
@@ -61,12 +64,14 @@ pub fn vertical_load_vector(rod: &Rod, load: &VerticalLoad) -> Vec<f64> {
 }
 
 /// Adds the steady-current drag on a motionless line to the residual
-/// (r −= f_drag) and its derivative to the tangent.
+/// (r −= f_drag) and its derivative to the tangent; with a free surface,
+/// on the submerged fraction only (§10).
 pub fn add_static_drag(
     rod: &Rod,
     cfg: &RodConfig,
     k: &DragCoefficients,
     current: &Current,
+    surface: Option<&FreeSurface>,
     r: &mut [f64],
     mut sys: Option<&mut BandedSystem>,
 ) {
@@ -86,10 +91,17 @@ pub fn add_static_drag(
             let s = rod.s_node(e) + xi * rod.h;
             let (vc, dvc_dz) = current.velocity(s, x.z);
             let d = drag(k, &vc, &t);
-            let force = d.force * len; // per unit reference length
+            let mut force = d.force * len; // per unit reference length
             // ∂F/∂x (through the depth dependence of the current) and ∂F/∂r'
-            let df_dx = d.d_vrel * dvc_dz * V3::z().transpose() * len;
-            let df_dp = d.d_tangent * (M3::identity() - t * t.transpose()) + d.force * t.transpose();
+            let mut df_dx = d.d_vrel * dvc_dz * V3::z().transpose() * len;
+            let mut df_dp = d.d_tangent * (M3::identity() - t * t.transpose()) + d.force * t.transpose();
+            if let Some(s) = surface {
+                // only the submerged fraction feels the current (§10)
+                let (sub, dsub) = s.submerged(x.z);
+                df_dx = df_dx * sub + force * V3::z().transpose() * dsub;
+                df_dp *= sub;
+                force *= sub;
+            }
             for a in 0..4 {
                 for c in 0..3 {
                     r[dofs[a] + c] -= wg * n[a] * force[c];
@@ -119,18 +131,25 @@ fn add_centreline_blocks(sys: &mut BandedSystem, dofs: &[usize; 4], ke: &[[M3; 4
     }
 }
 
-/// Adds the seabed's elastic force to the residual (r −= f) and its
-/// derivative to the tangent (§9.3).
-pub fn add_static_seabed(rod: &Rod, cfg: &RodConfig, bed: &Seabed, r: &mut [f64], mut sys: Option<&mut BandedSystem>) {
-    let shapes = hermite_at_gauss(rod.h);
+/// Adds an element force `element(c, f, k)` (on the dofs c = (r_a, r'_a,
+/// r_b, r'_b), adding the force to f and −∂F/∂c to k) of every element not
+/// `skip`ped to the residual (r −= f) and the tangent.
+fn add_element_loads(
+    rod: &Rod,
+    cfg: &RodConfig,
+    skip: impl Fn(&[V3]) -> bool,
+    element: impl Fn(&[V3; 4], &mut [V3; 4], Option<&mut [[M3; 4]; 4]>),
+    r: &mut [f64],
+    mut sys: Option<&mut BandedSystem>,
+) {
     for e in 0..rod.n_el {
-        if seabed::clear_of(bed, &[cfg.x[e], cfg.x[e + 1]], rod.h) {
+        if skip(&[cfg.x[e], cfg.x[e + 1]]) {
             continue;
         }
         let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
         let mut f = [V3::zeros(); 4];
         let mut ke = [[M3::zeros(); 4]; 4];
-        seabed::element_static_force(bed, &c, &shapes, rod.h, &mut f, sys.is_some().then_some(&mut ke));
+        element(&c, &mut f, sys.is_some().then_some(&mut ke));
         let dofs = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
         for a in 0..4 {
             for i in 0..3 {
@@ -141,6 +160,28 @@ pub fn add_static_seabed(rod: &Rod, cfg: &RodConfig, bed: &Seabed, r: &mut [f64]
             add_centreline_blocks(sys, &dofs, &ke);
         }
     }
+}
+
+/// Adds the seabed's elastic force to the residual (r −= f) and its
+/// derivative to the tangent (§9.3).
+pub fn add_static_seabed(rod: &Rod, cfg: &RodConfig, bed: &Seabed, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+    let shapes = hermite_at_gauss(rod.h);
+    let skip = |x: &[V3]| seabed::clear_of(bed, x, rod.h);
+    let element = |c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
+        seabed::element_static_force(bed, c, &shapes, rod.h, f, k)
+    };
+    add_element_loads(rod, cfg, skip, element, r, sys);
+}
+
+/// Adds the free surface's correction (the emerged part's buoyancy taken
+/// off) to the residual (r −= f) and its derivative to the tangent (§10).
+pub fn add_static_surface(rod: &Rod, cfg: &RodConfig, s: &FreeSurface, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+    let skip = |x: &[V3]| s.below(x, rod.h);
+    let shape = |xi| crate::math::shape::hermite(xi, rod.h);
+    let element = |c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
+        surface::element_static_force(s, c, shape, rod.h, f, k)
+    };
+    add_element_loads(rod, cfg, skip, element, r, sys);
 }
 
 /// The static problem assembled on a rod.
@@ -180,10 +221,13 @@ impl<'a> StaticProblem<'a> {
             *ri -= fi;
         }
         if let Some((k, current)) = &self.loads.drag {
-            add_static_drag(self.rod, cfg, k, current, r, sys.as_deref_mut());
+            add_static_drag(self.rod, cfg, k, current, self.loads.surface.as_ref(), r, sys.as_deref_mut());
         }
         if let Some(bed) = &self.loads.seabed {
             add_static_seabed(self.rod, cfg, bed, r, sys.as_deref_mut());
+        }
+        if let Some(s) = &self.loads.surface {
+            add_static_surface(self.rod, cfg, s, r, sys.as_deref_mut());
         }
         self.rod.to_local_basis(cfg, r, sys);
     }

@@ -13,7 +13,7 @@ use super::RodModel;
 use crate::loads::fluid::{
     FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, gauss_point_fluid_force, hermite_at_gauss,
 };
-use crate::loads::seabed;
+use crate::loads::{seabed, surface};
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, V3, cayley, skew};
 use crate::model::RodConfig;
@@ -389,6 +389,35 @@ impl StepEquations for RodModel {
                     for c in 0..3 {
                         re[C_OFF[k] + c] -= fe[k][c] + fd[k][c];
                         buf.seabed[gdof[k] + c] += fd[k][c];
+                    }
+                    if want_k {
+                        for m in 0..4 {
+                            let mut blk = ke.fixed_view_mut::<3, 3>(C_OFF[k], C_OFF[m]);
+                            blk += kb[k][m];
+                        }
+                    }
+                }
+            }
+            // the free surface: the buoyancy of the emerged part taken off, as
+            // the discrete gradient of its potential (§10)
+            if let Some(fs) = &model.fluid.surface
+                && !fs.below(&[eln.c[0], eln.c[2], el1.c[0], el1.c[2]], rod.h)
+            {
+                let mut fsv = [V3::zeros(); 4];
+                let mut kb = [[M3::zeros(); 4]; 4];
+                let k = if want_k { Some(&mut kb) } else { None };
+                surface::element_step_force(
+                    fs,
+                    &eln.c,
+                    &el1.c,
+                    |xi| crate::math::shape::hermite(xi, rod.h),
+                    rod.h,
+                    &mut fsv,
+                    k,
+                );
+                for k in 0..4 {
+                    for c in 0..3 {
+                        re[C_OFF[k] + c] -= fsv[k][c];
                     }
                     if want_k {
                         for m in 0..4 {

@@ -1,0 +1,126 @@
+//! The free surface (issue 17, docs/theory.md §10), rod and cable: a
+//! vertical line lifted through the surface carries the weight in air of its
+//! emerged part and the wet weight of the rest (closed form); the energy
+//! balance closes while the line crosses the surface; the step tangent with
+//! elements in the band against finite differences (the rod's is in
+//! tests/dynamics_tangent.rs).
+
+mod common;
+
+use riser::scene::Scene;
+use riser::sim::{Heave, Simulation};
+
+/// The emerged length e (unstretched) of a vertical elastic line of length
+/// L between a hang-off and an anchor a distance `span` m below it, weights
+/// `w_air` above the surface `depth` m below the hang-off and `w_wet` below
+/// it, axial stiffness `ea` (closed form: z(S) = −∫₀ˢ (1 + T/EA),
+/// T(S) = T₀ − ∫₀ˢ w). Two conditions, z(e) = −depth and z(L) = −span, solved
+/// by fixed-point iteration (a contraction: T/EA ≈ 1e-3).
+fn emerged_length(l: f64, span: f64, depth: f64, w_air: f64, w_wet: f64, ea: f64) -> f64 {
+    let mut e = depth;
+    for _ in 0..100 {
+        let lw = l - e;
+        let t0 = ((span - l) * ea + w_air * e * e / 2.0 + w_air * e * lw + w_wet * lw * lw / 2.0) / l;
+        e = depth / (1.0 + (t0 - w_air * e / 2.0) / ea);
+    }
+    e
+}
+
+/// Item 6: the catenary scene's line hung vertically between the hang-off
+/// and an anchor 100.1 m below (taut: EA ε ≈ 800 kN against a weight of
+/// 222 kN in air), the surface at several depths so that it crosses
+/// elements at different places. The vertical reactions differ by the
+/// line's weight, w_air e + w_wet (L − e), with e the emerged length
+/// (stretch included, [`emerged_length`]): within 0.1 %.
+#[test]
+fn a_vertical_line_through_the_surface_carries_its_weight_in_air_above_it() {
+    for model in ["rod", "cable"] {
+        for zs in [-10.0, -13.37, -47.9] {
+            let sc = Scene::builtin("catenary")
+                .unwrap()
+                .with_overrides(&[
+                    format!("model={model}"),
+                    "n_elements=50".into(),
+                    "anchor_x=0".into(),
+                    "anchor_z=-100.1".into(),
+                    format!("water_surface_z={zs}"),
+                ])
+                .unwrap();
+            let sim = Simulation::from_scene(&sc).unwrap();
+            let o = sim.outputs();
+            let g = sc.environment.gravity;
+            let w_air = sc.line.mass_per_length * g;
+            let d = sc.line.outer_diameter;
+            let w_wet = w_air - sc.environment.water_density * g * std::f64::consts::PI * d * d / 4.0;
+            let l = sc.line.length;
+            let e = emerged_length(l, 100.1, -zs, w_air, w_wet, sc.line.axial_stiffness);
+            let expected = w_air * e + w_wet * (l - e);
+            let got = -o.top_force.z - o.bottom_force.z;
+            let rel = (got - expected) / expected;
+            println!(
+                "{model}, surface at {zs} m: emerged {e:.4} m, weight carried {got:.1} N, closed form {expected:.1} N \
+                 ({rel:+.2e})"
+            );
+            assert!(rel.abs() <= 1e-3, "{model}, surface {zs}: {rel:e}");
+        }
+    }
+}
+
+/// Runs the catenary with the surface 2 m below the hang-off under a 4 m
+/// heave: the top ~6 m of line leave and re-enter the water every period.
+fn crossing(model: &str, sets: &[&str]) -> Vec<riser::model::Outputs> {
+    let mut all = vec![format!("model={model}"), "water_surface_z=-2".into(), "newton_tolerance=1e-11".into()];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    let sc = Scene::builtin("catenary").unwrap().with_overrides(&all).unwrap();
+    let mut sim = Simulation::from_scene(&sc).unwrap();
+    let heave = Heave { amplitude: 4.0, period: 10.0, until: None, ramp: 5.0 };
+    sim.start(heave.at(0.0));
+    let motion = move |t: f64| heave.at(t);
+    let mut out = vec![sim.outputs()];
+    for k in 1..=200 {
+        sim.advance_to(k as f64 * 0.1, &motion).unwrap();
+        out.push(sim.outputs());
+    }
+    out
+}
+
+/// Item 6: without drag and with the conserving scheme the energy balance
+/// E − E₀ = W_top closes to the Newton tolerance while the line crosses the
+/// surface; with drag, added mass and the default scheme it closes with the
+/// water's work and the algorithmic dissipation.
+#[test]
+fn the_energy_balance_closes_while_the_line_crosses_the_surface() {
+    for model in ["rod", "cable"] {
+        for (label, sets) in [
+            ("no water forces, rho 1", vec!["cd_normal=0", "cd_tangential=0", "rho_infinity=1"]),
+            ("drag, current, added mass", vec!["ca_normal=1"]),
+        ] {
+            let o = crossing(model, &sets);
+            let e0 = o[0].total_energy;
+            let exchanged = o.iter().map(|x| x.work_top.abs() + x.work_hydro.abs()).fold(0.0, f64::max);
+            let worst = o.iter().map(|x| x.energy_balance_residual(e0).abs()).fold(0.0, f64::max);
+            let top: Vec<f64> = o.iter().map(|x| x.shape[0].z).collect();
+            let highest = top.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            let lowest = top.iter().cloned().fold(f64::INFINITY, f64::min);
+            println!(
+                "{model}, {label}: balance {worst:.2e} J of {exchanged:.2e} J; hang-off {lowest:.2} to {highest:.2} m"
+            );
+            assert!(highest > 1.0 && lowest < -3.0, "the line did not cross the surface");
+            assert!(worst <= 1e-7 * exchanged, "{model}, {label}: balance {worst:e}");
+        }
+    }
+}
+
+/// The cable's step tangent with segments in the surface's band (the
+/// correction's discrete gradient, drag and added mass scaled by the
+/// submerged fraction), against central differences.
+#[test]
+fn cable_step_tangent_through_the_surface_matches_finite_differences() {
+    let sc = Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&["model=cable", "n_elements=20", "water_surface_z=-12", "ca_normal=1", "current_direction=40"])
+        .unwrap();
+    let worst = common::cable_step_tangent_error(&sc);
+    println!("cable step tangent through the surface: largest error {worst:.2e} of its row");
+    assert!(worst < 1e-6, "tangent error {worst:e}");
+}
