@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn fuzz valgrind
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn moordyn-seabed fuzz valgrind
 
 all: build
 
@@ -53,6 +53,12 @@ noise: build venv
 moordyn: build venv
 	$(PY) -m pip install --quiet -r requirements-peers.txt
 	$(PY) scripts/moordyn_compare.py --bin $(BIN) --out out/moordyn --docs docs
+
+# MoorDyn side by side on the steel catenary with seabed contact (issue 17):
+# docs/moordyn_seabed.md and docs/figures/moordyn_seabed.png (~2 minutes).
+moordyn-seabed: build venv fmu
+	$(PY) -m pip install --quiet -r requirements-peers.txt
+	$(PY) scripts/moordyn_seabed.py --bin $(BIN) --out out/moordyn_seabed --docs docs
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv
