@@ -90,7 +90,7 @@ fn run_json_summary_and_csv_columns() {
     let last_t: f64 = ts.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();
     assert_eq!(last_t, 2.0);
     let shapes = std::fs::read_to_string(dir.join("shapes.csv")).unwrap();
-    assert_eq!(shapes.lines().next().unwrap(), "t,S,x,y,z");
+    assert_eq!(shapes.lines().next().unwrap(), "t,S,x,y,z,tension,curvature");
     assert_eq!(shapes.lines().count(), 1 + 8 * 11);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -137,6 +137,15 @@ impl Engine {
         }
     }
 
+    /// Tension (N) and curvature (1/m) at every node of `state` (the
+    /// models' `node_profile`).
+    pub fn node_profile(&self, state: &State) -> Vec<(f64, f64)> {
+        match self {
+            Engine::Rod(i) => i.model.node_profile(&state.config),
+            Engine::Cable(i) => i.model.node_profile(&state.config.x),
+        }
+    }
+
     /// Reference arc length of every node of `state`, m.
     pub fn node_arc_lengths(&self) -> Vec<f64> {
         match self {

@@ -330,12 +330,13 @@ fn run(
     }
     shape_times.sort_by(f64::total_cmp);
     let mut series: Vec<Outputs> = vec![sim.outputs()];
-    let mut shapes: Vec<(f64, Vec<[f64; 4]>)> = Vec::new();
+    let mut shapes: Vec<(f64, Vec<[f64; 6]>)> = Vec::new();
     let mut next_shape = 0;
     let arc = sim.integrator.node_arc_lengths();
     let record_shape = |sim: &Simulation| {
         let x = &sim.state.config.x;
-        arc.iter().zip(x).map(|(s, p)| [*s, p.x, p.y, p.z]).collect::<Vec<_>>()
+        let profile = sim.integrator.node_profile(&sim.state);
+        arc.iter().zip(x).zip(profile).map(|((s, p), (t, k))| [*s, p.x, p.y, p.z, t, k]).collect::<Vec<_>>()
     };
     while next_shape < shape_times.len() && shape_times[next_shape] <= 0.0 {
         shapes.push((0.0, record_shape(&sim)));
@@ -434,7 +435,7 @@ fn run(
     }
 }
 
-fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 4]>)]) -> std::io::Result<()> {
+fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 6]>)]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("timeseries.csv"))?);
     write!(f, "t")?;
@@ -451,10 +452,10 @@ fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, V
     }
     f.flush()?;
     let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("shapes.csv"))?);
-    writeln!(f, "t,S,x,y,z")?;
+    writeln!(f, "t,S,x,y,z,tension,curvature")?;
     for (t, rows) in shapes {
         for r in rows {
-            writeln!(f, "{t},{},{},{},{}", r[0], r[1], r[2], r[3])?;
+            writeln!(f, "{t},{},{},{},{},{},{}", r[0], r[1], r[2], r[3], r[4], r[5])?;
         }
     }
     f.flush()

@@ -414,6 +414,29 @@ impl CableModel {
         out
     }
 
+    /// Tension (N) and curvature (1/m) at every node of the positions `x`:
+    /// the mean tension of the adjacent segments (at an end, its segment's:
+    /// the end's own is in the outputs' top and bottom tension); the turning
+    /// angle between them over their mean length (0 at the ends).
+    pub fn node_profile(&self, x: &[V3]) -> Vec<(f64, f64)> {
+        let c = &self.cable;
+        let n = c.n_el;
+        (0..=n)
+            .map(|a| {
+                let seg: Vec<usize> = [a.checked_sub(1), (a < n).then_some(a)].into_iter().flatten().collect();
+                let tension = seg.iter().map(|&e| c.tension(x, e)).sum::<f64>() / seg.len() as f64;
+                let curvature = if seg.len() == 2 {
+                    let (d0, d1) = (x[a] - x[a - 1], x[a + 1] - x[a]);
+                    let angle = d0.cross(&d1).norm().atan2(d0.dot(&d1));
+                    angle / (0.5 * (d0.norm() + d1.norm()))
+                } else {
+                    0.0
+                };
+                (tension, curvature)
+            })
+            .collect()
+    }
+
     /// Every output quantity of `state` (the rod's names and meanings).
     pub fn outputs(&self, s: &State) -> Outputs {
         let c = &self.cable;

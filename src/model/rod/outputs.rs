@@ -79,6 +79,31 @@ impl RodModel {
         out
     }
 
+    /// Effective tension (the axial force n·t, N) and curvature (|K₁, K₂|,
+    /// 1/m) at every node of `cfg`: at an end the nearest Gauss point's
+    /// value, inside the mean of the two nearest (one in each element).
+    pub fn node_profile(&self, cfg: &crate::model::RodConfig) -> Vec<(f64, f64)> {
+        let rod = &self.rod;
+        let mut out = vec![(0.0, 0.0); rod.n_el + 1];
+        for e in 0..rod.n_el {
+            let el = ElemDofs::gather(cfg, e);
+            let eps = rod.strains_of(&el, e);
+            for (g, node, w) in [(0usize, e, 1.0), (3, e + 1, 1.0)] {
+                let xi = crate::math::shape::GAUSS4.xi[g];
+                let nds = crate::math::shape::hermite_ds(xi, rod.h);
+                let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
+                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * rod.stiff()[0];
+                let tension = n.dot(&p.normalize());
+                let curvature = eps[g][3].hypot(eps[g][4]);
+                let both = node > 0 && node < rod.n_el;
+                let f = if both { 0.5 * w } else { w };
+                out[node].0 += f * tension;
+                out[node].1 += f * curvature;
+            }
+        }
+        out
+    }
+
     /// Every output quantity of `state`.
     pub fn outputs(&self, s: &State) -> Outputs {
         let rod = &self.rod;
