@@ -57,7 +57,9 @@ window = [5.0, 20.0]
 timeseries = {timeseries}
 """
 
-# slower cases (the rod, about a second each) for the kill and the interrupt
+# slower cases (the rod, about a second each) for the kill and the interrupt: the
+# signal must land while cases remain (at 50 s simulated, 0.4 s a case on a quiet
+# machine, the last four could finish before the SIGINT arrived)
 SLOW = """
 fmu = "{fmu}"
 [parameters]
@@ -67,7 +69,7 @@ time_step = 0.05
 heave_amplitude = 2.5
 ramp = 5.0
 [run]
-duration = 50.0
+duration = 150.0
 communication_step = 0.1
 [grid]
 heave_period = {periods}

@@ -27,6 +27,7 @@ macro_rules! out {
 }
 
 mod modes;
+mod touchdown;
 
 /// Writes to stdout; a reader that has gone away (broken pipe) is not an
 /// error of the command, any other failure is reported once on stderr.
@@ -374,6 +375,14 @@ fn run(
     let simulated = st.time;
     if let Some(dir) = &out {
         write_run_csv(dir, &series, &shapes).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+        let td: Vec<f64> = series.iter().map(|o| o.touchdown_s).collect();
+        let bed = scene.seabed.as_ref().map(|b| b.height_at(scene.anchor.x, scene.anchor.y));
+        let path = dir.join("touchdown.svg");
+        match touchdown::svg(&shapes, &td, scene.line.length, bed) {
+            Some(plot) => std::fs::write(&path, plot).map_err(|e| format!("cannot write {}: {e}", path.display()))?,
+            // not last run's plot of another scene
+            None => _ = std::fs::remove_file(&path),
+        }
     }
     if json {
         let v = serde_json::json!({
@@ -426,7 +435,8 @@ fn run(
             simulated / solve_wall.max(1e-12)
         );
         if let Some(dir) = &out {
-            outln!("  wrote {}/timeseries.csv and shapes.csv", dir.display());
+            let plot = if dir.join("touchdown.svg").exists() { " and touchdown.svg" } else { "" };
+            outln!("  wrote {}/timeseries.csv, shapes.csv{plot}", dir.display());
         }
     }
     match failure {

@@ -195,7 +195,7 @@ fn components(mode: &SceneMode, n: &V3) -> Components {
 }
 
 /// About `target` round tick values covering [lo, hi] (steps of 1, 2 or 5 × 10^k).
-fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
+pub(crate) fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
     let span = hi - lo;
     if !(span.is_finite() && span > 0.0) {
         return vec![lo];
@@ -208,7 +208,7 @@ fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
     (first..=last).map(|k| k as f64 * step).map(|v| if v.abs() < 1e-12 * step { 0.0 } else { v }).collect()
 }
 
-fn tick_label(v: f64) -> String {
+pub(crate) fn tick_label(v: f64) -> String {
     let s = format!("{v:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.into() }
