@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn moordyn-seabed fuzz valgrind
+.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
 
 all: build
 
@@ -59,6 +59,11 @@ moordyn: build venv
 moordyn-seabed: build venv fmu
 	$(PY) -m pip install --quiet -r requirements-peers.txt
 	$(PY) scripts/moordyn_seabed.py --bin $(BIN) --out out/moordyn_seabed --docs docs
+
+# The Lowe & Langley (2006) jumper in surge, sway and heave against the
+# paper's digitised tensions (docs/lowe_langley.md, a few seconds).
+lowe-langley: build
+	python3 scripts/lowe_langley.py
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv

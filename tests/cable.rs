@@ -75,7 +75,7 @@ fn discrete_gradient_gives_the_exact_energy_difference() {
     for e in 0..c.n_el {
         let (d0, d1) = (x0[e + 1] - x0[e], x1[e + 1] - x1[e]);
         let (l0, l1) = (d0.norm() / c.l, d1.norm() / c.l);
-        let (g, _) = c.discrete_slope(l0, l1);
+        let (g, _) = c.discrete_slope(0, l0, l1);
         let f = (d0 + d1) * 0.5 * (2.0 * g / (c.l * c.l));
         work += f.dot(&(d1 - d0));
     }
@@ -84,13 +84,13 @@ fn discrete_gradient_gives_the_exact_energy_difference() {
     assert!((work - dw).abs() < 1e-12 * c.strain_energy(&x0).max(c.strain_energy(&x1)));
     // and the slope's derivative in λ1 matches finite differences in every regime
     for (l0, l1) in [(1.01f64, 1.02f64), (0.99, 1.02), (1.01, 0.98), (0.97, 0.98), (1.0 + 1e-9, 1.0 + 2e-9)] {
-        let (_, dg) = c.discrete_slope(l0, l1);
+        let (_, dg) = c.discrete_slope(0, l0, l1);
         // a step that stays on one side of λ1 = 1 (the slope has a kink there)
         let e = (0.1 * (l1 - 1.0).abs()).min(1e-7);
-        let fd = (c.discrete_slope(l0, l1 + e).0 - c.discrete_slope(l0, l1 - e).0) / (2.0 * e);
+        let fd = (c.discrete_slope(0, l0, l1 + e).0 - c.discrete_slope(0, l0, l1 - e).0) / (2.0 * e);
         assert!((fd - dg).abs() < 1e-5 * (1.0 + dg.abs()), "λ = ({l0}, {l1}): {dg} vs {fd}");
-        let (_, dd) = c.damping_slope(l0, l1, 0.3);
-        let fd = (c.damping_slope(l0, l1 + e, 0.3).0 - c.damping_slope(l0, l1 - e, 0.3).0) / (2.0 * e);
+        let (_, dd) = c.damping_slope(0, l0, l1, 0.3);
+        let fd = (c.damping_slope(0, l0, l1 + e, 0.3).0 - c.damping_slope(0, l0, l1 - e, 0.3).0) / (2.0 * e);
         assert!((fd - dd).abs() < 1e-5 * (1.0 + dd.abs()));
     }
 }

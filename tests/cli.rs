@@ -32,8 +32,12 @@ fn statics_writes_shape_csv() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(dir.join("shape.csv")).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("S,x,y,z,tension"));
-    assert_eq!(lines.count(), 61);
+    assert_eq!(lines.next(), Some("S,x,y,z,tension,curvature"));
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 61);
+    // the lazy wave's sag and hog bends: curvature at the interior nodes, none at the pinned ends (EI κ = 0)
+    let kmax = rows.iter().map(|r| r[5]).fold(0.0, f64::max);
+    assert!(kmax > 1e-3 && rows[0][5] < 0.1 * kmax && rows[60][5] < 0.1 * kmax, "curvature {kmax}");
     assert!(String::from_utf8_lossy(&out.stdout).contains("top tension"));
     std::fs::remove_dir_all(dir).ok();
 }

@@ -5,6 +5,7 @@
 use riser::loads::fluid::Fluid;
 use riser::math::V3;
 use riser::model::rod::RodModel;
+use riser::model::sections::PerElement;
 use riser::model::{DynamicOptions, HangOff, State};
 use riser::scene::Scene;
 use riser::sim::report::solve_scene;
@@ -15,7 +16,7 @@ fn hamiltonian_setup(n_el: usize, dt: f64) -> (Integrator<RodModel>, State) {
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("n_elements={n_el}")]).unwrap();
     let report = solve_scene(&scene).unwrap();
     let mut model = RodModel::from_scene(&scene);
-    model.fluid = Fluid::none();
+    model.fluid = PerElement::uniform(Fluid::none(), n_el);
     // energy is conserved to the Newton tolerance: ask for round-off
     let opts = DynamicOptions { time_step: dt, newton_tolerance: 1e-13, ..Default::default() };
     let integ = Integrator::new(model, opts, scene.hang_off()).unwrap();

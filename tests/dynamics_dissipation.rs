@@ -23,7 +23,7 @@ fn oscillator_radius(rho_infinity: f64, omega_h: f64) -> f64 {
     let model = CableModel::new(cable, m, VerticalLoad { uniform: -m * 9.81, sections: vec![] }, Fluid::none());
     let load = -model.gravity_vector()[1];
     let z_eq = -length * (1.0 + load / ea);
-    let (k, m_node) = (ea / length, model.mass[1][1]);
+    let (k, m_node) = (ea / length, model.mass.at(0)[1][1]);
     let omega = (k / m_node).sqrt();
     let h = omega_h / omega;
     // (a resolved step: the inertia rows' round-off, m x 2/h², limits the tolerance)

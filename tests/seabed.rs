@@ -58,7 +58,7 @@ fn statics_on_the_seabed_match_the_elastic_catenary_with_touchdown() {
 fn cable_step_tangent_with_contact_damping_and_friction_matches_finite_differences() {
     let sc = steel(&["model=cable", "n_elements=40", "seabed_friction=0.6"]);
     let rep = solve_scene(&sc).unwrap();
-    let bed = riser::loads::seabed(&sc).unwrap();
+    let bed = riser::model::cable::CableModel::from_scene(&sc).seabed.unwrap();
     let touching = rep.solution.config.x.iter().filter(|x| bed.penetration(x) > 0.0).count();
     assert!(touching >= 5, "only {touching} nodes touch the seabed");
     let worst = common::cable_step_tangent_error(&sc);

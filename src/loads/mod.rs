@@ -11,6 +11,7 @@ pub mod surface;
 pub mod weight;
 
 use crate::math::V3;
+use crate::scene::sections::LineProperties;
 use crate::scene::{ProfileKind, Scene};
 use current::{Current, CurrentProfile};
 use fluid::Fluid;
@@ -19,60 +20,55 @@ use seabed::Seabed;
 use surface::FreeSurface;
 use weight::{BuoyancySection, VerticalLoad};
 
-/// Weight, buoyancy and buoyancy modules.
+/// Weight, buoyancy and buoyancy modules along the line: on each piece of
+/// line (its section, with its modules smeared, docs/theory.md §11)
+/// q = −(m − ρw A) g, plus the scene's `[[buoyancy]]` loads.
 pub fn vertical_load(scene: &Scene) -> VerticalLoad {
-    let mut v = VerticalLoad::new(
-        scene.line.mass_per_length,
-        scene.line.outer_diameter,
-        scene.environment.water_density,
-        scene.environment.gravity,
-    );
-    v.sections = scene.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }).collect();
+    let (rho, g) = (scene.environment.water_density, scene.environment.gravity);
+    let q = |p: &LineProperties| -(p.mass_per_length - rho * p.displaced_area) * g;
+    let pieces = scene.pieces();
+    let mut v = VerticalLoad { uniform: q(&pieces[0].properties), sections: Vec::new() };
+    // the other sections as their difference from the first
+    for p in &pieces[1..] {
+        let load = q(&p.properties) - v.uniform;
+        if load != 0.0 {
+            v.sections.push(BuoyancySection { start: p.start, end: p.end, load });
+        }
+    }
+    v.sections.extend(scene.buoyancy.iter().map(|b| BuoyancySection { start: b.start, end: b.end, load: b.load }));
     v
 }
 
-/// The seabed's contact law on the line (None: the scene has no seabed).
-pub fn seabed(scene: &Scene) -> Option<Seabed> {
+/// The seabed's contact law on a piece of line of properties `p` (None:
+/// the scene has no seabed): MoorDyn's kBot and cBot on its diameter.
+pub fn seabed_of(scene: &Scene, p: &LineProperties) -> Option<Seabed> {
     scene.seabed.as_ref().map(|b| {
-        Seabed::new(
-            b.z,
-            b.slope,
-            b.stiffness,
-            b.damping,
-            b.friction_coefficients(),
-            b.slip_velocity,
-            scene.line.outer_diameter,
-        )
+        Seabed::new(b.z, b.slope, b.stiffness, b.damping, b.friction_coefficients(), b.slip_velocity, p.diameter)
     })
 }
 
-/// Morison drag coefficients ½ ρw D C_D.
-pub fn drag_coefficients(scene: &Scene) -> DragCoefficients {
-    DragCoefficients::new(
-        scene.environment.water_density,
-        scene.line.outer_diameter,
-        scene.line.cd_normal,
-        scene.line.cd_tangential,
-    )
+/// Morison drag coefficients ½ ρw (C_D D) of a piece of line.
+pub fn drag_coefficients_of(scene: &Scene, p: &LineProperties) -> DragCoefficients {
+    let half_rho = 0.5 * scene.environment.water_density;
+    DragCoefficients { normal: half_rho * p.drag_normal, tangential: half_rho * p.drag_tangential }
 }
 
-/// Drag (with the current) and normal added mass of the line.
-pub fn fluid(scene: &Scene) -> Fluid {
-    let k = drag_coefficients(scene);
+/// Drag (with the current), normal added mass and the free surface of a
+/// piece of line.
+pub fn fluid_of(scene: &Scene, p: &LineProperties) -> Fluid {
+    let k = drag_coefficients_of(scene, p);
     let drag = if k.is_zero() { None } else { Some((k, current(scene))) };
-    let d = scene.line.outer_diameter;
-    let added_mass = scene.line.ca_normal * scene.environment.water_density * std::f64::consts::PI * d * d / 4.0;
-    Fluid { drag, added_mass, surface: Some(free_surface(scene)) }
+    let added_mass = p.added_mass_area * scene.environment.water_density;
+    Fluid { drag, added_mass, surface: Some(free_surface_of(scene, p)) }
 }
 
-/// The free surface as the line feels it (docs/theory.md §10): its buoyancy
-/// fades over max(D/2, 5 cm) either side.
-pub fn free_surface(scene: &Scene) -> FreeSurface {
-    let d = scene.line.outer_diameter;
+/// The free surface as a piece of line feels it (docs/theory.md §10): its
+/// buoyancy fades over max(D/2, 5 cm) either side.
+pub fn free_surface_of(scene: &Scene, p: &LineProperties) -> FreeSurface {
     FreeSurface {
         z: scene.environment.water_surface_z,
-        half_width: (0.5 * d).max(0.05),
-        buoyancy: scene.environment.water_density * scene.environment.gravity * std::f64::consts::PI * d * d / 4.0,
+        half_width: (0.5 * p.diameter).max(0.05),
+        buoyancy: scene.environment.water_density * scene.environment.gravity * p.displaced_area,
     }
 }
 

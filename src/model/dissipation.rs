@@ -18,6 +18,7 @@
 //! spectral radius at ω h → ∞ equal to ρ∞ (both branches).       (5.33)
 
 use crate::math::V3;
+use crate::model::sections::PerElement;
 use nalgebra::{Matrix6, Vector6};
 
 /// The scheme's parameters for a high-frequency spectral radius ρ∞ ∈ (0, 1].
@@ -94,9 +95,9 @@ pub fn rigid_part(a: &Matrix6<f64>, p: V3, l: V3) -> Option<(V3, V3)> {
 /// triple k of element e at index `start[k] + e`; triples below
 /// `n_positions` are node velocities (the others slope velocities, which a
 /// rigid translation leaves unchanged).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct TripleLayout<const K: usize> {
-    pub mass: [[f64; K]; K],
+    pub mass: PerElement<[[f64; K]; K]>,
     pub start: [usize; K],
     pub n_el: usize,
     pub n_positions: usize,
@@ -107,9 +108,10 @@ impl<const K: usize> TripleLayout<K> {
     pub fn m_dot(&self, a: &[V3], b: &[V3]) -> f64 {
         let mut t = 0.0;
         for e in 0..self.n_el {
+            let mass = self.mass.at(e);
             for k in 0..K {
                 for l in 0..K {
-                    t += self.mass[k][l] * a[self.start[k] + e].dot(&b[self.start[l] + e]);
+                    t += mass[k][l] * a[self.start[k] + e].dot(&b[self.start[l] + e]);
                 }
             }
         }
@@ -121,10 +123,11 @@ impl<const K: usize> TripleLayout<K> {
     pub fn momenta(&self, c: &[V3], w: impl Fn(usize) -> V3) -> (V3, V3) {
         let (mut p, mut l) = (V3::zeros(), V3::zeros());
         for e in 0..self.n_el {
+            let mass = self.mass.at(e);
             for k in 0..K {
                 let (ik, mut mw) = (self.start[k] + e, V3::zeros());
                 for m in 0..K {
-                    mw += w(self.start[m] + e) * self.mass[k][m];
+                    mw += w(self.start[m] + e) * mass[k][m];
                 }
                 if ik < self.n_positions {
                     p += mw;

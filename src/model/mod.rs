@@ -11,6 +11,7 @@ pub mod dissipation;
 pub mod linearized;
 pub mod outputs;
 pub mod rod;
+pub mod sections;
 pub mod serialize;
 pub mod statics;
 

@@ -5,6 +5,7 @@
 
 mod overrides;
 pub mod ranges;
+pub mod sections;
 mod validate;
 
 pub use overrides::PARAMETER_NAMES;
@@ -326,6 +327,10 @@ pub struct Scene {
     pub current: CurrentSpec,
     #[serde(default)]
     pub buoyancy: Vec<Buoyancy>,
+    /// Line sections from the hang-off down (`[[section]]`; none: `[line]`
+    /// everywhere), docs/theory.md §11.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub section: Vec<sections::SectionSpec>,
     /// The seabed (none: the line never touches bottom, at no cost).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seabed: Option<SeabedSpec>,

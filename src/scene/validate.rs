@@ -28,7 +28,11 @@ impl Checker {
     }
     /// The value against its field's range (ranges.rs); true if it is in it.
     fn range(&mut self, field: &str, v: f64) -> bool {
-        let r = ranges::of_field(field).expect("every checked field has a range");
+        self.range_as(field, field, v)
+    }
+    /// The value against the range of another field (a section's keys have `[line]`'s ranges).
+    fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
+        let r = ranges::of_field(like).expect("every checked field has a range");
         match r.check(v) {
             Ok(()) => true,
             Err(m) => {
@@ -147,6 +151,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
             }
         }
     }
+    check_sections(&mut c, s, length_ok);
     if let Some(b) = &s.seabed {
         let ok = c.range("seabed.z", b.z) & c.range("seabed.slope", b.slope);
         c.range("seabed.stiffness", b.stiffness);
@@ -185,4 +190,88 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
     c.0
+}
+
+/// Line sections (docs/theory.md §11): each key in its `[line]` range, the
+/// modules complete and physical, and the lengths adding up to the line's.
+fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
+    let mut total = 0.0;
+    let mut lengths_ok = true;
+    for (i, sec) in s.section.iter().enumerate() {
+        let f = |k: &str| format!("section[{i}].{k}");
+        lengths_ok &= c.range(&f("length"), sec.length);
+        total += sec.length;
+        let keys = [
+            ("mass_per_length", sec.mass_per_length),
+            ("outer_diameter", sec.outer_diameter),
+            ("axial_stiffness", sec.axial_stiffness),
+            ("bending_stiffness", sec.bending_stiffness),
+            ("torsional_stiffness", sec.torsional_stiffness),
+            ("cd_normal", sec.cd_normal),
+            ("cd_tangential", sec.cd_tangential),
+            ("ca_normal", sec.ca_normal),
+            ("rotary_inertia", sec.rotary_inertia),
+        ];
+        for (k, v) in keys {
+            if let Some(v) = v {
+                c.range_as(&f(k), &format!("line.{k}"), v);
+            }
+        }
+        let sizes = [
+            ("module_diameter", sec.module_diameter),
+            ("module_length", sec.module_length),
+            ("module_pitch", sec.module_pitch),
+            ("module_mass", sec.module_mass),
+        ];
+        let given = sizes.iter().filter(|(_, v)| v.is_some()).count();
+        let mut ok = true;
+        for (k, v) in sizes
+            .iter()
+            .chain(&[("module_cd_normal", sec.module_cd_normal), ("module_ca_normal", sec.module_ca_normal)])
+        {
+            if let Some(v) = v {
+                ok &= c.range(&f(k), *v);
+            }
+        }
+        if given > 0 && given < 4 {
+            let missing: Vec<&str> = sizes.iter().filter(|(_, v)| v.is_none()).map(|(k, _)| *k).collect();
+            c.err(
+                &f(missing[0]),
+                format!(
+                    "missing: buoyancy modules need module_diameter (m), module_length (m), module_pitch (m) and \
+                     module_mass (kg); this section lacks {}",
+                    missing.join(", ")
+                ),
+            );
+        } else if given == 0 && (sec.module_cd_normal.is_some() || sec.module_ca_normal.is_some()) {
+            c.err(&f("module_cd_normal"), "the section has no modules (module_diameter, ... missing)".to_string());
+        } else if let (Some(m), true) = (sec.modules(), ok) {
+            let d = sec.outer_diameter.unwrap_or(s.line.outer_diameter);
+            if m.diameter <= d {
+                c.err(
+                    &f("module_diameter"),
+                    format!("{} m must be larger than the line's outer diameter {d} m", m.diameter),
+                );
+            }
+            if m.length > m.pitch {
+                c.err(
+                    &f("module_length"),
+                    format!("{} m is longer than the pitch {} m: modules cannot overlap", m.length, m.pitch),
+                );
+            }
+        }
+    }
+    if !s.section.is_empty() && lengths_ok && length_ok {
+        let l = s.line.length;
+        if (total - l).abs() > 1e-9 * l {
+            let last = s.section.len() - 1;
+            c.err(
+                &format!("section[{last}].length"),
+                format!(
+                    "the sections add up to {} m but line.length is {l} m: their lengths must add up to the line's",
+                    ranges::number(total)
+                ),
+            );
+        }
+    }
 }

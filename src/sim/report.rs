@@ -8,6 +8,7 @@ use crate::model::cable::statics::{CableStatics, hanging_chain_start, touchdown_
 use crate::model::cable::{Cable, CableModel};
 use crate::model::rod::statics::{StaticLoads, StaticProblem, seabed_start};
 use crate::model::rod::{self, Rod};
+use crate::model::sections;
 use crate::model::statics::{StaticOptions, StaticSolution};
 use crate::scene::{Model, Scene};
 use crate::solve::statics::{relax, solve};
@@ -106,12 +107,13 @@ impl StaticReport {
 /// Loads of the initial static state: gravity and buoyancy, and the current
 /// when the scene's `static_current` asks for it (docs/theory.md §4).
 pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
+    let props = sections::element_properties(scene);
     let mut loads = StaticLoads::gravity_only(loads::vertical_load(scene));
-    loads.seabed = loads::seabed(scene);
-    loads.surface = Some(loads::free_surface(scene));
+    loads.seabed = sections::seabed(scene, &props);
+    loads.surface = Some(sections::free_surface(scene, &props));
     let current = loads::current(scene);
-    let k = loads::drag_coefficients(scene);
-    if scene.analysis.static_current && !current.is_none() && !k.is_zero() {
+    let k = sections::drag_coefficients(scene, &props);
+    if scene.analysis.static_current && !current.is_none() && !k.values().iter().all(|k| k.is_zero()) {
         loads.drag = Some((k, current));
     }
     loads
@@ -121,7 +123,8 @@ pub fn scene_static_loads(scene: &Scene) -> StaticLoads {
 pub fn solve_scene(scene: &Scene) -> Result<StaticReport, RiserError> {
     let rod = rod::of_scene(scene);
     let loads = scene_static_loads(scene);
-    let start = seabed_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor(), loads.seabed.as_ref());
+    let start =
+        seabed_start(&rod, &loads.vertical, scene.hang_off(), scene.anchor(), loads.seabed.as_ref().map(|b| b.first()));
     let tolerance = scene.analysis.newton_tolerance.min(1e-10);
     if scene.analysis.model == Model::Cable {
         let model = CableModel::from_scene(scene);

@@ -368,14 +368,14 @@ struct CableShot {
 /// (the model has no compression) or anything becomes non-finite.
 fn integrate_cable(
     segments: &[(f64, f64)],
-    ea: f64,
+    eas: &[f64],
     h: f64,
     v_top: f64,
     total_steps: usize,
     record: bool,
 ) -> Option<CableShot> {
     let total_length: f64 = segments.iter().map(|seg| seg.0).sum();
-    let rhs = |y: [f64; 4], q: f64| -> Option<[f64; 4]> {
+    let rhs = |y: [f64; 4], q: f64, ea: f64| -> Option<[f64; 4]> {
         let t = y[2].hypot(y[3]);
         if t <= 0.0 || !t.is_finite() {
             return None;
@@ -390,17 +390,17 @@ fn integrate_cable(
         samples.reserve(total_steps + 16 * segments.len() + 1);
         samples.push((0.0, y[0], y[1], y[2].hypot(y[3])));
     }
-    for &(len, q) in segments {
+    for (&(len, q), &ea) in segments.iter().zip(eas) {
         if len == 0.0 {
             continue;
         }
         let n = ((total_steps as f64 * len / total_length).ceil() as usize).max(16);
         let ds = len / n as f64;
         for k in 0..n {
-            let k1 = rhs(y, q)?;
-            let k2 = rhs(add_scaled(y, 0.5 * ds, k1), q)?;
-            let k3 = rhs(add_scaled(y, 0.5 * ds, k2), q)?;
-            let k4 = rhs(add_scaled(y, ds, k3), q)?;
+            let k1 = rhs(y, q, ea)?;
+            let k2 = rhs(add_scaled(y, 0.5 * ds, k1), q, ea)?;
+            let k3 = rhs(add_scaled(y, 0.5 * ds, k2), q, ea)?;
+            let k4 = rhs(add_scaled(y, ds, k3), q, ea)?;
             for i in 0..4 {
                 y[i] += ds / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
             }
@@ -455,7 +455,34 @@ pub fn piecewise_catenary_with_steps(
     dz: f64,
     total_steps: usize,
 ) -> Result<PiecewiseCatenary, String> {
-    require_positive("ea", ea)?;
+    piecewise_catenary_general(segments, &vec![ea; segments.len()], span_h, dz, total_steps)
+}
+
+/// [`piecewise_catenary`] for segments with their own axial stiffness:
+/// `sections` from the top, `(unstretched length [m], net downward load
+/// [N/m], EA [N])` (a line of several sections: the tension is continuous
+/// across a boundary, the stretch jumps with EA).
+pub fn piecewise_catenary_sections(
+    sections: &[(f64, f64, f64)],
+    span_h: f64,
+    dz: f64,
+) -> Result<PiecewiseCatenary, String> {
+    let segments: Vec<(f64, f64)> = sections.iter().map(|s| (s.0, s.1)).collect();
+    let eas: Vec<f64> = sections.iter().map(|s| s.2).collect();
+    piecewise_catenary_general(&segments, &eas, span_h, dz, PIECEWISE_STEPS)
+}
+
+fn piecewise_catenary_general(
+    segments: &[(f64, f64)],
+    eas: &[f64],
+    span_h: f64,
+    dz: f64,
+    total_steps: usize,
+) -> Result<PiecewiseCatenary, String> {
+    for &ea in eas {
+        require_positive("ea", ea)?;
+    }
+    let ea = eas.iter().sum::<f64>() / eas.len().max(1) as f64;
     require_positive("span_h", span_h)?;
     require_finite("dz", dz)?;
     if total_steps == 0 {
@@ -487,7 +514,7 @@ pub fn piecewise_catenary_with_steps(
     };
 
     let solve = |segs: &[(f64, f64)], start: [f64; 2]| -> Result<[f64; 2], String> {
-        shoot_cable(segs, ea, span_h, dz, total_steps, start)
+        shoot_cable(segs, eas, span_h, dz, total_steps, start)
     };
     let u = match solve(segments, start) {
         Ok(u) => u,
@@ -521,7 +548,7 @@ pub fn piecewise_catenary_with_steps(
     };
 
     let (h, v_top) = (u[0], u[1]);
-    let shot = integrate_cable(segments, ea, h, v_top, total_steps, true)
+    let shot = integrate_cable(segments, eas, h, v_top, total_steps, true)
         .ok_or("piecewise_catenary: final integration failed")?;
     let v_bottom = -shot.end[3];
     Ok(PiecewiseCatenary {
@@ -537,7 +564,7 @@ pub fn piecewise_catenary_with_steps(
 /// Newton shooting on `(h, v_top)` for [`piecewise_catenary_with_steps`].
 fn shoot_cable(
     segments: &[(f64, f64)],
-    ea: f64,
+    eas: &[f64],
     span_h: f64,
     dz: f64,
     total_steps: usize,
@@ -546,7 +573,7 @@ fn shoot_cable(
     let length: f64 = segments.iter().map(|seg| seg.0).sum();
     let scale = length.max(span_h).max(dz.abs());
     let residual = |u: [f64; 2]| -> Option<[f64; 2]> {
-        let shot = integrate_cable(segments, ea, u[0], u[1], total_steps, false)?;
+        let shot = integrate_cable(segments, eas, u[0], u[1], total_steps, false)?;
         Some([shot.end[0] - span_h, shot.end[1] - dz])
     };
     // Central differences with a step proportional to the force level.

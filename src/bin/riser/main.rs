@@ -1,7 +1,7 @@
 //! `riser` — the engine of the FMU on the command line.
 //!
 //! `riser statics SCENE [--set name=value]... [--json] [--out DIR]`
-//! `riser run SCENE [--set name=value]... --heave AMPLITUDE,PERIOD [--heave-until T] --duration D [--out DIR] [--json]`
+//! `riser run SCENE [--set name=value]... [--heave A,T] [--surge A,T] [--sway A,T] [--heave-until T] --duration D [--out DIR] [--json]`
 //! `riser modes SCENE [--set name=value]... [--count N] [--json] [--out DIR]` — natural periods and
 //! mode shapes about the static state (modes.rs: text, JSON, modes.csv, mode_shapes.csv, modes.svg)
 //! `riser params`, `riser model-description`, `riser scene SCENE [--set name=value]...`
@@ -46,6 +46,7 @@ fn emit(args: std::fmt::Arguments) {
 }
 
 use clap::{Parser, Subcommand};
+use riser::math::V3;
 use riser::scene::{PARAMETER_NAMES, Scene};
 use riser::sim::report::{StaticReport, solve_scene};
 use std::io::Write;
@@ -85,17 +86,23 @@ enum Command {
         /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
         #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
         heave: Option<(f64, f64)>,
+        /// Surge (along x) amplitude (m) and period (s) of the hang-off; adds to the other motions.
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        surge: Option<(f64, f64)>,
+        /// Sway (along y) amplitude (m) and period (s) of the hang-off; adds to the other motions.
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        sway: Option<(f64, f64)>,
         /// Hold the hang-off still after this time (s).
         #[arg(long, value_name = "T")]
         heave_until: Option<f64>,
-        /// Grow the heave amplitude smoothly over this time (s), ½(1 − cos(πt/ramp)); default 0,
+        /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default 0,
         /// the paper's abrupt start, whose velocity jump rings the line's undamped axial waves.
         #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
         ramp: f64,
         /// Simulated time, s.
         #[arg(long, value_name = "D")]
         duration: f64,
-        /// Times (s) at which shapes.csv records the shape; default: 8 over the last heave period.
+        /// Times (s) at which shapes.csv records the shape; default: 8 over the last (longest) period.
         #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
         shape_times: Vec<f64>,
         /// Steps a factorised Newton tangent may be reused for (0: a new one every step).
@@ -150,6 +157,24 @@ fn params(json: bool) {
     }
 }
 
+/// The hang-off's harmonic motions asked for: (amplitude m, period s) each.
+struct Motions {
+    heave: Option<(f64, f64)>,
+    surge: Option<(f64, f64)>,
+    sway: Option<(f64, f64)>,
+}
+
+impl Motions {
+    /// "heave 2.5 m / 20 s, surge ..." or "the hang-off held still".
+    fn describe(&self) -> String {
+        let parts: Vec<String> = [("heave", self.heave), ("surge", self.surge), ("sway", self.sway)]
+            .into_iter()
+            .filter_map(|(name, m)| m.map(|(a, t)| format!("{name} {a} m / {t} s")))
+            .collect();
+        if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
+    }
+}
+
 fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != 2 {
@@ -168,13 +193,20 @@ fn load(scene: &str, set: &[String]) -> Result<Scene, riser::RiserError> {
     Ok(Scene::load(scene)?.with_overrides(set)?)
 }
 
-fn write_shape_csv(dir: &Path, report: &StaticReport) -> std::io::Result<PathBuf> {
+/// shape.csv: the static state's nodes with their tension (N) and curvature (1/m).
+fn write_shape_csv(dir: &Path, scene: &Scene, report: &StaticReport) -> std::io::Result<PathBuf> {
     std::fs::create_dir_all(dir)?;
     let path = dir.join("shape.csv");
+    let cfg = &report.solution.config;
+    let profile = match scene.analysis.model {
+        riser::scene::Model::Rod => riser::model::rod::RodModel::from_scene(scene).node_profile(cfg),
+        riser::scene::Model::Cable => riser::model::cable::CableModel::from_scene(scene).node_profile(&cfg.x),
+    };
     let mut f = std::io::BufWriter::new(std::fs::File::create(&path)?);
-    writeln!(f, "S,x,y,z,tension")?;
-    for r in &report.shape {
-        writeln!(f, "{},{},{},{},{}", r.s, r.x, r.y, r.z, r.tension)?;
+    writeln!(f, "S,x,y,z,tension,curvature")?;
+    for (k, r) in report.shape.iter().enumerate() {
+        let curvature = profile.get(k).map_or(0.0, |p| p.1);
+        writeln!(f, "{},{},{},{},{},{}", r.s, r.x, r.y, r.z, r.tension, curvature)?;
     }
     f.flush()?;
     Ok(path)
@@ -186,7 +218,9 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
     let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
     let csv = match &out {
-        Some(dir) => Some(write_shape_csv(dir, &rep).map_err(|e| format!("cannot write {}: {e}", dir.display()))?),
+        Some(dir) => {
+            Some(write_shape_csv(dir, &scene, &rep).map_err(|e| format!("cannot write {}: {e}", dir.display()))?)
+        }
         None => None,
     };
     if json {
@@ -290,7 +324,7 @@ impl Progress {
 fn run(
     scene: &str,
     set: &[String],
-    heave: Option<(f64, f64)>,
+    motions: Motions,
     heave_until: Option<f64>,
     ramp: f64,
     duration: f64,
@@ -318,14 +352,28 @@ fn run(
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
-    let (amplitude, period) = heave.unwrap_or((0.0, 1.0));
-    let motion = Heave { amplitude, period, until: heave_until, ramp };
-    let motion_fn = move |t: f64| motion.at(t);
-    sim.start(motion.at(0.0));
+    // heave, surge and sway: each a ramped sine along its axis, summed
+    let axes: Vec<(V3, Heave)> = [(V3::z(), motions.heave), (V3::x(), motions.surge), (V3::y(), motions.sway)]
+        .into_iter()
+        .filter_map(|(axis, m)| {
+            m.map(|(amplitude, period)| (axis, Heave { amplitude, period, until: heave_until, ramp }))
+        })
+        .collect();
+    let period = axes.iter().map(|a| a.1.period).fold(0.0, f64::max);
+    let motion_fn = move |t: f64| {
+        let mut h = riser::model::HangOff::default();
+        for (axis, m) in &axes {
+            let one = m.at(t);
+            h.displacement += axis * one.displacement.z;
+            h.velocity += axis * one.velocity.z;
+        }
+        h
+    };
+    sim.start(motion_fn(0.0));
     let e0 = sim.initial_energy;
     let mut shape_times = shape_times;
     if shape_times.is_empty() {
-        let t0 = if heave.is_some() && duration >= period { duration - period } else { 0.0 };
+        let t0 = if period > 0.0 && duration >= period { duration - period } else { 0.0 };
         let span = duration - t0;
         shape_times = (0..8).map(|k| t0 + span * (k as f64 + 1.0) / 8.0).collect();
     }
@@ -414,12 +462,11 @@ fn run(
     } else {
         let kn = |v: f64| v / 1e3;
         outln!(
-            "riser run: scene '{}' ({} elements, time step {} s), heave {} m / {} s{}{}",
+            "riser run: scene '{}' ({} elements, time step {} s), {}{}{}",
             scene.name,
             scene.analysis.n_elements,
             dt,
-            amplitude,
-            period,
+            motions.describe(),
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
             if ramp > 0.0 { format!(", ramped over {ramp} s") } else { String::new() }
         );
@@ -475,8 +522,22 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
-        Command::Run { scene, set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out } => {
-            run(&scene, &set, heave, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
+        Command::Run {
+            scene,
+            set,
+            heave,
+            surge,
+            sway,
+            heave_until,
+            ramp,
+            duration,
+            shape_times,
+            max_tangent_age,
+            json,
+            out,
+        } => {
+            let motions = Motions { heave, surge, sway };
+            run(&scene, &set, motions, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
         }
         Command::Modes(args) => modes::modes(args),
         Command::ModelDescription => {

@@ -48,14 +48,15 @@ impl Linearized for CableLinearized<'_> {
     fn mass_matrix(&self, cfg: &RodConfig, m: &mut BandedSystem) {
         m.clear();
         let c = &self.model.cable;
-        let ma = self.model.fluid.added_mass * c.l / 6.0;
         for e in 0..c.n_el {
+            let ma = self.model.fluid.at(e).added_mass * c.l / 6.0;
+            let mass = self.model.mass.at(e);
             let t = (cfg.x[e + 1] - cfg.x[e]).normalize();
             let normal = M3::identity() - t * t.transpose();
             m.add_block(e, |i, j| {
                 let (a, b) = (i / NODE_DOF, j / NODE_DOF);
                 let (ii, jj) = (i % NODE_DOF, j % NODE_DOF);
-                let structural = if ii == jj { self.model.mass[a][b] } else { 0.0 };
+                let structural = if ii == jj { mass[a][b] } else { 0.0 };
                 let added = ma * if a == b { 2.0 } else { 1.0 } * normal[(ii, jj)];
                 structural + added
             });
@@ -66,11 +67,12 @@ impl Linearized for CableLinearized<'_> {
         let c = &self.model.cable;
         let u = |a: usize| V3::new(phi[NODE_DOF * a], phi[NODE_DOF * a + 1], phi[NODE_DOF * a + 2]);
         let nodes = (0..=c.n_el).map(|a| (c.s_node(a), u(a), 0.0)).collect();
-        let (rho, ma) = (self.model.mass_per_length, self.model.fluid.added_mass);
         let mut e = [0.0; 4];
         // ∫ |u|² over a segment with linear u: l/3 (|u_a|² + u_a·u_b + |u_b|²), per component
         let quad = |pa: f64, pb: f64| c.l / 3.0 * (pa * pa + pa * pb + pb * pb);
         for s in 0..c.n_el {
+            let m = self.model.mass.at(s);
+            let (rho, ma) = (2.0 * (m[0][0] + m[0][1]) / c.l, self.model.fluid.at(s).added_mass);
             let t = (cfg.x[s + 1] - cfg.x[s]).normalize();
             let (ua, ub) = (u(s), u(s + 1));
             let axial = quad(ua.dot(&t), ub.dot(&t));

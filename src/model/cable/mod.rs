@@ -23,6 +23,7 @@ use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::{M3, V3};
+use crate::model::sections::{self, PerElement};
 use crate::scene::Scene;
 
 /// Geometry and axial stiffness of a discretised cable.
@@ -34,8 +35,10 @@ pub struct Cable {
     pub n_el: usize,
     /// Segment reference length l = L/N, m.
     pub l: f64,
-    /// EA, N.
+    /// EA of the first segment (of every segment on a uniform line), N.
     pub axial_stiffness: f64,
+    /// EA of each segment (line sections, docs/theory.md §11), N.
+    ea: Vec<f64>,
     /// Whether the position of the end at S = 0 (the hang-off) and S = L (the
     /// anchor) is prescribed.
     pub ends_fixed: [bool; 2],
@@ -46,7 +49,20 @@ pub const NODE_DOF: usize = 3;
 
 impl Cable {
     pub fn new(length: f64, n_el: usize, axial_stiffness: f64, ends_fixed: [bool; 2]) -> Self {
-        Cable { length, n_el, l: length / n_el as f64, axial_stiffness, ends_fixed }
+        Cable { length, n_el, l: length / n_el as f64, axial_stiffness, ea: vec![axial_stiffness; n_el], ends_fixed }
+    }
+
+    /// Gives each segment its own EA, N (line sections).
+    pub fn with_segment_stiffness(mut self, ea: Vec<f64>) -> Self {
+        assert_eq!(ea.len(), self.n_el);
+        self.axial_stiffness = ea[0];
+        self.ea = ea;
+        self
+    }
+
+    /// EA of segment e, N.
+    pub fn segment_stiffness(&self, e: usize) -> f64 {
+        self.ea[e]
     }
 
     /// Reference arc length of node a, m.
@@ -77,8 +93,8 @@ impl Cable {
     }
 
     /// Segment stiffness k = EA l (the factor of (6.1)), N m.
-    fn k(&self) -> f64 {
-        self.axial_stiffness * self.l
+    fn k(&self, e: usize) -> f64 {
+        self.ea[e] * self.l
     }
 
     /// Stretch λ = |d|/l of segment e.
@@ -88,12 +104,12 @@ impl Cable {
 
     /// Axial force of segment e, EA (λ − 1)₊, N.
     pub fn tension(&self, x: &[V3], e: usize) -> f64 {
-        self.axial_stiffness * (self.stretch(x, e) - 1.0).max(0.0)
+        self.ea[e] * (self.stretch(x, e) - 1.0).max(0.0)
     }
 
     /// Strain energy Σ W_e (6.1), J.
     pub fn strain_energy(&self, x: &[V3]) -> f64 {
-        (0..self.n_el).map(|e| 0.5 * self.k() * (self.stretch(x, e) - 1.0).max(0.0).powi(2)).sum()
+        (0..self.n_el).map(|e| 0.5 * self.k(e) * (self.stretch(x, e) - 1.0).max(0.0).powi(2)).sum()
     }
 
     /// Position at arc length S (linear between nodes), m.
@@ -107,7 +123,7 @@ impl Cable {
     /// Largest relative round-off of a residual component at positions `x`, N.
     pub fn residual_roundoff(&self, x: &[V3]) -> f64 {
         let extent = x.iter().fold(0.0f64, |m, p| m.max(p.norm())).max(self.length);
-        self.axial_stiffness * f64::EPSILON * extent / self.l
+        self.ea.iter().fold(0.0f64, |m, &k| m.max(k)) * f64::EPSILON * extent / self.l
     }
 
     /// Internal force of segment e on its end node e+1, f = 2 g d / l², and
@@ -123,16 +139,16 @@ impl Cable {
     }
 
     /// Static energy slope g = W'(C) = k (λ − 1)₊/(2λ) and dg/dλ.
-    fn static_slope(&self, lam: f64) -> (f64, f64) {
-        let e = lam - 1.0;
-        if e > 0.0 { (0.5 * self.k() * e / lam, 0.5 * self.k() / (lam * lam)) } else { (0.0, 0.0) }
+    fn static_slope(&self, seg: usize, lam: f64) -> (f64, f64) {
+        let (e, k) = (lam - 1.0, self.k(seg));
+        if e > 0.0 { (0.5 * k * e / lam, 0.5 * k / (lam * lam)) } else { (0.0, 0.0) }
     }
 
     /// The discrete gradient (6.3): g = [W(λ1) − W(λ0)]/(λ1² − λ0²), so that
     /// f·(x_{n+1} − x_n) = W(λ1) − W(λ0) exactly, and ∂g/∂λ1. Written without
     /// the difference quotient where both states are taut (no cancellation).
-    pub fn discrete_slope(&self, lam0: f64, lam1: f64) -> (f64, f64) {
-        let k = self.k();
+    pub fn discrete_slope(&self, seg: usize, lam0: f64, lam1: f64) -> (f64, f64) {
+        let k = self.k(seg);
         let (e0, e1) = (lam0 - 1.0, lam1 - 1.0);
         let s = lam0 + lam1;
         if e0 >= 0.0 && e1 >= 0.0 {
@@ -151,15 +167,15 @@ impl Cable {
 
     /// Kelvin–Voigt damping slope (6.5): g_η = k (η/h) (λ1 − λ0)/(λ0 + λ1),
     /// dissipating k (η/h)(λ1 − λ0)² ≥ 0 over the step, and ∂g_η/∂λ1.
-    pub fn damping_slope(&self, lam0: f64, lam1: f64, eta_over_h: f64) -> (f64, f64) {
+    pub fn damping_slope(&self, seg: usize, lam0: f64, lam1: f64, eta_over_h: f64) -> (f64, f64) {
         let s = lam0 + lam1;
-        let c = self.k() * eta_over_h;
+        let c = self.k(seg) * eta_over_h;
         (c * (lam1 - lam0) / s, c * 2.0 * lam0 / (s * s))
     }
 
     /// Energy dissipated by the damping of segment e over a step, J.
-    pub fn damping_dissipation(&self, lam0: f64, lam1: f64, eta_over_h: f64) -> f64 {
-        self.k() * eta_over_h * (lam1 - lam0).powi(2)
+    pub fn damping_dissipation(&self, seg: usize, lam0: f64, lam1: f64, eta_over_h: f64) -> f64 {
+        self.k(seg) * eta_over_h * (lam1 - lam0).powi(2)
     }
 
     /// Adds the static internal force ∂W/∂x to `r` and its tangent to `sys`.
@@ -167,7 +183,7 @@ impl Cable {
         for e in 0..self.n_el {
             let d = x[e + 1] - x[e];
             let lam = d.norm() / self.l;
-            let (g, dg) = self.static_slope(lam);
+            let (g, dg) = self.static_slope(e, lam);
             let (f, k) = self.segment_force(&d, &d, lam, g, dg, 1.0);
             add_segment(e, &f, &k, r, sys.as_deref_mut());
         }
@@ -194,37 +210,63 @@ fn add_segment(e: usize, f: &V3, k: &M3, r: &mut [f64], sys: Option<&mut BandedS
 #[derive(Debug, Clone)]
 pub struct CableModel {
     pub cable: Cable,
-    /// ρ̄, kg/m.
-    pub mass_per_length: f64,
-    /// Segment mass matrix (scalar factors of I3), kg: the average of the
-    /// lumped and the consistent mass, ρ̄ l/12 [[5, 1], [1, 5]] (6.4).
-    pub mass: [[f64; 2]; 2],
+    /// Segment mass matrices (scalar factors of I3), kg: the average of the
+    /// lumped and the consistent mass, ρ̄ l/12 [[5, 1], [1, 5]] (6.4), per section.
+    pub mass: PerElement<[[f64; 2]; 2]>,
     pub vertical: VerticalLoad,
-    pub fluid: Fluid,
-    /// The seabed (None: no contact anywhere, no cost).
-    pub seabed: Option<Seabed>,
+    /// Drag, added mass and free surface of each segment.
+    pub fluid: PerElement<Fluid>,
+    /// The seabed under each segment (None: no contact anywhere, no cost).
+    pub seabed: Option<PerElement<Seabed>>,
     /// Nodal vertical load ∫ N_a q dS, N (z components).
     f_grav: Vec<f64>,
 }
 
+/// The segment mass matrix ρ̄ l/12 [[5, 1], [1, 5]] (6.4), kg.
+fn segment_mass(mass_per_length: f64, l: f64) -> [[f64; 2]; 2] {
+    let m = mass_per_length * l / 12.0;
+    [[5.0 * m, m], [m, 5.0 * m]]
+}
+
 impl CableModel {
+    /// A uniform line of `mass_per_length` ρ̄, kg/m.
     pub fn new(cable: Cable, mass_per_length: f64, vertical: VerticalLoad, fluid: Fluid) -> Self {
-        let m = mass_per_length * cable.l / 12.0;
+        let n = cable.n_el;
         let f_grav = nodal_vertical_load(&cable, &vertical);
-        CableModel { cable, mass_per_length, mass: [[5.0 * m, m], [m, 5.0 * m]], vertical, fluid, seabed: None, f_grav }
+        let mass = PerElement::uniform(segment_mass(mass_per_length, cable.l), n);
+        CableModel { cable, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav }
     }
 
-    /// The same line on a seabed.
+    /// The same line on a uniform seabed.
     pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
-        self.seabed = seabed;
+        self.seabed = seabed.map(|b| PerElement::uniform(b, self.cable.n_el));
         self
     }
 
-    /// The cable of a scene: the scene's line without its bending and torsion.
+    /// The cable of a scene: the scene's line (its sections) without its
+    /// bending and torsion.
     pub fn from_scene(scene: &Scene) -> Self {
-        let cable = Cable::new(scene.line.length, scene.analysis.n_elements, scene.line.axial_stiffness, [true, true]);
-        CableModel::new(cable, scene.line.mass_per_length, loads::vertical_load(scene), loads::fluid(scene))
-            .with_seabed(loads::seabed(scene))
+        let props = sections::element_properties(scene);
+        let n = scene.analysis.n_elements;
+        let cable = Cable::new(scene.line.length, n, scene.line.axial_stiffness, [true, true])
+            .with_segment_stiffness((0..n).map(|e| props.at(e).axial_stiffness).collect());
+        let vertical = loads::vertical_load(scene);
+        let f_grav = nodal_vertical_load(&cable, &vertical);
+        let mass = props.map(|p| segment_mass(p.mass_per_length, cable.l));
+        let fluid = sections::fluid(scene, &props);
+        let seabed = sections::seabed(scene, &props);
+        CableModel { cable, mass, vertical, fluid, seabed, f_grav }
+    }
+
+    /// True if the water exerts no force on any segment beyond weight and buoyancy.
+    pub fn fluid_is_inert(&self) -> bool {
+        self.fluid.values().iter().all(Fluid::is_inert)
+    }
+
+    /// Largest mass per length with the added mass, kg/m.
+    pub fn max_inertia_per_length(&self) -> f64 {
+        let m = self.mass.values().iter().map(|m| 2.0 * (m[0][0] + m[0][1]) / self.cable.l).fold(0.0, f64::max);
+        m + self.fluid.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)
     }
 
     /// Nodal vertical load, N (one value per node: the z component).
@@ -239,21 +281,23 @@ impl CableModel {
         let mut v = -x.iter().zip(&self.f_grav).map(|(p, f)| p.z * f).sum::<f64>();
         let (l, shapes) = (self.cable.l, seabed::linear_at_gauss(self.cable.l));
         if let Some(bed) = &self.seabed {
-            v += (0..self.cable.n_el).map(|e| seabed::element_energy(bed, &[x[e], x[e + 1]], &shapes, l)).sum::<f64>();
-        }
-        if let Some(s) = &self.fluid.surface {
             v += (0..self.cable.n_el)
-                .map(|e| surface::element_energy(s, &[x[e], x[e + 1]], surface::linear, l))
+                .map(|e| seabed::element_energy(bed.at(e), &[x[e], x[e + 1]], &shapes, l))
                 .sum::<f64>();
+        }
+        for e in 0..self.cable.n_el {
+            if let Some(s) = &self.fluid.at(e).surface {
+                v += surface::element_energy(s, &[x[e], x[e + 1]], surface::linear, l);
+            }
         }
         v
     }
 
     /// Kinetic energy ½ vᵀ M v, J.
     pub fn kinetic_energy(&self, v: &[V3]) -> f64 {
-        let m = &self.mass;
         (0..self.cable.n_el)
             .map(|e| {
+                let m = self.mass.at(e);
                 let (a, b) = (v[e], v[e + 1]);
                 0.5 * (m[0][0] * a.norm_squared() + 2.0 * m[0][1] * a.dot(&b) + m[1][1] * b.norm_squared())
             })
@@ -262,15 +306,19 @@ impl CableModel {
 
     /// Linear momentum, kg m/s.
     pub fn linear_momentum(&self, v: &[V3]) -> V3 {
-        let m = &self.mass;
-        (0..self.cable.n_el).map(|e| (v[e] + v[e + 1]) * (m[0][0] + m[0][1])).sum()
+        (0..self.cable.n_el)
+            .map(|e| {
+                let m = self.mass.at(e);
+                (v[e] + v[e + 1]) * (m[0][0] + m[0][1])
+            })
+            .sum()
     }
 
     /// Angular momentum about the origin, Σ_e Σ_kl M_kl x_k × v_l, kg m²/s.
     pub fn angular_momentum(&self, x: &[V3], v: &[V3]) -> V3 {
-        let m = &self.mass;
         (0..self.cable.n_el)
             .map(|e| {
+                let m = self.mass.at(e);
                 let (xa, xb, va, vb) = (x[e], x[e + 1], v[e], v[e + 1]);
                 xa.cross(&(va * m[0][0] + vb * m[0][1])) + xb.cross(&(va * m[1][0] + vb * m[1][1]))
             })
@@ -279,7 +327,7 @@ impl CableModel {
 
     /// Total mass, kg.
     pub fn total_mass(&self) -> f64 {
-        self.mass_per_length * self.cable.length
+        (0..self.cable.n_el).map(|e| 2.0 * (self.mass.at(e)[0][0] + self.mass.at(e)[0][1])).sum()
     }
 }
 

@@ -9,6 +9,7 @@ use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::{M3, V3};
 use crate::model::RodConfig;
 use crate::model::catenary::{Catenary, Touchdown};
+use crate::model::sections::PerElement;
 use crate::model::statics::{StaticEquations, StaticSolution};
 
 /// The chord from `top` to `anchor`, its horizontal span (m) and the unit
@@ -48,7 +49,7 @@ pub fn hanging_chain_start(model: &CableModel, top: V3, anchor: V3) -> Option<Ve
             if !(t > 0.0 && t.is_finite()) {
                 return None;
             }
-            let len = c.l * (1.0 + t / c.axial_stiffness);
+            let len = c.l * (1.0 + t / c.segment_stiffness(e));
             p[e + 1] = [p[e][0] + len * h / t, p[e][1] + len * nz / t];
         }
         Some(p)
@@ -104,7 +105,7 @@ pub fn touchdown_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3
         let target = to3(&td.at(c.s_node(a + 1)));
         let t = td.at(c.s_node(a) + 0.5 * c.l).tension();
         let dir = (target - x[a]).try_normalize(0.0)?;
-        x.push(x[a] + dir * (c.l * (1.0 + t / c.axial_stiffness)));
+        x.push(x[a] + dir * (c.l * (1.0 + t / c.segment_stiffness(a))));
         a += 1;
     }
     let last = x[a];
@@ -120,8 +121,8 @@ pub fn touchdown_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3
 /// if given, the drag of a steady current on the motionless line.
 pub struct CableStatics<'a> {
     pub model: &'a CableModel,
-    /// The water's static action (drag of the current; no added mass).
-    water: Fluid,
+    /// The water's static action on each segment (drag of the current; no added mass).
+    water: PerElement<Fluid>,
     scale: f64,
     /// Fixed unknowns (the ends).
     fixed: Vec<usize>,
@@ -130,8 +131,10 @@ pub struct CableStatics<'a> {
 impl<'a> CableStatics<'a> {
     /// `with_current`: include the current's drag (the scene's `static_current`).
     pub fn new(model: &'a CableModel, with_current: bool) -> Self {
-        let drag = if with_current { model.fluid.drag.clone() } else { None };
-        let water = Fluid { drag, added_mass: 0.0, surface: model.fluid.surface };
+        let water = model.fluid.map(|f| {
+            let drag = if with_current { f.drag.clone() } else { None };
+            Fluid { drag, added_mass: 0.0, surface: f.surface }
+        });
         let scale = crate::model::StepEquations::force_scale(model);
         CableStatics { model, water, scale, fixed: model.cable.fixed_dofs() }
     }
@@ -147,9 +150,10 @@ impl<'a> CableStatics<'a> {
         for (a, f) in self.model.gravity_vector().iter().enumerate() {
             r[NODE_DOF * a + 2] -= f;
         }
-        if let Some(bed) = &self.model.seabed {
+        if let Some(beds) = &self.model.seabed {
             let shapes = crate::loads::seabed::linear_at_gauss(c.l);
             for e in 0..c.n_el {
+                let bed = beds.at(e);
                 if crate::loads::seabed::clear_of(bed, &x[e..e + 2], 0.0) {
                     continue;
                 }
@@ -168,9 +172,10 @@ impl<'a> CableStatics<'a> {
                 }
             }
         }
-        if let Some(fs) = &self.water.surface {
+        if self.water.first().surface.is_some() {
             use crate::loads::surface::linear;
             for e in 0..c.n_el {
+                let Some(fs) = &self.water.at(e).surface else { continue };
                 if fs.below(&x[e..e + 2], 0.0) {
                     continue;
                 }
@@ -189,7 +194,7 @@ impl<'a> CableStatics<'a> {
                 }
             }
         }
-        if self.water.drag.is_some() {
+        if self.water.first().drag.is_some() {
             let fac = FluidFactors { position: 1.0, velocity: 0.0, acceleration: 0.0 };
             let zero = [V3::zeros(); 2];
             for e in 0..c.n_el {
@@ -197,7 +202,7 @@ impl<'a> CableStatics<'a> {
                 let mut kf = [[M3::zeros(); 2]; 2];
                 let want = sys.is_some();
                 segment_fluid_force(
-                    &self.water,
+                    self.water.at(e),
                     &[x[e], x[e + 1]],
                     &zero,
                     &zero,

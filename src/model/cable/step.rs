@@ -70,7 +70,7 @@ impl StepEquations for CableModel {
             end_accel: [[V3::zeros(); 4]; 2],
             hf: None,
             alg: vec![0.0; c.n_el],
-            layout: TripleLayout { mass: self.mass, start: [0, 1], n_el: c.n_el, n_positions: c.n_el + 1 },
+            layout: TripleLayout { mass: self.mass.clone(), start: [0, 1], n_el: c.n_el, n_positions: c.n_el + 1 },
             fixed_triple: (0..=c.n_el)
                 .map(|a| (a == 0 && c.ends_fixed[0]) || (a == c.n_el && c.ends_fixed[1]))
                 .collect(),
@@ -129,7 +129,7 @@ impl StepEquations for CableModel {
 
     fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
         let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.cable.length);
-        let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.cable.l, extent, h);
+        let inertia = inertia_roundoff(self.max_inertia_per_length(), self.cable.l, extent, h);
         let bed = self.seabed.as_ref().map_or(0.0, |b| b.roundoff(self.cable.l, extent));
         self.cable.residual_roundoff(&cfg.x).max(inertia).max(bed)
     }
@@ -165,7 +165,7 @@ impl StepEquations for CableModel {
             ws.vnew[n] = V3::zeros();
         }
         let k_inertia = 2.0 / (h * h);
-        let fluid_active = !self.fluid.is_inert();
+        let fluid_active = !self.fluid_is_inert();
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut ke = SMatrix::<f64, 6, 6>::zeros();
         for e in 0..n {
@@ -176,11 +176,11 @@ impl StepEquations for CableModel {
             let d1 = x1[b] - x1[a];
             let lam0 = ws.lam_n[e];
             let lam1 = d1.norm() / cable.l;
-            let (mut g, mut dg) = cable.discrete_slope(lam0, lam1);
+            let (mut g, mut dg) = cable.discrete_slope(e, lam0, lam1);
             // Kelvin–Voigt (η/h) and algorithmic (α w_f) damping of the stretch
             let c_damp = eta / h + if ws.hf.is_some() { ws.alg[e] } else { 0.0 };
             if c_damp > 0.0 {
-                let (gd, dgd) = cable.damping_slope(lam0, lam1, c_damp);
+                let (gd, dgd) = cable.damping_slope(e, lam0, lam1, c_damp);
                 g += gd;
                 dg += dgd;
                 ws.lam_1[e] = lam1;
@@ -190,19 +190,20 @@ impl StepEquations for CableModel {
             let mut kb = [[k, -k], [-k, k]];
             // inertia M (v_{n+1} − v_n)/h (6.4)
             let acc = [(ws.vnew[a] - prev.vel[a]) / h, (ws.vnew[b] - prev.vel[b]) / h];
+            let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
             for i in 0..2 {
-                let fi = acc[0] * self.mass[i][0] + acc[1] * self.mass[i][1];
+                let fi = acc[0] * mass[i][0] + acc[1] * mass[i][1];
                 fe[i] += fi;
                 for j in 0..2 {
-                    kb[i][j] += M3::identity() * (k_inertia * self.mass[i][j]);
+                    kb[i][j] += M3::identity() * (k_inertia * mass[i][j]);
                 }
             }
             if e == 0 {
-                ws.end_inertia[0] = acc[0] * self.mass[0][0] + acc[1] * self.mass[0][1];
+                ws.end_inertia[0] = acc[0] * mass[0][0] + acc[1] * mass[0][1];
                 ws.end_accel[0] = [acc[0], acc[1], V3::zeros(), V3::zeros()];
             }
             if e == n - 1 {
-                ws.end_inertia[1] = acc[0] * self.mass[1][0] + acc[1] * self.mass[1][1];
+                ws.end_inertia[1] = acc[0] * mass[1][0] + acc[1] * mass[1][1];
                 ws.end_accel[1] = [acc[0], acc[1], V3::zeros(), V3::zeros()];
             }
             // water at the midpoint, v½ = Δx/h, added mass with the step's acceleration (§5.4)
@@ -212,7 +213,7 @@ impl StepEquations for CableModel {
                 let mut ff = [V3::zeros(); 2];
                 let mut kf = [[M3::zeros(); 2]; 2];
                 segment_fluid_force(
-                    &self.fluid,
+                    fluid,
                     &xm,
                     &vm,
                     &acc,
@@ -233,7 +234,7 @@ impl StepEquations for CableModel {
                 }
             }
             // seabed: the discrete gradient of its elastic energy, damping and friction (§9)
-            if let Some(bed) = &self.seabed
+            if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e))
                 && !seabed::clear_of(bed, &[x0[a], x0[b], x1[a], x1[b]], 0.0)
             {
                 let (mut fs, mut fd) = ([V3::zeros(); 2], [V3::zeros(); 2]);
@@ -252,7 +253,7 @@ impl StepEquations for CableModel {
                 }
             }
             // the free surface: the emerged part's buoyancy taken off (§10)
-            if let Some(fs) = &self.fluid.surface
+            if let Some(fs) = &fluid.surface
                 && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], 0.0)
             {
                 let mut fsv = [V3::zeros(); 2];
@@ -337,13 +338,13 @@ impl StepEquations for CableModel {
         }
         if eta > 0.0 {
             for e in 0..self.cable.n_el {
-                trial.dissipated += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], eta / h);
+                trial.dissipated += self.cable.damping_dissipation(e, ws.lam_n[e], ws.lam_1[e], eta / h);
             }
         }
         if let Some(hf) = ws.hf {
             // the stress part's dissipation (5.31), the velocity filter (5.32)
             for e in (0..self.cable.n_el).filter(|&e| ws.alg[e] > 0.0) {
-                trial.algorithmic += self.cable.damping_dissipation(ws.lam_n[e], ws.lam_1[e], ws.alg[e]);
+                trial.algorithmic += self.cable.damping_dissipation(e, ws.lam_n[e], ws.lam_1[e], ws.alg[e]);
             }
             let (w, fixed, free) = (&state.hf_weight, &ws.fixed_triple, ws.free);
             let removed =
@@ -381,12 +382,13 @@ impl CableModel {
             let mut f = if end == 0 { -f_int } else { f_int };
             f.z -= self.gravity_vector()[node];
             let acc = &s.end_accel[end];
-            f += acc[0] * self.mass[row][0] + acc[1] * self.mass[row][1];
-            if !self.fluid.is_inert() {
+            let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
+            f += acc[0] * mass[row][0] + acc[1] * mass[row][1];
+            if !fluid.is_inert() {
                 let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
                 let mut ff = [V3::zeros(); 2];
                 segment_fluid_force(
-                    &self.fluid,
+                    fluid,
                     &[x[e], x[e + 1]],
                     &[s.vel[e], s.vel[e + 1]],
                     &[acc[0], acc[1]],
@@ -398,12 +400,12 @@ impl CableModel {
                 );
                 f -= ff[row];
             }
-            if let Some(fsurf) = &self.fluid.surface {
+            if let Some(fsurf) = &fluid.surface {
                 let mut fs = [V3::zeros(); 2];
                 surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, &mut fs, None);
                 f -= fs[row];
             }
-            if let Some(bed) = &self.seabed {
+            if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
                 let mut fs = [V3::zeros(); 2];
                 let shapes = linear_at_gauss(c.l);
                 seabed::element_state_force(bed, &[x[e], x[e + 1]], &[s.vel[e], s.vel[e + 1]], &shapes, c.l, &mut fs);
@@ -454,7 +456,7 @@ impl CableModel {
             *p = c.position_at(x, c.length * k as f64 / (SHAPE_POINTS - 1) as f64);
         }
         let touchdown = match &self.seabed {
-            Some(bed) => seabed::touchdown(bed, x, |a| c.s_node(a), c.length),
+            Some(bed) => seabed::touchdown(bed.first(), x, |a| c.s_node(a), c.length),
             None => c.length,
         };
         Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)

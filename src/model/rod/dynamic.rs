@@ -3,57 +3,70 @@
 
 use super::mass::ElementMass;
 use super::statics::vertical_load_vector;
-use super::{Rod, of_scene};
+use super::{Rod, Stiffness, of_scene};
 use crate::loads::seabed::{self, Seabed};
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::{M3, V3};
+use crate::model::sections::{self, PerElement};
 use crate::model::{RodConfig, State};
 use crate::scene::Scene;
+use crate::scene::sections::LineProperties;
 
 /// Everything about the line that does not change during a run.
 #[derive(Debug, Clone)]
 pub struct RodModel {
     pub rod: Rod,
-    /// ρ̄, kg/m.
-    pub mass_per_length: f64,
-    /// Element mass matrices.
-    pub mass: ElementMass,
+    /// Element mass matrices (per section, §11).
+    pub mass: PerElement<ElementMass>,
     /// Weight, buoyancy, buoyancy modules.
     pub vertical: VerticalLoad,
-    /// Drag and added mass.
-    pub fluid: Fluid,
-    /// The seabed (None: no contact anywhere, no cost).
-    pub seabed: Option<Seabed>,
+    /// Drag, added mass and free surface of each element.
+    pub fluid: PerElement<Fluid>,
+    /// The seabed under each element (None: no contact anywhere, no cost).
+    pub seabed: Option<PerElement<Seabed>>,
     /// Consistent nodal vector of the vertical load, N (and N m on r' rows).
     f_grav: Vec<f64>,
 }
 
 impl RodModel {
-    /// `rotary` = (J1, J2): rotary inertia per length of d1 and d2, kg m.
+    /// A uniform line: `mass_per_length` ρ̄ (kg/m), `rotary` = (J1, J2) the
+    /// rotary inertia per length of d1 and d2, kg m.
     pub fn new(rod: Rod, mass_per_length: f64, rotary: [f64; 2], vertical: VerticalLoad, fluid: Fluid) -> Self {
-        let mass = ElementMass::new(mass_per_length, rotary, rod.h);
+        let n = rod.n_el;
+        let mass = PerElement::uniform(ElementMass::new(mass_per_length, rotary, rod.h), n);
         let f_grav = vertical_load_vector(&rod, &vertical);
-        RodModel { rod, mass_per_length, mass, vertical, fluid, seabed: None, f_grav }
+        RodModel { rod, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav }
     }
 
-    /// The same line on a seabed.
+    /// The same line on a uniform seabed.
     pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
-        self.seabed = seabed;
+        self.seabed = seabed.map(|b| PerElement::uniform(b, self.rod.n_el));
         self
     }
 
-    /// The line of a scene: its rod, section, weight, drag, current and added mass.
+    /// The line of a scene: its rod, sections, weight, drag, current and added mass.
     pub fn from_scene(scene: &Scene) -> Self {
-        let j = scene.rotary_inertia();
-        RodModel::new(
-            of_scene(scene),
-            scene.line.mass_per_length,
-            [j, j],
-            loads::vertical_load(scene),
-            loads::fluid(scene),
-        )
-        .with_seabed(loads::seabed(scene))
+        let props = sections::element_properties(scene);
+        let rod = of_scene(scene);
+        let h = rod.h;
+        let mass = props.map(|p| ElementMass::new(p.mass_per_length, [p.rotary_inertia; 2], h));
+        let vertical = loads::vertical_load(scene);
+        let f_grav = vertical_load_vector(&rod, &vertical);
+        let fluid = sections::fluid(scene, &props);
+        let seabed = sections::seabed(scene, &props);
+        RodModel { rod, mass, vertical, fluid, seabed, f_grav }
+    }
+
+    /// True if the water exerts no force on any element beyond weight and buoyancy.
+    pub fn fluid_is_inert(&self) -> bool {
+        self.fluid.values().iter().all(Fluid::is_inert)
+    }
+
+    /// Largest mass per length with the added mass, kg/m.
+    pub fn max_inertia_per_length(&self) -> f64 {
+        let m = self.mass.values().iter().map(|m| m.mass_per_length()).fold(0.0, f64::max);
+        m + self.fluid.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)
     }
 
     /// Consistent nodal vertical load vector.
@@ -73,9 +86,9 @@ impl RodModel {
         for e in 0..self.rod.n_el {
             let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
             if let Some(bed) = &self.seabed {
-                v += seabed::element_energy(bed, &c, &shapes, self.rod.h);
+                v += seabed::element_energy(bed.at(e), &c, &shapes, self.rod.h);
             }
-            if let Some(s) = &self.fluid.surface {
+            if let Some(s) = &self.fluid.at(e).surface {
                 v += crate::loads::surface::element_energy(
                     s,
                     &c,
@@ -89,12 +102,12 @@ impl RodModel {
 
     /// Kinetic energy, J.
     pub fn kinetic_energy(&self, s: &State) -> f64 {
-        (0..self.rod.n_el).map(|e| self.mass.kinetic_energy(&s.hermite_velocity(e), &s.director_rates(e))).sum()
+        (0..self.rod.n_el).map(|e| self.mass.at(e).kinetic_energy(&s.hermite_velocity(e), &s.director_rates(e))).sum()
     }
 
     /// Linear momentum, kg m/s.
     pub fn linear_momentum(&self, s: &State) -> V3 {
-        (0..self.rod.n_el).map(|e| self.mass.momentum(&s.hermite_velocity(e))).sum()
+        (0..self.rod.n_el).map(|e| self.mass.at(e).momentum(&s.hermite_velocity(e))).sum()
     }
 
     /// Angular momentum about the origin, kg m²/s.
@@ -104,14 +117,14 @@ impl RodModel {
                 let c = &s.config;
                 let ce = [c.x[e], c.xp[e], c.x[e + 1], c.xp[e + 1]];
                 let d = [c.d[2 * e], c.d[2 * e + 1], c.d[2 * e + 2]];
-                self.mass.angular_momentum(&ce, &s.hermite_velocity(e), &d, &s.director_rates(e))
+                self.mass.at(e).angular_momentum(&ce, &s.hermite_velocity(e), &d, &s.director_rates(e))
             })
             .sum()
     }
 
     /// Total mass, kg.
     pub fn total_mass(&self) -> f64 {
-        self.mass_per_length * self.rod.length
+        (0..self.rod.n_el).map(|e| self.mass.at(e).mass_per_length() * self.rod.h).sum()
     }
 }
 
@@ -149,4 +162,14 @@ impl State {
         self.prev_mean_vel.clone_from(&self.vel);
         self.prev_mean_slope_vel.clone_from(&self.slope_vel);
     }
+}
+
+/// The section stiffness of each element (the paper's: shear penalty R = EA).
+pub fn element_stiffness(props: &PerElement<LineProperties>, n_el: usize) -> Vec<Stiffness> {
+    (0..n_el)
+        .map(|e| {
+            let p = props.at(e);
+            Stiffness::paper(p.axial_stiffness, p.bending_stiffness, p.torsional_stiffness)
+        })
+        .collect()
 }

@@ -78,8 +78,10 @@ pub struct Rod {
     pub length: f64,
     /// Element reference length, m.
     pub h: f64,
+    /// Section stiffness of the first element (of every element on a uniform line).
     pub stiffness: Stiffness,
-    stiff: [f64; 6],
+    /// Stiffness per strain component of each element (line sections, §11).
+    stiff: Vec<[f64; 6]>,
     /// Conditions at S = 0 (hang-off) and S = L (anchor).
     pub ends: [EndBc; 2],
     /// Stress-free reference configuration.
@@ -100,7 +102,7 @@ impl Rod {
             length,
             h,
             stiffness,
-            stiff: stiffness.diagonal(),
+            stiff: vec![stiffness.diagonal(); n_el],
             ends,
             reference: RodConfig { x: vec![], xp: vec![], d: vec![] },
             eps0: vec![],
@@ -145,8 +147,16 @@ impl Rod {
         element::gauss_strains(el, self.h, &self.g0[e])
     }
 
-    pub fn stiff(&self) -> &[f64; 6] {
-        &self.stiff
+    /// Stiffness per strain component of element e.
+    pub fn stiff(&self, e: usize) -> &[f64; 6] {
+        &self.stiff[e]
+    }
+
+    /// Gives each element its own section stiffness (line sections, §11).
+    pub fn set_element_stiffness(&mut self, per_element: &[Stiffness]) {
+        assert_eq!(per_element.len(), self.n_el);
+        self.stiffness = per_element[0];
+        self.stiff = per_element.iter().map(Stiffness::diagonal).collect();
     }
 
     /// Reference strains ε⁰ at the Gauss points of element e (eq. 4).
@@ -160,7 +170,7 @@ impl Rod {
         let mut s = [[0.0; 6]; NGP];
         for g in 0..NGP {
             for c in 0..6 {
-                s[g][c] = self.stiff[c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - self.eps0[e][g][c]);
+                s[g][c] = self.stiff[e][c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - self.eps0[e][g][c]);
             }
         }
         s
@@ -172,7 +182,7 @@ impl Rod {
         let mut s = [[0.0; NGP]; 6];
         for c in 0..6 {
             for g in 0..NGP {
-                s[c][g] = self.stiff[c] * (0.5 * (eps_n[c][g] + eps_1[c][g]) - self.eps0[e][g][c]);
+                s[c][g] = self.stiff[e][c] * (0.5 * (eps_n[c][g] + eps_1[c][g]) - self.eps0[e][g][c]);
             }
         }
         s
@@ -180,11 +190,17 @@ impl Rod {
 
     /// Kelvin–Voigt stresses (η/h) C (ε_{n+1} − ε_n) of the objective
     /// material strains (theory §5.9).
-    pub fn damping_stresses(&self, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP], eta_over_h: f64) -> [Strain; NGP] {
+    pub fn damping_stresses(
+        &self,
+        e: usize,
+        eps_n: &[Strain; NGP],
+        eps_1: &[Strain; NGP],
+        eta_over_h: f64,
+    ) -> [Strain; NGP] {
         let mut s = [[0.0; 6]; NGP];
         for g in 0..NGP {
             for c in 0..6 {
-                s[g][c] = self.stiff[c] * eta_over_h * (eps_1[g][c] - eps_n[g][c]);
+                s[g][c] = self.stiff[e][c] * eta_over_h * (eps_1[g][c] - eps_n[g][c]);
             }
         }
         s
@@ -192,13 +208,13 @@ impl Rod {
 
     /// Energy dissipated over a step by the Kelvin–Voigt stress,
     /// ∫ (η/h) Δε·C Δε dS over element e, J (≥ 0).
-    pub fn damping_dissipation(&self, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP], eta_over_h: f64) -> f64 {
+    pub fn damping_dissipation(&self, e: usize, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP], eta_over_h: f64) -> f64 {
         let mut d = 0.0;
         for g in 0..NGP {
             let mut dg = 0.0;
             for c in 0..6 {
                 let de = eps_1[g][c] - eps_n[g][c];
-                dg += self.stiff[c] * de * de;
+                dg += self.stiff[e][c] * de * de;
             }
             d += crate::math::shape::GAUSS4.w[g] * self.h * eta_over_h * dg;
         }
@@ -251,7 +267,7 @@ impl Rod {
         let mut s = [[0.0; 6]; NGP];
         for g in 0..NGP {
             for c in 0..6 {
-                s[g][c] = self.stiff[c] * (eps[g][c] - self.eps0[e][g][c]);
+                s[g][c] = self.stiff[e][c] * (eps[g][c] - self.eps0[e][g][c]);
             }
         }
         s
@@ -262,7 +278,7 @@ impl Rod {
         (0..self.n_el)
             .map(|e| {
                 let eps = self.element_strains(cfg, e);
-                element::energy(&eps, &self.eps0[e], &self.stiff, self.h)
+                element::energy(&eps, &self.eps0[e], &self.stiff[e], self.h)
             })
             .sum()
     }
@@ -286,7 +302,7 @@ impl Rod {
                 &el,
                 &el,
                 &s,
-                &self.stiff,
+                &self.stiff[e],
                 Factors::STATIC,
                 self.h,
                 element::Shear::Spatial(&self.g0[e]),
@@ -378,7 +394,8 @@ impl Rod {
     /// over h, so no residual is more precise than R ε_mach |r|/h.
     pub fn residual_roundoff(&self, cfg: &RodConfig) -> f64 {
         let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.length);
-        self.stiffness.axial.max(self.stiffness.shear) * f64::EPSILON * extent / self.h
+        let penalty = self.stiff.iter().fold(0.0f64, |m, s| m.max(s[0]));
+        penalty * f64::EPSILON * extent / self.h
     }
 
     /// q ← q ⊕ Δu: additive on r and r', Cayley on the directors
@@ -407,7 +424,7 @@ impl Rod {
         let g0 = element::reference_penalty_at(&ElemDofs::gather(&self.reference, e), xi, self.h);
         let eps = element::strains_at(&el, xi, self.h, &g0);
         let nds = crate::math::shape::hermite_ds(xi, self.h);
-        let n = V3::new(eps[0], eps[1], eps[2]) * self.stiff[0];
+        let n = V3::new(eps[0], eps[1], eps[2]) * self.stiff[e][0];
         let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
         (n, p.normalize())
     }
@@ -428,7 +445,7 @@ impl Rod {
             for (g, xi) in crate::math::shape::GAUSS4.xi.iter().enumerate() {
                 let nds = crate::math::shape::hermite_ds(*xi, self.h);
                 let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
-                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * self.stiff[0];
+                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * self.stiff[e][0];
                 m = m.min(n.dot(&p.normalize()));
             }
         }

@@ -39,14 +39,15 @@ pub fn element_mass(model: &RodModel, cfg: &RodConfig, e: usize) -> ElMat {
     let rod = &model.rod;
     let mut me = ElMat::zeros();
     let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+    let mass = model.mass.at(e);
     for k in 0..4 {
         for l in 0..4 {
             for a in 0..3 {
-                me[(C_OFF[k] + a, C_OFF[l] + a)] += model.mass.centre[k][l];
+                me[(C_OFF[k] + a, C_OFF[l] + a)] += mass.centre[k][l];
             }
         }
     }
-    let ma = model.fluid.added_mass;
+    let ma = model.fluid.at(e).added_mass;
     if ma > 0.0 {
         for g in 0..NGP {
             let xi = GAUSS4.xi[g];
@@ -75,9 +76,9 @@ pub fn element_mass(model: &RodModel, cfg: &RodConfig, e: usize) -> ElMat {
             for i in 0..2 {
                 let da = skew(&d[a].column(i).into());
                 let db = skew(&d[b].column(i).into());
-                blk += da.transpose() * db * model.mass.rotary[i];
+                blk += da.transpose() * db * mass.rotary[i];
             }
-            blk *= model.mass.director[a][b];
+            blk *= mass.director[a][b];
             for i in 0..3 {
                 for j in 0..3 {
                     me[(T_OFF[a] + i, T_OFF[b] + j)] += blk[(i, j)];
@@ -140,11 +141,11 @@ impl Linearized for RodLinearized<'_> {
             })
             .collect();
         // kinetic energy split at the Gauss points (eq. 8.5)
-        let rho = self.model.mass_per_length;
-        let ma = self.model.fluid.added_mass;
-        let polar = self.model.mass.rotary[0] + self.model.mass.rotary[1];
         let mut e = [0.0; 4];
         for el in 0..rod.n_el {
+            let mass = self.model.mass.at(el);
+            let (rho, ma) = (mass.mass_per_length(), self.model.fluid.at(el).added_mass);
+            let polar = mass.rotary[0] + mass.rotary[1];
             let c = [cfg.x[el], cfg.xp[el], cfg.x[el + 1], cfg.xp[el + 1]];
             let i = [Rod::x_dof(el), Rod::xp_dof(el), Rod::x_dof(el + 1), Rod::xp_dof(el + 1)];
             let uc: [V3; 4] = std::array::from_fn(|k| V3::new(phi[i[k]], phi[i[k] + 1], phi[i[k] + 2]));

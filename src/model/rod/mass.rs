@@ -10,7 +10,7 @@ use crate::math::shape::{GAUSS4, hermite, lagrange};
 use crate::math::{M3, V3};
 
 /// Element mass matrices (scalar factors of I3).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElementMass {
     /// ∫ ρ̄ N_k N_l dS over the element, Hermite dofs [r_a, r'_a, r_b, r'_b] (kg, kg m, kg m²).
     pub centre: [[f64; 4]; 4],
@@ -18,6 +18,8 @@ pub struct ElementMass {
     pub director: [[f64; 3]; 3],
     /// Rotary inertia per length J1, J2 of d1 and d2, kg m (J3 = 0).
     pub rotary: [f64; 2],
+    /// ρ̄, kg/m.
+    rho: f64,
 }
 
 impl ElementMass {
@@ -40,7 +42,12 @@ impl ElementMass {
                 }
             }
         }
-        ElementMass { centre, director, rotary }
+        ElementMass { centre, director, rotary, rho: mass_per_length }
+    }
+
+    /// Mass per length ρ̄, kg/m.
+    pub fn mass_per_length(&self) -> f64 {
+        self.rho
     }
 
     /// Kinetic energy of one element, J, from its Hermite velocities and director rates.

@@ -25,7 +25,7 @@ impl RodModel {
                 &el,
                 &el,
                 &st,
-                rod.stiff(),
+                rod.stiff(e),
                 Factors::STATIC,
                 rod.h,
                 element::Shear::Spatial(rod.reference_penalty(e)),
@@ -37,15 +37,16 @@ impl RodModel {
             let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);
             f -= V3::new(g[Rod::x_dof(node)], g[Rod::x_dof(node) + 1], g[Rod::x_dof(node) + 2]);
             let acc = &s.end_accel[end];
+            let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
             for m in 0..4 {
-                f += acc[m] * self.mass.centre[k][m];
+                f += acc[m] * mass.centre[k][m];
             }
-            if !self.fluid.is_inert() {
+            if !fluid.is_inert() {
                 let mut ff = [V3::zeros(); 4];
                 let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
                 let v = s.hermite_velocity(e);
                 element_fluid_force(
-                    &self.fluid,
+                    fluid,
                     FluidFields { c: &el.c, v: &v, a: acc },
                     &hermite_at_gauss(rod.h),
                     rod.s_node(e),
@@ -56,7 +57,7 @@ impl RodModel {
                 );
                 f -= ff[k];
             }
-            if let Some(fsurf) = &self.fluid.surface {
+            if let Some(fsurf) = &fluid.surface {
                 let mut fs = [V3::zeros(); 4];
                 surface::element_static_force(
                     fsurf,
@@ -68,7 +69,7 @@ impl RodModel {
                 );
                 f -= fs[k];
             }
-            if let Some(bed) = &self.seabed {
+            if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
                 let mut fs = [V3::zeros(); 4];
                 let v = s.hermite_velocity(e);
                 seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), rod.h, &mut fs);
@@ -92,7 +93,7 @@ impl RodModel {
                 let xi = crate::math::shape::GAUSS4.xi[g];
                 let nds = crate::math::shape::hermite_ds(xi, rod.h);
                 let p: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
-                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * rod.stiff()[0];
+                let n = V3::new(eps[g][0], eps[g][1], eps[g][2]) * rod.stiff(e)[0];
                 let tension = n.dot(&p.normalize());
                 let curvature = eps[g][3].hypot(eps[g][4]);
                 let both = node > 0 && node < rod.n_el;
@@ -120,7 +121,7 @@ impl RodModel {
             *p = rod.position_at(cfg, rod.length * k as f64 / (SHAPE_POINTS - 1) as f64);
         }
         let touchdown = match &self.seabed {
-            Some(bed) => seabed::touchdown(bed, &cfg.x, |a| rod.s_node(a), rod.length),
+            Some(bed) => seabed::touchdown(bed.first(), &cfg.x, |a| rod.s_node(a), rod.length),
             None => rod.length,
         };
         Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)

@@ -15,6 +15,7 @@ use crate::math::shape::{GAUSS4, hermite, hermite_ds};
 use crate::math::{M3, V3, frame_from_tangent};
 use crate::model::RodConfig;
 use crate::model::catenary::{self, Catenary};
+use crate::model::sections::PerElement;
 use crate::model::statics::{Homotopy, StaticEquations, StaticSolution};
 
 /// Loads of a static problem.
@@ -24,12 +25,13 @@ pub struct StaticLoads {
     pub vertical: VerticalLoad,
     /// Concentrated forces (N) at end nodes.
     pub point_forces: Vec<(usize, V3)>,
-    /// Steady current drag (the current is included only when asked).
-    pub drag: Option<(DragCoefficients, Current)>,
-    /// The seabed's elastic support (frictionless: docs/theory.md §9.3).
-    pub seabed: Option<Seabed>,
-    /// The free surface: the emerged part without buoyancy (§10).
-    pub surface: Option<FreeSurface>,
+    /// Steady current drag, coefficients per element (the current is
+    /// included only when asked).
+    pub drag: Option<(PerElement<DragCoefficients>, Current)>,
+    /// The seabed's elastic support under each element (frictionless: docs/theory.md §9.3).
+    pub seabed: Option<PerElement<Seabed>>,
+    /// The free surface as each element feels it: the emerged part without buoyancy (§10).
+    pub surface: Option<PerElement<FreeSurface>>,
 }
 
 impl StaticLoads {
@@ -69,13 +71,14 @@ pub fn vertical_load_vector(rod: &Rod, load: &VerticalLoad) -> Vec<f64> {
 pub fn add_static_drag(
     rod: &Rod,
     cfg: &RodConfig,
-    k: &DragCoefficients,
+    ks: &PerElement<DragCoefficients>,
     current: &Current,
-    surface: Option<&FreeSurface>,
+    surfaces: Option<&PerElement<FreeSurface>>,
     r: &mut [f64],
     mut sys: Option<&mut BandedSystem>,
 ) {
     for e in 0..rod.n_el {
+        let (k, surface) = (ks.at(e), surfaces.map(|s| s.at(e)));
         let el = ElemDofs::gather(cfg, e);
         let dofs = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
         let mut ke = [[M3::zeros(); 4]; 4];
@@ -137,19 +140,19 @@ fn add_centreline_blocks(sys: &mut BandedSystem, dofs: &[usize; 4], ke: &[[M3; 4
 fn add_element_loads(
     rod: &Rod,
     cfg: &RodConfig,
-    skip: impl Fn(&[V3]) -> bool,
-    element: impl Fn(&[V3; 4], &mut [V3; 4], Option<&mut [[M3; 4]; 4]>),
+    skip: impl Fn(usize, &[V3]) -> bool,
+    element: impl Fn(usize, &[V3; 4], &mut [V3; 4], Option<&mut [[M3; 4]; 4]>),
     r: &mut [f64],
     mut sys: Option<&mut BandedSystem>,
 ) {
     for e in 0..rod.n_el {
-        if skip(&[cfg.x[e], cfg.x[e + 1]]) {
+        if skip(e, &[cfg.x[e], cfg.x[e + 1]]) {
             continue;
         }
         let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
         let mut f = [V3::zeros(); 4];
         let mut ke = [[M3::zeros(); 4]; 4];
-        element(&c, &mut f, sys.is_some().then_some(&mut ke));
+        element(e, &c, &mut f, sys.is_some().then_some(&mut ke));
         let dofs = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
         for a in 0..4 {
             for i in 0..3 {
@@ -164,22 +167,34 @@ fn add_element_loads(
 
 /// Adds the seabed's elastic force to the residual (r −= f) and its
 /// derivative to the tangent (§9.3).
-pub fn add_static_seabed(rod: &Rod, cfg: &RodConfig, bed: &Seabed, r: &mut [f64], sys: Option<&mut BandedSystem>) {
+pub fn add_static_seabed(
+    rod: &Rod,
+    cfg: &RodConfig,
+    bed: &PerElement<Seabed>,
+    r: &mut [f64],
+    sys: Option<&mut BandedSystem>,
+) {
     let shapes = hermite_at_gauss(rod.h);
-    let skip = |x: &[V3]| seabed::clear_of(bed, x, rod.h);
-    let element = |c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
-        seabed::element_static_force(bed, c, &shapes, rod.h, f, k)
+    let skip = |e: usize, x: &[V3]| seabed::clear_of(bed.at(e), x, rod.h);
+    let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
+        seabed::element_static_force(bed.at(e), c, &shapes, rod.h, f, k)
     };
     add_element_loads(rod, cfg, skip, element, r, sys);
 }
 
 /// Adds the free surface's correction (the emerged part's buoyancy taken
 /// off) to the residual (r −= f) and its derivative to the tangent (§10).
-pub fn add_static_surface(rod: &Rod, cfg: &RodConfig, s: &FreeSurface, r: &mut [f64], sys: Option<&mut BandedSystem>) {
-    let skip = |x: &[V3]| s.below(x, rod.h);
+pub fn add_static_surface(
+    rod: &Rod,
+    cfg: &RodConfig,
+    s: &PerElement<FreeSurface>,
+    r: &mut [f64],
+    sys: Option<&mut BandedSystem>,
+) {
+    let skip = |e: usize, x: &[V3]| s.at(e).below(x, rod.h);
     let shape = |xi| crate::math::shape::hermite(xi, rod.h);
-    let element = |c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
-        surface::element_static_force(s, c, shape, rod.h, f, k)
+    let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
+        surface::element_static_force(s.at(e), c, shape, rod.h, f, k)
     };
     add_element_loads(rod, cfg, skip, element, r, sys);
 }

@@ -104,7 +104,12 @@ impl StepEquations for RodModel {
             corotated: true,
             hf: None,
             alg: vec![0.0; rod.n_el],
-            layout: TripleLayout { mass: self.mass.centre, start: [0, np, 1, np + 1], n_el: rod.n_el, n_positions: np },
+            layout: TripleLayout {
+                mass: self.mass.map(|m| m.centre),
+                start: [0, np, 1, np + 1],
+                n_el: rod.n_el,
+                n_positions: np,
+            },
             fixed_triple: (0..2 * np)
                 .map(|i| {
                     let dof = if i < np { Rod::x_dof(i) } else { Rod::xp_dof(i - np) };
@@ -202,7 +207,7 @@ impl StepEquations for RodModel {
 
     fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
         let extent = cfg.x.iter().fold(0.0f64, |m, x| m.max(x.norm())).max(self.rod.length);
-        let inertia = inertia_roundoff(self.mass_per_length + self.fluid.added_mass, self.rod.h, extent, h);
+        let inertia = inertia_roundoff(self.max_inertia_per_length(), self.rod.h, extent, h);
         let bed = self.seabed.as_ref().map_or(0.0, |b| b.roundoff(self.rod.h, extent));
         self.rod.residual_roundoff(cfg).max(inertia).max(bed)
     }
@@ -224,7 +229,6 @@ impl StepEquations for RodModel {
         let (model, buf, want_k) = (self, ws, tangent);
         let rod = &model.rod;
         let n_el = rod.n_el;
-        let mass = &model.mass;
         lin.r.iter_mut().for_each(|v| *v = 0.0);
         buf.fluid.iter_mut().for_each(|v| *v = 0.0);
         buf.seabed.iter_mut().for_each(|v| *v = 0.0);
@@ -246,7 +250,7 @@ impl StepEquations for RodModel {
         let k_inertia = 2.0 / (h * h);
         // (multiplications by 1/h in the element loop: a division costs several)
         let inv_h = 1.0 / h;
-        let fluid_active = !model.fluid.is_inert();
+        let fluid_active = !model.fluid_is_inert();
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut re = ElVec::zeros();
         let mut ke = ElMat::zeros();
@@ -274,7 +278,7 @@ impl StepEquations for RodModel {
             let sd = (c_damp > 0.0).then(|| {
                 let d1 = gauss::to_points(&k1.strains(Shear::Material));
                 buf.damp_1[e] = d1;
-                rod.damping_stresses(&buf.damp_n[e], &d1, c_damp)
+                rod.damping_stresses(e, &buf.damp_n[e], &d1, c_damp)
             });
             if !want_k {
                 // the fields of q½ (residual path; the tangent path forms its own),
@@ -289,14 +293,15 @@ impl StepEquations for RodModel {
                 }
             } else {
                 let (s, k) = (gauss::to_points(&s), Some(&mut ke));
-                element::internal_force(&elm, &el1, &s, rod.stiff(), Factors::MIDPOINT, rod.h, shear, &mut re, k);
+                element::internal_force(&elm, &el1, &s, rod.stiff(e), Factors::MIDPOINT, rod.h, shear, &mut re, k);
                 if let Some(sd) = &sd {
                     let damping = Factors { config: 0.5, stress: c_damp };
-                    let (stiff, k) = (rod.stiff(), Some(&mut ke));
+                    let (stiff, k) = (rod.stiff(e), Some(&mut ke));
                     element::internal_force(&elm, &el1, sd, stiff, damping, rod.h, Shear::Material, &mut re, k);
                 }
             }
             // centreline inertia M (v_{n+1} − v_n)/h (§5.1)
+            let (mass, fluid) = (model.mass.at(e), model.fluid.at(e));
             let vn = prev.hermite_velocity(e);
             let v1 = [buf.vnew[e], buf.vpnew[e], buf.vnew[e + 1], buf.vpnew[e + 1]];
             let mut acc = [V3::zeros(); 4];
@@ -342,7 +347,7 @@ impl StepEquations for RodModel {
                     }
                     kf = [[M3::zeros(); 4]; 4];
                     element_fluid_force(
-                        &model.fluid,
+                        fluid,
                         FluidFields { c: &elm.c, v: &vm, a: &acc },
                         &buf.fluid_shapes,
                         rod.s_node(e),
@@ -359,7 +364,7 @@ impl StepEquations for RodModel {
                     let p: [V3; NGP] = std::array::from_fn(|g| km.slope(g));
                     let v: [V3; NGP] = std::array::from_fn(|g| (k1.position(g) - kn.position(g)) * inv_h);
                     let (s0, sh) = (rod.s_node(e), &buf.fluid_shapes);
-                    gauss_point_fluid_force(&model.fluid, &x, &p, &v, &acc, sh, s0, rod.h, &mut ff);
+                    gauss_point_fluid_force(fluid, &x, &p, &v, &acc, sh, s0, rod.h, &mut ff);
                 }
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {
@@ -377,7 +382,7 @@ impl StepEquations for RodModel {
             }
             // seabed: the discrete gradient of its elastic energy, damping and
             // friction over the step (§9, (9.5), (9.6))
-            if let Some(bed) = &model.seabed
+            if let Some(bed) = model.seabed.as_ref().map(|b| b.at(e))
                 && !seabed::clear_of(bed, &[eln.c[0], eln.c[2], el1.c[0], el1.c[2]], rod.h)
             {
                 let (mut fe, mut fd) = ([V3::zeros(); 4], [V3::zeros(); 4]);
@@ -400,7 +405,7 @@ impl StepEquations for RodModel {
             }
             // the free surface: the buoyancy of the emerged part taken off, as
             // the discrete gradient of its potential (§10)
-            if let Some(fs) = &model.fluid.surface
+            if let Some(fs) = &fluid.surface
                 && !fs.below(&[eln.c[0], eln.c[2], el1.c[0], el1.c[2]], rod.h)
             {
                 let mut fsv = [V3::zeros(); 4];
@@ -584,7 +589,7 @@ impl StepEquations for RodModel {
         }
         if eta > 0.0 {
             for e in 0..rod.n_el {
-                trial.dissipated += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], eta / h);
+                trial.dissipated += rod.damping_dissipation(e, &ws.damp_n[e], &ws.damp_1[e], eta / h);
             }
         }
         if rod.ends[1].rotation == RotationBc::TwistFixed {
@@ -607,7 +612,7 @@ impl RodModel {
     fn filter_velocities(&self, ws: &mut RodWorkspace, hf: HighFrequency, state: &State, trial: &mut State, h: f64) {
         let rod = &self.rod;
         for e in (0..rod.n_el).filter(|&e| ws.alg[e] > 0.0) {
-            trial.algorithmic += rod.damping_dissipation(&ws.damp_n[e], &ws.damp_1[e], ws.alg[e]);
+            trial.algorithmic += rod.damping_dissipation(e, &ws.damp_n[e], &ws.damp_1[e], ws.alg[e]);
         }
         let np = rod.n_el + 1;
         let c1 = &trial.config;

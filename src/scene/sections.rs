@@ -1,0 +1,270 @@
+//! Line sections and buoyancy modules (docs/theory.md §11).
+//!
+//! A scene's `[[section]]` blocks split the line, from the hang-off down, into
+//! lengths with their own properties; a key a section leaves out is `[line]`'s.
+//! A section may carry buoyancy modules: bodies of diameter D_m and length
+//! L_m clamped on the line every `module_pitch` p, of mass M_m each. Like
+//! OrcaFlex's "equivalent line", the modules are smeared over their section
+//! (fraction φ = L_m/p of its length is module); per metre of section they add
+//!   mass                 M_m / p                                   (11.1)
+//!   displaced volume     φ π (D_m² − D²)/4       (buoyancy)        (11.2)
+//!   added mass           φ C_a,m ρ_w π (D_m² − D²)/4               (11.3)
+//!   normal drag area     φ C_d,m (D_m − D)        (× ½ ρ_w |v|v)   (11.4)
+//! to the bare line's (the modules' annulus around the line and its excess
+//! projected width; the line inside keeps its own coefficients, so that with
+//! C_d,m = C_a,m = 0 only the modules' weight and buoyancy remain). The
+//! tangential drag stays the line's; the seabed bears the equivalent diameter.
+
+use super::{Line, Scene};
+use serde::{Deserialize, Serialize};
+
+/// A `[[section]]` block: a length of line with its own properties (absent
+/// keys are the `[line]`'s) and, optionally, buoyancy modules.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionSpec {
+    /// Unstretched length of the section, m (the sections add up to `line.length`).
+    pub length: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_per_length: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outer_diameter: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axial_stiffness: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bending_stiffness: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsional_stiffness: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cd_normal: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cd_tangential: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ca_normal: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary_inertia: Option<f64>,
+    /// Outer diameter of a buoyancy module D_m, m (> the line's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_diameter: Option<f64>,
+    /// Length of one module L_m along the line, m (≤ the pitch).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_length: Option<f64>,
+    /// Distance between successive modules p, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_pitch: Option<f64>,
+    /// Mass of one module in air M_m, kg.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_mass: Option<f64>,
+    /// Normal drag coefficient of a module C_d,m (on D_m − D); default
+    /// [`DEFAULT_MODULE_CD`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_cd_normal: Option<f64>,
+    /// Normal added-mass coefficient of a module C_a,m; default [`DEFAULT_MODULE_CA`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub module_ca_normal: Option<f64>,
+}
+
+/// Default normal drag coefficient of a buoyancy module: a short cylinder
+/// in cross flow at the Reynolds numbers of currents (about 1 to 1.2).
+pub const DEFAULT_MODULE_CD: f64 = 1.2;
+/// Default normal added-mass coefficient of a buoyancy module (a cylinder's
+/// potential-flow value).
+pub const DEFAULT_MODULE_CA: f64 = 1.0;
+
+/// Buoyancy modules of a section (all four sizes given).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Modules {
+    /// D_m, m.
+    pub diameter: f64,
+    /// L_m, m.
+    pub length: f64,
+    /// p, m.
+    pub pitch: f64,
+    /// M_m, kg.
+    pub mass: f64,
+    pub cd_normal: f64,
+    pub ca_normal: f64,
+}
+
+/// The properties of a piece of line per metre of unstretched length, with
+/// its modules smeared (11.1–11.4): what the loads and the models read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineProperties {
+    /// Mass per length in air, line and modules, kg/m.
+    pub mass_per_length: f64,
+    /// Displaced volume per length, m² (buoyancy ρ_w g times this).
+    pub displaced_area: f64,
+    /// Normal added mass per length over ρ_w, m² (C_a A + modules').
+    pub added_mass_area: f64,
+    /// Normal drag per length over ½ ρ_w |v_n| v_n: C_dn D + modules', m.
+    pub drag_normal: f64,
+    /// Tangential drag per length over ½ ρ_w |v_t| v_t: C_dt D, m.
+    pub drag_tangential: f64,
+    /// Diameter of the equivalent line (of the displaced area), m: the
+    /// seabed's contact width and the free surface's transition.
+    pub diameter: f64,
+    /// EA, N.
+    pub axial_stiffness: f64,
+    /// EI, N m².
+    pub bending_stiffness: f64,
+    /// GJ, N m².
+    pub torsional_stiffness: f64,
+    /// Rotary inertia per length, kg m.
+    pub rotary_inertia: f64,
+}
+
+/// A piece of line [start, end] (m of unstretched arc length from the hang-off).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    pub start: f64,
+    pub end: f64,
+    pub properties: LineProperties,
+}
+
+impl SectionSpec {
+    /// The section's modules, if it has all four sizes.
+    pub fn modules(&self) -> Option<Modules> {
+        Some(Modules {
+            diameter: self.module_diameter?,
+            length: self.module_length?,
+            pitch: self.module_pitch?,
+            mass: self.module_mass?,
+            cd_normal: self.module_cd_normal.unwrap_or(DEFAULT_MODULE_CD),
+            ca_normal: self.module_ca_normal.unwrap_or(DEFAULT_MODULE_CA),
+        })
+    }
+
+    /// The bare line of this section: `[line]` with this section's keys.
+    pub fn bare_line(&self, line: &Line) -> Line {
+        Line {
+            length: self.length,
+            mass_per_length: self.mass_per_length.unwrap_or(line.mass_per_length),
+            outer_diameter: self.outer_diameter.unwrap_or(line.outer_diameter),
+            axial_stiffness: self.axial_stiffness.unwrap_or(line.axial_stiffness),
+            bending_stiffness: self.bending_stiffness.unwrap_or(line.bending_stiffness),
+            torsional_stiffness: self.torsional_stiffness.unwrap_or(line.torsional_stiffness),
+            cd_normal: self.cd_normal.unwrap_or(line.cd_normal),
+            cd_tangential: self.cd_tangential.unwrap_or(line.cd_tangential),
+            ca_normal: self.ca_normal.unwrap_or(line.ca_normal),
+            // the default m D²/8 is the section's own (not [line]'s number)
+            rotary_inertia: self.rotary_inertia.or(
+                if self.mass_per_length.is_some() || self.outer_diameter.is_some() {
+                    None
+                } else {
+                    line.rotary_inertia
+                },
+            ),
+        }
+    }
+}
+
+/// Properties of a bare line (no modules).
+pub fn bare_properties(line: &Line) -> LineProperties {
+    let d = line.outer_diameter;
+    let area = std::f64::consts::PI * d * d / 4.0;
+    LineProperties {
+        mass_per_length: line.mass_per_length,
+        displaced_area: area,
+        added_mass_area: line.ca_normal * area,
+        drag_normal: line.cd_normal * d,
+        drag_tangential: line.cd_tangential * d,
+        diameter: d,
+        axial_stiffness: line.axial_stiffness,
+        bending_stiffness: line.bending_stiffness,
+        torsional_stiffness: line.torsional_stiffness,
+        rotary_inertia: line.rotary_inertia.unwrap_or(line.mass_per_length * d * d / 8.0),
+    }
+}
+
+/// The equivalent line of a bare line carrying modules (11.1–11.4).
+pub fn with_modules(bare: LineProperties, m: &Modules) -> LineProperties {
+    let d = bare.diameter;
+    let phi = m.length / m.pitch;
+    let annulus = std::f64::consts::PI * (m.diameter * m.diameter - d * d) / 4.0;
+    let displaced_area = bare.displaced_area + phi * annulus; // (11.2)
+    LineProperties {
+        mass_per_length: bare.mass_per_length + m.mass / m.pitch, // (11.1)
+        displaced_area,
+        added_mass_area: bare.added_mass_area + phi * m.ca_normal * annulus, // (11.3)
+        drag_normal: bare.drag_normal + phi * m.cd_normal * (m.diameter - d), // (11.4)
+        drag_tangential: bare.drag_tangential,
+        diameter: (4.0 * displaced_area / std::f64::consts::PI).sqrt(),
+        ..bare
+    }
+}
+
+impl Scene {
+    /// The line as pieces from the hang-off down: one piece of `[line]`
+    /// without sections, else one per section (the last one ends at
+    /// `line.length` exactly).
+    pub fn pieces(&self) -> Vec<Piece> {
+        if self.section.is_empty() {
+            return vec![Piece { start: 0.0, end: self.line.length, properties: bare_properties(&self.line) }];
+        }
+        let mut start = 0.0;
+        let n = self.section.len();
+        self.section
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let bare = bare_properties(&s.bare_line(&self.line));
+                let properties = match s.modules() {
+                    Some(m) => with_modules(bare, &m),
+                    None => bare,
+                };
+                let end = if i + 1 == n { self.line.length } else { start + s.length };
+                let p = Piece { start, end, properties };
+                start = end;
+                p
+            })
+            .collect()
+    }
+}
+
+/// The properties of the element [a, b] of a line made of `pieces`: the
+/// length-weighted mean of the quantities per length (mass, areas, drag,
+/// rotary inertia; they add along the line) and the harmonic mean of the
+/// stiffnesses (compliances add in series), so that an element straddling a
+/// section boundary has the mass, weight and axial compliance of what it
+/// covers (docs/theory.md §11). An element inside one piece gets its values.
+pub fn element_properties(pieces: &[Piece], a: f64, b: f64) -> LineProperties {
+    let h = b - a;
+    // (overlaps below 1e-9 of the element are round-off of a boundary on a node)
+    let mut inside: Vec<(f64, &LineProperties)> = pieces
+        .iter()
+        .filter_map(|p| {
+            let w = (p.end.min(b) - p.start.max(a)).max(0.0) / h;
+            (w > 1e-9).then_some((w, &p.properties))
+        })
+        .collect();
+    let total: f64 = inside.iter().map(|(w, _)| w).sum();
+    inside.iter_mut().for_each(|(w, _)| *w /= total);
+    if inside.len() == 1 {
+        return *inside[0].1;
+    }
+    if inside.is_empty() {
+        // round-off past the last piece's end
+        return pieces.last().expect("a line has at least one piece").properties;
+    }
+    let mean = |f: fn(&LineProperties) -> f64| inside.iter().map(|(w, p)| w * f(p)).sum::<f64>();
+    let harmonic = |f: fn(&LineProperties) -> f64| 1.0 / inside.iter().map(|(w, p)| w / f(p)).sum::<f64>();
+    let displaced_area = mean(|p| p.displaced_area);
+    LineProperties {
+        mass_per_length: mean(|p| p.mass_per_length),
+        displaced_area,
+        added_mass_area: mean(|p| p.added_mass_area),
+        drag_normal: mean(|p| p.drag_normal),
+        drag_tangential: mean(|p| p.drag_tangential),
+        diameter: (4.0 * displaced_area / std::f64::consts::PI).sqrt(),
+        axial_stiffness: harmonic(|p| p.axial_stiffness),
+        bending_stiffness: harmonic(|p| p.bending_stiffness),
+        torsional_stiffness: harmonic(|p| p.torsional_stiffness),
+        rotary_inertia: mean(|p| p.rotary_inertia),
+    }
+}
+
+/// The properties of each of `n_el` equal elements of a line of `length` m.
+pub fn per_element(pieces: &[Piece], length: f64, n_el: usize) -> Vec<LineProperties> {
+    let h = length / n_el as f64;
+    (0..n_el).map(|e| element_properties(pieces, e as f64 * h, (e + 1) as f64 * h)).collect()
+}
