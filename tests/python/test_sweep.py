@@ -377,8 +377,11 @@ def test_an_interrupted_client_keeps_its_rows_and_the_rerun_runs_only_the_rest(f
     periods = [8.0, 9.0, 10.0, 11.0, 12.0, 13.0]
     spec = write_spec(tmp_path / "slow.toml", SLOW, fmu=fmu_path, periods=periods)
     out = tmp_path / "out"
+    # as from a terminal's foreground: SIGINT at its default (a test run in the background by a
+    # non-interactive shell inherits it ignored, and Python then installs no KeyboardInterrupt)
     proc = subprocess.Popen([SWEEP, spec, "--out", out, "--workers", "1", "--no-bar"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         wait_rows(out, 2, proc)
         children = psutil.Process(proc.pid).children(recursive=True)
