@@ -27,7 +27,8 @@ impl<T> PerElement<T> {
     /// The value of element e.
     #[inline]
     pub fn at(&self, e: usize) -> &T {
-        &self.values[self.of[e] as usize]
+        // (a uniform line, the common case, reads its one value without the index)
+        if self.values.len() == 1 { &self.values[0] } else { &self.values[self.of[e] as usize] }
     }
 
     /// The distinct values (the first is element 0's).

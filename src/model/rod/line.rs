@@ -167,10 +167,11 @@ impl Rod {
     /// Stress resultants of the midpoint scheme, C(½(ε_n + ε_{n+1}) − ε⁰)
     /// (docs/theory.md §5.2): the stress at the average strain.
     pub fn midpoint_stresses(&self, e: usize, eps_n: &[Strain; NGP], eps_1: &[Strain; NGP]) -> [Strain; NGP] {
+        let (k, eps0) = (&self.stiff[e], &self.eps0[e]);
         let mut s = [[0.0; 6]; NGP];
         for g in 0..NGP {
             for c in 0..6 {
-                s[g][c] = self.stiff[e][c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - self.eps0[e][g][c]);
+                s[g][c] = k[c] * (0.5 * (eps_n[g][c] + eps_1[g][c]) - eps0[g][c]);
             }
         }
         s
@@ -179,10 +180,11 @@ impl Rod {
     /// [`Rod::midpoint_stresses`] with strains and stresses as rows over the
     /// Gauss points (the time step's residual kernel, [`super::gauss`]).
     pub fn midpoint_stress_rows(&self, e: usize, eps_n: &[F4; 6], eps_1: &[F4; 6]) -> [F4; 6] {
+        let (k, eps0) = (&self.stiff[e], &self.eps0[e]);
         let mut s = [[0.0; NGP]; 6];
         for c in 0..6 {
             for g in 0..NGP {
-                s[c][g] = self.stiff[e][c] * (0.5 * (eps_n[c][g] + eps_1[c][g]) - self.eps0[e][g][c]);
+                s[c][g] = k[c] * (0.5 * (eps_n[c][g] + eps_1[c][g]) - eps0[g][c]);
             }
         }
         s
@@ -197,10 +199,11 @@ impl Rod {
         eps_1: &[Strain; NGP],
         eta_over_h: f64,
     ) -> [Strain; NGP] {
+        let k = &self.stiff[e];
         let mut s = [[0.0; 6]; NGP];
         for g in 0..NGP {
             for c in 0..6 {
-                s[g][c] = self.stiff[e][c] * eta_over_h * (eps_1[g][c] - eps_n[g][c]);
+                s[g][c] = k[c] * eta_over_h * (eps_1[g][c] - eps_n[g][c]);
             }
         }
         s
