@@ -241,13 +241,11 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
         outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
-        outln!(
-            "riser statics: scene '{}' ({} elements, EA {:.4e} N, EI {:.4e} N m^2)",
-            scene.name,
-            scene.analysis.n_elements,
-            scene.line.axial_stiffness,
-            scene.line.bending_stiffness
-        );
+        let line = match scene.section.len() {
+            0 => format!("EA {:.4e} N, EI {:.4e} N m^2", scene.line.axial_stiffness, scene.line.bending_stiffness),
+            n => format!("{n} sections"),
+        };
+        outln!("riser statics: scene '{}' ({} elements, {line})", scene.name, scene.analysis.n_elements);
         outln!(
             "  Newton: {} iterations, {} continuation step(s), relative residual {:.2e}, {:.1} ms",
             rep.iterations,
