@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::reference::piecewise_catenary_sections;
+use common::reference::{joined_strings_frequencies, piecewise_catenary_sections};
 use riser::scene::Scene;
 use riser::sim::report::solve_scene;
 use riser::sim::{Heave, Simulation};
@@ -256,26 +256,7 @@ fn the_modes_of_a_two_section_string_match_the_closed_form() {
     let (ea, strain, l1, l2, m1, m2): (f64, f64, f64, f64, f64, f64) = (2e8, 5e-3, 60.0, 40.0, 10.0, 40.0);
     let t = ea * strain;
     let lam = 1.0 + strain;
-    let (ell1, ell2) = (lam * l1, lam * l2);
-    let (mu1, mu2) = (m1 / lam, m2 / lam);
-    let g = |w: f64| {
-        let (k1, k2) = (w * (mu1 / t).sqrt(), w * (mu2 / t).sqrt());
-        k1 * (k1 * ell1).cos() * (k2 * ell2).sin() + k2 * (k2 * ell2).cos() * (k1 * ell1).sin()
-    };
-    // roots of g (the cot form times the sines: no poles), by scanning and bisection
-    let mut exact = vec![];
-    let (mut w, dw) = (1e-3, 1e-3);
-    while exact.len() < 3 {
-        if g(w) * g(w + dw) < 0.0 {
-            let (mut a, mut b) = (w, w + dw);
-            for _ in 0..100 {
-                let c = 0.5 * (a + b);
-                if g(a) * g(c) <= 0.0 { b = c } else { a = c }
-            }
-            exact.push(0.5 * (a + b) / (2.0 * std::f64::consts::PI));
-        }
-        w += dw;
-    }
+    let exact = joined_strings_frequencies([lam * l1, lam * l2], [m1 / lam, m2 / lam], t, 3);
     for model in ["rod", "cable"] {
         let text = format!(
             r#"

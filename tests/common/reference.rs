@@ -915,3 +915,31 @@ pub fn bessel_j0_zeros(n: usize) -> Vec<f64> {
         })
         .collect()
 }
+
+/// The lowest `count` natural frequencies (Hz) of two uniform taut strings
+/// joined end to end and pinned at both far ends: lengths `ell` (m, as
+/// stretched), masses per length `mu` (kg/m of that length), tension `t`
+/// (N). With k_i = ω √(μ_i/T), y and T y′ continuous at the joint give
+/// k₁ cos(k₁ℓ₁) sin(k₂ℓ₂) + k₂ cos(k₂ℓ₂) sin(k₁ℓ₁) = 0 (the cot form times
+/// the sines, free of poles), whose roots are found by scanning ω in steps
+/// of 1e-3 rad/s and bisection.
+pub fn joined_strings_frequencies(ell: [f64; 2], mu: [f64; 2], t: f64, count: usize) -> Vec<f64> {
+    let g = |w: f64| {
+        let (k1, k2) = (w * (mu[0] / t).sqrt(), w * (mu[1] / t).sqrt());
+        k1 * (k1 * ell[0]).cos() * (k2 * ell[1]).sin() + k2 * (k2 * ell[1]).cos() * (k1 * ell[0]).sin()
+    };
+    let mut out = vec![];
+    let (mut w, dw) = (1e-3, 1e-3);
+    while out.len() < count {
+        if g(w) * g(w + dw) < 0.0 {
+            let (mut a, mut b) = (w, w + dw);
+            for _ in 0..100 {
+                let c = 0.5 * (a + b);
+                if g(a) * g(c) <= 0.0 { b = c } else { a = c }
+            }
+            out.push(0.5 * (a + b) / (2.0 * std::f64::consts::PI));
+        }
+        w += dw;
+    }
+    out
+}

@@ -4,6 +4,7 @@
 use super::statics::CableStatics;
 use super::{CableModel, NODE_DOF};
 use crate::math::band::{BandedSystem, LinearSolveError};
+use crate::math::shape::GAUSS4;
 use crate::math::{M3, V3};
 use crate::model::RodConfig;
 use crate::model::linearized::{Linearized, ModeMotion};
@@ -49,7 +50,22 @@ impl Linearized for CableLinearized<'_> {
         m.clear();
         let c = &self.model.cable;
         for e in 0..c.n_el {
-            let ma = self.model.fluid.at(e).added_mass * c.l / 6.0;
+            let fluid = self.model.fluid.at(e);
+            // m_a ∫ s N_a N_b dS with s the submerged fraction (§10; l/6 [[2, 1], [1, 2]] under water)
+            let mut added = [[0.0; 2]; 2];
+            if fluid.added_mass > 0.0 {
+                for g in 0..4 {
+                    let xi = GAUSS4.xi[g];
+                    let n = [1.0 - xi, xi];
+                    let z = cfg.x[e].z * n[0] + cfg.x[e + 1].z * n[1];
+                    let wet = fluid.surface.as_ref().map_or(1.0, |s| s.submerged(z).0);
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            added[a][b] += GAUSS4.w[g] * c.l * fluid.added_mass * wet * n[a] * n[b];
+                        }
+                    }
+                }
+            }
             let mass = self.model.mass.at(e);
             let t = (cfg.x[e + 1] - cfg.x[e]).normalize();
             let normal = M3::identity() - t * t.transpose();
@@ -57,8 +73,7 @@ impl Linearized for CableLinearized<'_> {
                 let (a, b) = (i / NODE_DOF, j / NODE_DOF);
                 let (ii, jj) = (i % NODE_DOF, j % NODE_DOF);
                 let structural = if ii == jj { mass[a][b] } else { 0.0 };
-                let added = ma * if a == b { 2.0 } else { 1.0 } * normal[(ii, jj)];
-                structural + added
+                structural + added[a][b] * normal[(ii, jj)]
             });
         }
     }

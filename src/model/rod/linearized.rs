@@ -47,13 +47,17 @@ pub fn element_mass(model: &RodModel, cfg: &RodConfig, e: usize) -> ElMat {
             }
         }
     }
-    let ma = model.fluid.at(e).added_mass;
+    let fluid = model.fluid.at(e);
+    let ma = fluid.added_mass;
     if ma > 0.0 {
         for g in 0..NGP {
             let xi = GAUSS4.xi[g];
-            let w = GAUSS4.w[g] * rod.h * ma;
             let n = hermite(xi, rod.h);
             let nd = hermite_ds(xi, rod.h);
+            // on the submerged fraction of the line only (§10)
+            let z: f64 = (0..4).map(|k| c[k].z * n[k]).sum();
+            let wet = fluid.surface.as_ref().map_or(1.0, |s| s.submerged(z).0);
+            let w = GAUSS4.w[g] * rod.h * ma * wet;
             let p: V3 = (0..4).map(|k| c[k] * nd[k]).sum();
             let t = p.normalize();
             let normal = M3::identity() - t * t.transpose();
