@@ -87,7 +87,10 @@ impl Linearized for CableLinearized<'_> {
         let quad = |pa: f64, pb: f64| c.l / 3.0 * (pa * pa + pa * pb + pb * pb);
         for s in 0..c.n_el {
             let m = self.model.mass.at(s);
-            let (rho, ma) = (2.0 * (m[0][0] + m[0][1]) / c.l, self.model.fluid.at(s).added_mass);
+            let fluid = self.model.fluid.at(s);
+            // the added mass on the submerged fraction (at the segment's middle)
+            let wet = fluid.surface.as_ref().map_or(1.0, |f| f.submerged(0.5 * (cfg.x[s].z + cfg.x[s + 1].z)).0);
+            let (rho, ma) = (2.0 * (m[0][0] + m[0][1]) / c.l, fluid.added_mass * wet);
             let t = (cfg.x[s + 1] - cfg.x[s]).normalize();
             let (ua, ub) = (u(s), u(s + 1));
             let axial = quad(ua.dot(&t), ub.dot(&t));

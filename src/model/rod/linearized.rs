@@ -147,8 +147,8 @@ impl Linearized for RodLinearized<'_> {
         // kinetic energy split at the Gauss points (eq. 8.5)
         let mut e = [0.0; 4];
         for el in 0..rod.n_el {
-            let mass = self.model.mass.at(el);
-            let (rho, ma) = (mass.mass_per_length(), self.model.fluid.at(el).added_mass);
+            let (mass, fluid) = (self.model.mass.at(el), self.model.fluid.at(el));
+            let rho = mass.mass_per_length();
             let polar = mass.rotary[0] + mass.rotary[1];
             let c = [cfg.x[el], cfg.xp[el], cfg.x[el + 1], cfg.xp[el + 1]];
             let i = [Rod::x_dof(el), Rod::xp_dof(el), Rod::x_dof(el + 1), Rod::xp_dof(el + 1)];
@@ -163,6 +163,9 @@ impl Linearized for RodLinearized<'_> {
                 let l = lagrange(xi);
                 let t = (0..4).map(|k| c[k] * nd[k]).sum::<V3>().normalize();
                 let u: V3 = (0..4).map(|k| uc[k] * n[k]).sum();
+                // the added mass on the submerged fraction, as in the mass matrix
+                let z: f64 = (0..4).map(|k| c[k].z * n[k]).sum();
+                let ma = fluid.added_mass * fluid.surface.as_ref().map_or(1.0, |s| s.submerged(z).0);
                 let ua = u.dot(&t);
                 let un = u.dot(normal);
                 let ui = (u - t * ua - normal * un).norm();
