@@ -309,3 +309,16 @@ n_elements = 100
         }
     }
 }
+
+/// The example scene file docs/cases/lazy_wave_modules.toml (README) is
+/// the paper's lazy wave with its modules as bodies: its static state is the
+/// built-in scene's (the module mass is given to 0.1 g: top force within 1e-6).
+#[test]
+fn the_example_lazy_wave_with_modules_has_the_papers_static_state() {
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let file = Scene::load(&format!("{dir}/docs/cases/lazy_wave_modules.toml")).unwrap();
+    let (a, b) = (solve_scene(&Scene::builtin("lazy_wave").unwrap()).unwrap(), solve_scene(&file).unwrap());
+    let (fa, fb) = (a.solution.reactions[0], b.solution.reactions[0]);
+    println!("top force {fa:?} (built-in) vs {fb:?} (modules)");
+    assert!((fa - fb).norm() <= 1e-6 * fa.norm(), "{fa:?} vs {fb:?}");
+}
