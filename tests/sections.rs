@@ -179,6 +179,54 @@ fn the_equivalent_line_carries_the_modules_counted_one_by_one() {
     let rod = riser::model::rod::RodModel::from_scene(&sc).total_mass();
     let cable = riser::model::cable::CableModel::from_scene(&sc).total_mass();
     assert!((rod - mass).abs() <= 1e-9 * mass && (cable - mass).abs() <= 1e-9 * mass, "{rod} {cable} vs {mass}");
+    // rotary inertia: the line's m D²/8 plus each module as a thick tube about a
+    // transverse axis, M (D_m² + D²)/16 per module (11.5), over the 30 m section
+    let model = riser::model::rod::RodModel::from_scene(&sc);
+    let h = model.rod.h;
+    let total: f64 = (0..model.rod.n_el).map(|e| model.mass.at(e).rotary[0] * h).sum();
+    let expected =
+        lw.line.mass_per_length * d * d / 8.0 * 100.0 + count * m.mass * (m.diameter * m.diameter + d * d) / 16.0;
+    println!("rotary inertia {total:.4} kg m², expected {expected:.4}");
+    assert!((total - expected).abs() <= 1e-9 * expected, "{total} vs {expected}");
+}
+
+/// A `[line]` key reaches every section that does not set its own, the
+/// rotary inertia too (also after a `--set`), and a section's own m and D
+/// give its default m D²/8; the cable's static current reaches every
+/// segment that has drag, whichever the first is.
+#[test]
+fn line_keys_reach_the_sections_that_leave_them_out() {
+    let sc = two_sections("").with_overrides(&["rotary_inertia=7.5"]).unwrap();
+    let model = riser::model::rod::RodModel::from_scene(&sc);
+    assert_eq!(model.mass.at(0).rotary, [7.5, 7.5]);
+    assert_eq!(model.mass.at(59).rotary, [7.5, 7.5], "the heavy section (own mass and D) keeps [line]'s");
+    let own = riser::model::rod::RodModel::from_scene(&two_sections(""));
+    let j = 250.0 * 0.35 * 0.35 / 8.0;
+    assert!((own.mass.at(59).rotary[0] - j).abs() <= 1e-12 * j, "{:?}", own.mass.at(59).rotary);
+    // the current on a line whose first 20 m have no drag: rod and cable agree (within their
+    // bending difference) and differ from the line without current
+    let text = |model: &str, current: bool| {
+        let base = two_sections(&format!("model = \"{model}\"\nstatic_current = {current}")).to_toml();
+        let base = base.replacen(
+            "[[section]]\nlength = 180.0",
+            "[[section]]\nlength = 20.0\ncd_normal = 0.0\ncd_tangential = 0.0\n\n[[section]]\nlength = 160.0",
+            1,
+        );
+        let base = base.replacen(
+            "cd_normal = 0.0\ncd_tangential = 0.0\nca_normal",
+            "cd_normal = 1.2\ncd_tangential = 0.0\nca_normal",
+            1,
+        );
+        Scene::from_toml(&base.replacen("profile = \"none\"", "profile = \"uniform\"\nspeed = 1.5", 1), "current")
+            .unwrap()
+    };
+    let fx = |model: &str, current: bool| solve_scene(&text(model, current)).unwrap().solution.reactions[0].x;
+    let (rod, cable, still) = (fx("rod", true), fx("cable", true), fx("cable", false));
+    println!(
+        "horizontal force at the hang-off: rod {rod:.1} N, cable {cable:.1} N, cable without current {still:.1} N"
+    );
+    assert!((rod - cable).abs() <= 0.01 * rod.abs(), "rod {rod} vs cable {cable}");
+    assert!((cable - still).abs() >= 0.05 * still.abs(), "the current did not reach the cable: {cable} vs {still}");
 }
 
 /// Energy on a sectioned line: with the conserving scheme and no water
@@ -237,7 +285,15 @@ fn bad_sections_are_refused_naming_the_field() {
     let e = Scene::from_toml(&with(&modules.replace("pitch = 2.0", "pitch = 0.5")), "t").unwrap_err().to_string();
     assert!(e.contains("section[1].module_length") && e.contains("longer than the pitch"), "{e}");
     let e = Scene::from_toml(&with("module_cd_normal = 1.0"), "t").unwrap_err().to_string();
-    assert!(e.contains("section[1].module_cd_normal"), "{e}");
+    assert!(e.contains("section[1].module_cd_normal") && e.contains("no modules"), "{e}");
+    let e = Scene::from_toml(&with("module_ca_normal = 1.0"), "t").unwrap_err().to_string();
+    assert!(e.contains("section[1].module_ca_normal") && e.contains("no modules"), "{e}");
+    // a pitch longer than its section; modules too heavy for any line
+    let e = Scene::from_toml(&with(&modules.replace("pitch = 2.0", "pitch = 150.0")), "t").unwrap_err().to_string();
+    assert!(e.contains("section[1].module_pitch") && e.contains("at least one pitch"), "{e}");
+    let heavy = modules.replace("module_mass = 300.0", "module_mass = 1e5").replace("pitch = 2.0", "pitch = 1.0");
+    let e = Scene::from_toml(&with(&heavy), "t").unwrap_err().to_string();
+    assert!(e.contains("section[1].module_mass") && e.contains("kg/m"), "{e}");
     // a `--set length=` that breaks the sum is refused the same way
     let e = two_sections("").with_overrides(&["length=310"]).unwrap_err().to_string();
     assert!(e.contains("section[1].length") && e.contains("add up to 300 m"), "{e}");

@@ -10,6 +10,7 @@
 //!   displaced volume     φ π (D_m² − D²)/4       (buoyancy)        (11.2)
 //!   added mass           φ C_a,m ρ_w π (D_m² − D²)/4               (11.3)
 //!   normal drag area     φ C_d,m (D_m − D)        (× ½ ρ_w |v|v)   (11.4)
+//!   rotary inertia       (M_m/p)(D_m² + D²)/16                     (11.5)
 //! to the bare line's (the modules' annulus around the line and its excess
 //! projected width; the line inside keeps its own coefficients, so that with
 //! C_d,m = C_a,m = 0 only the modules' weight and buoyancy remain). The
@@ -146,14 +147,8 @@ impl SectionSpec {
             cd_normal: self.cd_normal.unwrap_or(line.cd_normal),
             cd_tangential: self.cd_tangential.unwrap_or(line.cd_tangential),
             ca_normal: self.ca_normal.unwrap_or(line.ca_normal),
-            // the default m D²/8 is the section's own (not [line]'s number)
-            rotary_inertia: self.rotary_inertia.or(
-                if self.mass_per_length.is_some() || self.outer_diameter.is_some() {
-                    None
-                } else {
-                    line.rotary_inertia
-                },
-            ),
+            // [line]'s if it sets one, else the default m D²/8 of the section's own m and D
+            rotary_inertia: self.rotary_inertia.or(line.rotary_inertia),
         }
     }
 }
@@ -189,6 +184,8 @@ pub fn with_modules(bare: LineProperties, m: &Modules) -> LineProperties {
         drag_normal: bare.drag_normal + phi * m.cd_normal * (m.diameter - d), // (11.4)
         drag_tangential: bare.drag_tangential,
         diameter: (4.0 * displaced_area / std::f64::consts::PI).sqrt(),
+        // a module as a thick tube about a transverse axis of the section: (M_m/p)(D_m² + D²)/16  (11.5)
+        rotary_inertia: bare.rotary_inertia + m.mass / m.pitch * (m.diameter * m.diameter + d * d) / 16.0,
         ..bare
     }
 }

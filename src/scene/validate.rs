@@ -244,7 +244,12 @@ fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
                 ),
             );
         } else if given == 0 && (sec.module_cd_normal.is_some() || sec.module_ca_normal.is_some()) {
-            c.err(&f("module_cd_normal"), "the section has no modules (module_diameter, ... missing)".to_string());
+            let key = if sec.module_cd_normal.is_some() { "module_cd_normal" } else { "module_ca_normal" };
+            c.err(
+                &f(key),
+                "the section has no modules: module_diameter, module_length, module_pitch and module_mass are missing"
+                    .to_string(),
+            );
         } else if let (Some(m), true) = (sec.modules(), ok) {
             let d = sec.outer_diameter.unwrap_or(s.line.outer_diameter);
             if m.diameter <= d {
@@ -257,6 +262,30 @@ fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
                 c.err(
                     &f("module_length"),
                     format!("{} m is longer than the pitch {} m: modules cannot overlap", m.length, m.pitch),
+                );
+            }
+            if m.pitch > sec.length {
+                c.err(
+                    &f("module_pitch"),
+                    format!(
+                        "{} m is longer than the section ({} m): the modules are smeared over their section, which \
+                         must hold at least one pitch",
+                        m.pitch, sec.length
+                    ),
+                );
+            }
+            let line_mass = sec.mass_per_length.unwrap_or(s.line.mass_per_length);
+            let with_modules = line_mass + m.mass / m.pitch;
+            let range = ranges::of_field("line.mass_per_length").expect("every checked field has a range");
+            if range.check(with_modules).is_err() {
+                c.err(
+                    &f("module_mass"),
+                    format!(
+                        "the line with its modules weighs {} kg/m (module_mass / module_pitch added), outside the \
+                         range of line.mass_per_length {}",
+                        ranges::number(with_modules),
+                        range.interval()
+                    ),
                 );
             }
         }

@@ -172,7 +172,7 @@ impl<'a> CableStatics<'a> {
                 }
             }
         }
-        if self.water.first().surface.is_some() {
+        if self.water.values().iter().any(|f| f.surface.is_some()) {
             use crate::loads::surface::linear;
             for e in 0..c.n_el {
                 let Some(fs) = &self.water.at(e).surface else { continue };
@@ -194,10 +194,13 @@ impl<'a> CableStatics<'a> {
                 }
             }
         }
-        if self.water.first().drag.is_some() {
+        if self.water.values().iter().any(|f| f.drag.is_some()) {
             let fac = FluidFactors { position: 1.0, velocity: 0.0, acceleration: 0.0 };
             let zero = [V3::zeros(); 2];
             for e in 0..c.n_el {
+                if self.water.at(e).drag.is_none() {
+                    continue;
+                }
                 let mut ff = [V3::zeros(); 2];
                 let mut kf = [[M3::zeros(); 2]; 2];
                 let want = sys.is_some();
