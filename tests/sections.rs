@@ -378,3 +378,18 @@ fn the_example_lazy_wave_with_modules_has_the_papers_static_state() {
     println!("top force {fa:?} (built-in) vs {fb:?} (modules)");
     assert!((fa - fb).norm() <= 1e-6 * fa.norm(), "{fa:?} vs {fb:?}");
 }
+
+/// A joint where EA changes is reported with the rod model (its tension is
+/// approximate in the two elements either side, theory §11), not with the
+/// cable, nor where only the mass changes (the lazy wave's modules).
+#[test]
+fn a_jump_of_ea_is_reported_with_the_rod() {
+    let rod = two_sections("");
+    assert_eq!(rod.axial_stiffness_jumps(), vec![(180.0, 10.0)]);
+    let w = rod.axial_stiffness_jump_warning().unwrap();
+    assert!(w.contains("S = 180 m") && w.contains("10.000x") && w.contains("cable"), "{w}");
+    assert!(two_sections("model = \"cable\"").axial_stiffness_jump_warning().is_none());
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let modules = Scene::load(&format!("{dir}/docs/cases/lazy_wave_modules.toml")).unwrap();
+    assert!(modules.axial_stiffness_jumps().is_empty());
+}

@@ -386,6 +386,9 @@ impl Instance {
                  hang-off moved there",
             );
         }
+        if let Some(w) = scene.axial_stiffness_jump_warning() {
+            self.log(Status::Warning, Category::Warning, &w);
+        }
         sim.start(m);
         sim.integrator.invalidate_tangent();
         let outputs = sim.outputs();

@@ -216,6 +216,35 @@ impl Scene {
             })
             .collect()
     }
+
+    /// The joints between sections where EA changes by more than 5 %:
+    /// (arc length from the hang-off, m; ratio of the larger EA to the
+    /// smaller). The rod's tension in the two elements either side of such a
+    /// joint is approximate (docs/theory.md §11); the cable's is not.
+    pub fn axial_stiffness_jumps(&self) -> Vec<(f64, f64)> {
+        self.pieces()
+            .windows(2)
+            .filter_map(|w| {
+                let (a, b) = (w[0].properties.axial_stiffness, w[1].properties.axial_stiffness);
+                let ratio = a.max(b) / a.min(b);
+                (ratio > 1.05).then_some((w[0].end, ratio))
+            })
+            .collect()
+    }
+
+    /// The warning for [`Scene::axial_stiffness_jumps`] with the rod model, if any.
+    pub fn axial_stiffness_jump_warning(&self) -> Option<String> {
+        let jumps = self.axial_stiffness_jumps();
+        if self.analysis.model != super::Model::Rod || jumps.is_empty() {
+            return None;
+        }
+        let list: Vec<String> = jumps.iter().map(|(s, r)| format!("S = {s} m ({r:.3}x)")).collect();
+        Some(format!(
+            "EA changes between sections at {}: the rod's tension in the two elements either side of such a joint is \
+             approximate (docs/theory.md section 11); the cable model is exact there",
+            list.join(", ")
+        ))
+    }
 }
 
 /// The properties of the element [a, b] of a line made of `pieces`: the

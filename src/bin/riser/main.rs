@@ -190,7 +190,11 @@ fn parse_pair(s: &str) -> Result<(f64, f64), String> {
 }
 
 fn load(scene: &str, set: &[String]) -> Result<Scene, riser::RiserError> {
-    Ok(Scene::load(scene)?.with_overrides(set)?)
+    let scene = Scene::load(scene)?.with_overrides(set)?;
+    if let Some(w) = scene.axial_stiffness_jump_warning() {
+        eprintln!("riser: warning: {w}");
+    }
+    Ok(scene)
 }
 
 /// shape.csv: the static state's nodes with their tension (N) and curvature (1/m).
