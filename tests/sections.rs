@@ -343,26 +343,7 @@ n_elements = 100
             -100.0 * lam
         );
         let sc = Scene::from_toml(&text, "string").unwrap();
-        let report = riser::sim::modes::scene_modes(&sc, 12).unwrap();
-        let mut transverse: Vec<f64> = report
-            .modes
-            .iter()
-            .filter(|m| {
-                matches!(
-                    m.direction,
-                    riser::model::linearized::Direction::InPlane | riser::model::linearized::Direction::OutOfPlane
-                )
-            })
-            .map(|m| m.frequency)
-            .collect();
-        transverse.sort_by(f64::total_cmp);
-        for (n, e) in exact.iter().enumerate() {
-            // two planes per frequency
-            for f in &transverse[2 * n..2 * n + 2] {
-                println!("{model} mode {}: {f:.5} Hz, closed form {e:.5} Hz ({:+.3} %)", n + 1, 100.0 * (f - e) / e);
-                assert!(((f - e) / e).abs() <= 1e-3, "{model} mode {}: {f} vs {e}", n + 1);
-            }
-        }
+        common::assert_plane_pairs(model, &common::transverse_frequencies(&sc, 12), &exact, 1e-3);
     }
 }
 

@@ -98,6 +98,19 @@ pub fn drag_coefficients(scene: &Scene, props: &PerElement<LineProperties>) -> P
     props.map(|p| loads::drag_coefficients_of(scene, p))
 }
 
+/// The water on a line of sections.
+impl PerElement<Fluid> {
+    /// True if the water exerts no force on any element beyond weight and buoyancy.
+    pub fn is_inert(&self) -> bool {
+        self.values().iter().all(Fluid::is_inert)
+    }
+
+    /// The largest added mass per length, kg/m.
+    pub fn max_added_mass(&self) -> f64 {
+        self.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)
+    }
+}
+
 /// The seabed's geometry is the same under every element; only the contact
 /// width (the stiffness and damping per length) varies.
 impl PerElement<Seabed> {

@@ -452,7 +452,7 @@ impl Scene {
 
     /// Rotary inertia per length, kg m (default m D²/8).
     pub fn rotary_inertia(&self) -> f64 {
-        self.line.rotary_inertia.unwrap_or(self.line.mass_per_length * self.line.outer_diameter.powi(2) / 8.0)
+        sections::bare_properties(&self.line).rotary_inertia
     }
 
     /// TOML text of the scene (after overrides).

@@ -63,3 +63,31 @@ pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
     }
     worst
 }
+
+/// The transverse natural frequencies (Hz, both planes, ascending) among
+/// the `count` lowest modes of `scene` about its static state.
+pub fn transverse_frequencies(scene: &Scene, count: usize) -> Vec<f64> {
+    use riser::model::linearized::Direction;
+    let report = riser::sim::modes::scene_modes(scene, count).unwrap();
+    let mut f: Vec<f64> = report
+        .modes
+        .iter()
+        .filter(|m| matches!(m.direction, Direction::InPlane | Direction::OutOfPlane))
+        .map(|m| m.frequency)
+        .collect();
+    f.sort_by(f64::total_cmp);
+    f
+}
+
+/// Asserts that the transverse frequencies `got` (two planes per
+/// frequency, as [`transverse_frequencies`] gives them) match `exact` (Hz)
+/// within the relative `tol`, naming `what`.
+pub fn assert_plane_pairs(what: &str, got: &[f64], exact: &[f64], tol: f64) {
+    assert!(got.len() >= 2 * exact.len(), "{what}: only {} transverse modes", got.len());
+    for (n, e) in exact.iter().enumerate() {
+        for f in &got[2 * n..2 * n + 2] {
+            println!("{what} mode {}: {f:.5} Hz, closed form {e:.5} Hz ({:+.3} %)", n + 1, 100.0 * (f - e) / e);
+            assert!(((f - e) / e).abs() <= tol, "{what} mode {}: {f} vs {e}", n + 1);
+        }
+    }
+}

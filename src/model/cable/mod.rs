@@ -258,15 +258,10 @@ impl CableModel {
         CableModel { cable, mass, vertical, fluid, seabed, f_grav }
     }
 
-    /// True if the water exerts no force on any segment beyond weight and buoyancy.
-    pub fn fluid_is_inert(&self) -> bool {
-        self.fluid.values().iter().all(Fluid::is_inert)
-    }
-
     /// Largest mass per length with the added mass, kg/m.
     pub fn max_inertia_per_length(&self) -> f64 {
         let m = self.mass.values().iter().map(|m| 2.0 * (m[0][0] + m[0][1]) / self.cable.l).fold(0.0, f64::max);
-        m + self.fluid.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)
+        m + self.fluid.max_added_mass()
     }
 
     /// Nodal vertical load, N (one value per node: the z component).

@@ -165,7 +165,7 @@ impl StepEquations for CableModel {
             ws.vnew[n] = V3::zeros();
         }
         let k_inertia = 2.0 / (h * h);
-        let fluid_active = !self.fluid_is_inert();
+        let fluid_active = !self.fluid.is_inert();
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut ke = SMatrix::<f64, 6, 6>::zeros();
         for e in 0..n {

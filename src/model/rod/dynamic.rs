@@ -3,7 +3,7 @@
 
 use super::mass::ElementMass;
 use super::statics::vertical_load_vector;
-use super::{Rod, Stiffness, of_scene};
+use super::{Rod, of_properties};
 use crate::loads::seabed::{self, Seabed};
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
@@ -11,7 +11,6 @@ use crate::math::{M3, V3};
 use crate::model::sections::{self, PerElement};
 use crate::model::{RodConfig, State};
 use crate::scene::Scene;
-use crate::scene::sections::LineProperties;
 
 /// Everything about the line that does not change during a run.
 #[derive(Debug, Clone)]
@@ -48,7 +47,7 @@ impl RodModel {
     /// The line of a scene: its rod, sections, weight, drag, current and added mass.
     pub fn from_scene(scene: &Scene) -> Self {
         let props = sections::element_properties(scene);
-        let rod = of_scene(scene);
+        let rod = of_properties(scene, &props);
         let h = rod.h;
         let mass = props.map(|p| ElementMass::new(p.mass_per_length, [p.rotary_inertia; 2], h));
         let vertical = loads::vertical_load(scene);
@@ -58,15 +57,9 @@ impl RodModel {
         RodModel { rod, mass, vertical, fluid, seabed, f_grav }
     }
 
-    /// True if the water exerts no force on any element beyond weight and buoyancy.
-    pub fn fluid_is_inert(&self) -> bool {
-        self.fluid.values().iter().all(Fluid::is_inert)
-    }
-
     /// Largest mass per length with the added mass, kg/m.
     pub fn max_inertia_per_length(&self) -> f64 {
-        let m = self.mass.values().iter().map(|m| m.mass_per_length()).fold(0.0, f64::max);
-        m + self.fluid.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)
+        self.mass.values().iter().map(|m| m.mass_per_length()).fold(0.0, f64::max) + self.fluid.max_added_mass()
     }
 
     /// Consistent nodal vertical load vector.
@@ -162,14 +155,4 @@ impl State {
         self.prev_mean_vel.clone_from(&self.vel);
         self.prev_mean_slope_vel.clone_from(&self.slope_vel);
     }
-}
-
-/// The section stiffness of each element (the paper's: shear penalty R = EA).
-pub fn element_stiffness(props: &PerElement<LineProperties>, n_el: usize) -> Vec<Stiffness> {
-    (0..n_el)
-        .map(|e| {
-            let p = props.at(e);
-            Stiffness::paper(p.axial_stiffness, p.bending_stiffness, p.torsional_stiffness)
-        })
-        .collect()
 }

@@ -18,25 +18,26 @@ pub use dynamic::RodModel;
 pub use line::{EndBc, Rod, RotationBc, Stiffness};
 pub use step::RodWorkspace;
 
+use crate::model::sections::PerElement;
 use crate::scene::Scene;
+use crate::scene::sections::LineProperties;
 
 /// The rod of a scene: its mesh, the stiffness of its sections and end
 /// conditions (pinned hang-off, pinned anchor with the twist held).
 pub fn of_scene(scene: &Scene) -> Rod {
-    let mut rod = Rod::new(
-        scene.analysis.n_elements,
-        scene.line.length,
-        stiffness_of_scene(scene),
-        [EndBc::PINNED, EndBc::PINNED_NO_TWIST],
-    );
-    if !scene.section.is_empty() {
-        let props = crate::model::sections::element_properties(scene);
-        rod.set_element_stiffness(&dynamic::element_stiffness(&props, rod.n_el));
-    }
-    rod
+    of_properties(scene, &crate::model::sections::element_properties(scene))
 }
 
-/// The section stiffness of a scene's `[line]`.
-pub fn stiffness_of_scene(scene: &Scene) -> Stiffness {
-    Stiffness::paper(scene.line.axial_stiffness, scene.line.bending_stiffness, scene.line.torsional_stiffness)
+/// The rod of a scene whose element properties `props` are at hand.
+pub fn of_properties(scene: &Scene, props: &PerElement<LineProperties>) -> Rod {
+    let stiffness: Vec<Stiffness> = (0..scene.analysis.n_elements)
+        .map(|e| {
+            let p = props.at(e);
+            Stiffness::paper(p.axial_stiffness, p.bending_stiffness, p.torsional_stiffness)
+        })
+        .collect();
+    let mut rod =
+        Rod::new(scene.analysis.n_elements, scene.line.length, stiffness[0], [EndBc::PINNED, EndBc::PINNED_NO_TWIST]);
+    rod.set_element_stiffness(&stiffness);
+    rod
 }

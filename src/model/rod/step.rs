@@ -250,7 +250,7 @@ impl StepEquations for RodModel {
         let k_inertia = 2.0 / (h * h);
         // (multiplications by 1/h in the element loop: a division costs several)
         let inv_h = 1.0 / h;
-        let fluid_active = !model.fluid_is_inert();
+        let fluid_active = !model.fluid.is_inert();
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
         let mut re = ElVec::zeros();
         let mut ke = ElMat::zeros();
