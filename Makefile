@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test rust-test lint venv clean doc paper fmu fmu-test stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
+.PHONY: all build demo test check rust-test lint venv clean doc paper fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
 
 all: build
 
@@ -76,12 +76,17 @@ stability: build venv
 bench-sweep: venv fmu
 	$(PY) scripts/bench_sweep.py
 
+# clippy in the dev profile: `doc` then reuses its check of the dependencies.
 lint:
 	$(CARGO) fmt --check
-	$(CARGO) clippy --release --all-targets -- -D warnings
+	$(CARGO) clippy --all-targets -- -D warnings
 
+# The Rust tests in the `fasttest` profile (Cargo.toml): optimised as the
+# physics needs, without the release profile's fat LTO, which made the test
+# binaries' link the longest part of `make test`.
+TEST_PROFILE := fasttest
 rust-test:
-	$(CARGO) test --release
+	$(CARGO) test --profile $(TEST_PROFILE)
 
 doc:
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
@@ -95,9 +100,23 @@ fmu: build venv
 fmu-test: fmu
 	$(PY) -m pytest -q tests/python
 
-# Every test: formatting, lints, docs, Rust tests (release: the physics needs
-# speed), then the packaged FMU through fmpy.
+# Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
+# the packaged FMU (release, as shipped) through fmpy and libcosim.
 test: lint doc rust-test fmu-test
+
+# Before each commit (a minute or two once built): formatting, lints, the Rust
+# tests, and the FMU's Python tests but the long fuzz and Dask ones, against an
+# FMU packaged from the fasttest build (out/check/riser.fmu), so that no fat-LTO
+# link is waited for. `make test` remains the gate.
+CHECK_DIR := out/check
+check: lint rust-test venv check-fmu
+	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
+		$(PY) -m pytest -q tests/python -k "not fuzz and not sweep"
+
+check-fmu:
+	$(CARGO) build --profile $(TEST_PROFILE) --lib --bin riser
+	$(PY) scripts/package_fmu.py --bin target/$(TEST_PROFILE)/riser \
+		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu
 
 clean:
 	$(CARGO) clean
