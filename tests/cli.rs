@@ -237,3 +237,161 @@ fn a_reader_that_goes_away_is_not_a_panic() {
     assert!(out.status.success() && !err.contains("panicked"), "{:?}: {err}", out.status);
     assert_eq!(&head[..2], b"{\"");
 }
+
+fn json(out: &std::process::Output) -> serde_json::Value {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// The catenary, coarse, heaving 2.5 m / 20 s for 60 s.
+const SMALL_RUN: [&str; 10] =
+    ["run", "catenary", "--set", "n_elements=10", "--set", "time_step=0.1", "--heave", "2.5,20", "--duration", "60"];
+
+/// Issue 31: the default run grows the motion over one period of the
+/// slowest motion and reports the steady window from one period after the
+/// ramp: the same numbers as `--ramp 20 --window 40,60`, bit for bit; the
+/// whole-run extremes are kept under their old keys and enclose the window's.
+#[test]
+fn default_run_is_ramped_over_one_period_and_reports_its_steady_window() {
+    let base = &SMALL_RUN[..];
+    let default = json(&riser(&[base, &["--json", "--surge", "1,15"]].concat()));
+    let explicit = json(&riser(&[base, &["--json", "--surge", "1,15", "--ramp", "20", "--window", "40,60"]].concat()));
+    assert_eq!(default["ramp"].as_f64(), Some(20.0));
+    assert_eq!(default["steady"], explicit["steady"]);
+    let steady = &default["steady"];
+    assert_eq!(steady["window"], serde_json::json!([40.0, 60.0]));
+    let w: Vec<f64> = steady["top_tension"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let whole = &default["top_tension"];
+    assert!(w[0] <= w[1] && w[1] <= w[2]);
+    assert!(whole["min"].as_f64().unwrap() <= w[0] && w[2] <= whole["max"].as_f64().unwrap());
+    assert!(steady["min_tension"].as_f64().unwrap() >= default["min_tension"].as_f64().unwrap());
+    // a flexible pipe has no stresses; nothing is implausible here
+    assert!(steady["stress_range"].is_null());
+    assert_eq!(steady["warnings"], serde_json::json!([]));
+    let text = riser(&[&SMALL_RUN[..], &["--surge", "1,15"]].concat());
+    let (stdout, stderr) = (String::from_utf8_lossy(&text.stdout), String::from_utf8_lossy(&text.stderr));
+    assert!(stdout.contains("ramped over 20 s") && stdout.contains("steady window 40 to 60 s"), "{stdout}");
+    assert!(stdout.contains("whole run, with the start"), "{stdout}");
+    assert!(!stderr.contains("warning"), "{stderr}");
+}
+
+/// Issue 31: `--ramp 0` is the paper's abrupt start, the library's Heave
+/// with no ramp, bit for bit (the same stepping as `riser run`).
+#[test]
+fn ramp_zero_is_the_papers_abrupt_start_bit_for_bit() {
+    use riser::sim::{Heave, Simulation};
+    let cli = json(&riser(&[&SMALL_RUN[..], &["--json", "--ramp", "0"]].concat()));
+    let scene =
+        riser::scene::Scene::builtin("catenary").unwrap().with_overrides(&["n_elements=10", "time_step=0.1"]).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 0.0 };
+    sim.start(heave.at(0.0));
+    let n = riser::sim::internal_steps(60.0, 0.1).unwrap();
+    let mut tension = vec![sim.outputs().top_tension];
+    for k in 1..=n {
+        sim.advance_to(riser::sim::internal_step_end(0.0, 60.0, 0.1, k, n), &|t| heave.at(t)).unwrap();
+        tension.push(sim.outputs().top_tension);
+    }
+    let max = tension.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let min = tension.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mean = tension.iter().sum::<f64>() / tension.len() as f64;
+    assert_eq!(cli["ramp"].as_f64(), Some(0.0));
+    assert_eq!(cli["top_tension"], serde_json::json!({"min": min, "mean": mean, "max": max}));
+    // the velocity jump: a peak far above the static tension
+    assert!(max > 2.0 * sim.statics.top_tension, "max {max}");
+}
+
+/// Issue 31: the design numbers in `riser statics --json` (DESIGN.md,
+/// "Summaries"), and a plausible model warns of nothing.
+#[test]
+fn statics_json_has_the_design_numbers_and_no_warning_for_plausible_scenes() {
+    for scene in ["catenary", "steel_catenary"] {
+        let out = riser(&["statics", scene, "--json"]);
+        let v = json(&out);
+        for k in ["hang_off_angle", "max_curvature", "max_curvature_s", "min_bend_radius", "max_bending_moment"] {
+            assert!(v[k].as_f64().is_some_and(|x| x > 0.0), "{scene}: {k} = {}", v[k]);
+        }
+        assert_eq!(v["warnings"], serde_json::json!([]), "{scene}");
+        assert!(!String::from_utf8_lossy(&out.stderr).contains("warning"), "{scene}");
+        let touches = scene == "steel_catenary";
+        assert_eq!(v["touchdown_s"].is_number(), touches, "{scene}");
+        assert_eq!(v["touchdown_x"].is_number(), touches, "{scene}");
+        // the steel pipe has stresses, the flexible one (EI far below a tube's) none
+        assert_eq!(v["max_stress"].is_number(), touches, "{scene}");
+    }
+}
+
+/// Issue 31: each implausible model gives its warning, on stderr and in
+/// the JSON's `warnings`.
+#[test]
+fn implausible_models_warn() {
+    let cases: [(&[&str], &[&str]); 3] = [
+        // the anchor beyond the line's reach: a straight, stretched line
+        (
+            &["statics", "catenary", "--set", "anchor_x=75"],
+            &["beyond the line's unstretched length", "axial strain reaches"],
+        ),
+        // 40 m elements against a 17 m bending length at the touchdown
+        (&["statics", "steel_catenary", "--set", "n_elements=10"], &["bending length", "n_elements >= 24"]),
+        // the abrupt start of a large heave puts the lazy wave in compression
+        (
+            &[
+                "run",
+                "lazy_wave",
+                "--set",
+                "n_elements=20",
+                "--set",
+                "time_step=0.1",
+                "--heave",
+                "3,12",
+                "--ramp",
+                "0",
+                "--duration",
+                "30",
+            ],
+            &["compression in the steady window"],
+        ),
+    ];
+    for (args, expected) in cases {
+        let out = riser(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        for e in expected {
+            assert!(stderr.contains(e), "{args:?}: '{e}' not in {stderr}");
+        }
+        let v = json(&riser(&[args, &["--json"]].concat()));
+        let list = if args[0] == "run" { &v["steady"]["warnings"] } else { &v["warnings"] };
+        let text = list.to_string();
+        assert!(expected.iter().all(|e| text.contains(e)), "{args:?}: {text}");
+    }
+}
+
+/// Issue 31: messages in the user's terms (a number, a whole number), not
+/// Rust's; a negative duration is refused as such, not as a flag.
+#[test]
+fn messages_speak_the_users_terms() {
+    let dir = std::env::temp_dir().join(format!("riser-terms-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = String::from_utf8(riser(&["scene", "catenary"]).stdout).unwrap();
+    for (from, to, expected) in [
+        ("n_elements = 60", "n_elements = 2.5", "expected a whole number"),
+        ("length = 100.0", "length = \"long\"", "expected a number"),
+        ("static_current = false", "static_current = 1", "expected true or false"),
+    ] {
+        assert!(scene.contains(from), "{from}");
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, scene.replace(from, to)).unwrap();
+        let err = String::from_utf8_lossy(&riser(&["statics", path.to_str().unwrap()]).stderr).to_string();
+        assert!(err.contains(expected), "{to}: {err}");
+        assert!(!["usize", "f64", "u32", "invalid type"].iter().any(|r| err.contains(r)), "{to}: {err}");
+    }
+    let err = String::from_utf8_lossy(&riser(&["run", "catenary", "--duration", "-5"]).stderr).to_string();
+    assert!(err.contains("--duration must be a positive number of seconds, got -5"), "{err}");
+    // riser params: the default scene's value of each parameter
+    let v = json(&riser(&["params", "--json"]));
+    let row = |n: &str| v.as_array().unwrap().iter().find(|r| r["name"] == n).unwrap().clone();
+    assert_eq!(row("n_elements")["value"], "60");
+    assert_eq!(row("model")["value"], "rod");
+    let v = json(&riser(&["params", "steel_catenary", "--json"]));
+    assert!(v.as_array().unwrap().iter().any(|r| r["name"] == "length" && r["value"] == "400"));
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -389,6 +389,11 @@ impl Instance {
         if let Some(w) = scene.axial_stiffness_jump_warning() {
             self.log(Status::Warning, Category::Warning, &w);
         }
+        // an implausible or under-resolved model says so (docs/theory.md §12.3)
+        let (_, warnings) = crate::sim::design::Design::new(&scene).report(&scene, &sim.integrator, &sim.state);
+        for w in &warnings {
+            self.log(Status::Warning, Category::Warning, w);
+        }
         sim.start(m);
         sim.integrator.invalidate_tangent();
         let outputs = sim.outputs();

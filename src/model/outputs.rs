@@ -7,6 +7,31 @@ use crate::math::V3;
 /// Points of the `shape[k]` output: S = k L / 20, k = 0..=20.
 pub const SHAPE_POINTS: usize = 21;
 
+/// The line at one of the points where the design numbers are read
+/// (docs/theory.md §12): the rod's Gauss points, the cable's nodes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinePoint {
+    /// Element the point lies in.
+    pub element: usize,
+    /// Unstretched arc length from the hang-off, m.
+    pub s: f64,
+    /// Position, m.
+    pub position: V3,
+    /// Axial force (effective tension), N.
+    pub tension: f64,
+    /// Bending curvature about the section's two axes (the rod's director
+    /// frame), 1/m. The cable's turning curvature is in `[0]`: it carries no
+    /// bending moment.
+    pub curvature: [f64; 2],
+}
+
+impl LinePoint {
+    /// |curvature|, 1/m.
+    pub fn curvature_magnitude(&self) -> f64 {
+        self.curvature[0].hypot(self.curvature[1])
+    }
+}
+
 /// Output quantities at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outputs {

@@ -374,11 +374,29 @@ impl std::fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
+/// A TOML/serde message with Rust's type names in the user's terms ("expected
+/// usize" → "expected a whole number").
+fn in_users_terms(message: &str) -> String {
+    [
+        ("expected usize", "expected a whole number (>= 0)"),
+        ("expected u64", "expected a whole number (>= 0)"),
+        ("expected u32", "expected a whole number (>= 0)"),
+        ("expected i64", "expected a whole number"),
+        ("expected f64", "expected a number"),
+        ("expected a boolean", "expected true or false"),
+        ("floating point `", "the number `"),
+        ("invalid type: string", "invalid value: the text"),
+        ("invalid type:", "invalid value:"),
+    ]
+    .iter()
+    .fold(message.to_string(), |m, (rust, user)| m.replace(rust, user))
+}
+
 impl Scene {
     /// Parses and validates scene TOML text; `source` names it in messages.
     pub fn from_toml(text: &str, source: &str) -> Result<Scene, SceneError> {
         let scene: Scene = toml::from_str(text)
-            .map_err(|e| SceneError::Parse { source: source.to_string(), message: e.to_string() })?;
+            .map_err(|e| SceneError::Parse { source: source.to_string(), message: in_users_terms(&e.to_string()) })?;
         scene.validate()?;
         Ok(scene)
     }

@@ -112,6 +112,9 @@ pub struct LineProperties {
     pub torsional_stiffness: f64,
     /// Rotary inertia per length, kg m.
     pub rotary_inertia: f64,
+    /// Outer diameter of the pipe itself (not of its modules), m: the outer
+    /// fibre of the stresses (docs/theory.md §12).
+    pub pipe_diameter: f64,
 }
 
 /// A piece of line [start, end] (m of unstretched arc length from the hang-off).
@@ -168,6 +171,7 @@ pub fn bare_properties(line: &Line) -> LineProperties {
         bending_stiffness: line.bending_stiffness,
         torsional_stiffness: line.torsional_stiffness,
         rotary_inertia: line.rotary_inertia.unwrap_or(line.mass_per_length * d * d / 8.0),
+        pipe_diameter: d,
     }
 }
 
@@ -286,6 +290,7 @@ pub fn element_properties(pieces: &[Piece], a: f64, b: f64) -> LineProperties {
         bending_stiffness: harmonic(|p| p.bending_stiffness),
         torsional_stiffness: harmonic(|p| p.torsional_stiffness),
         rotary_inertia: mean(|p| p.rotary_inertia),
+        pipe_diameter: mean(|p| p.pipe_diameter),
     }
 }
 

@@ -3,6 +3,7 @@
 //! the scene's settings, and hang-off motions; the typed top-level
 //! [`error::RiserError`].
 
+pub mod design;
 pub mod error;
 pub mod modes;
 pub mod report;
@@ -143,6 +144,27 @@ impl Engine {
         match self {
             Engine::Rod(i) => i.model.node_profile(&state.config),
             Engine::Cable(i) => i.model.node_profile(&state.config.x),
+        }
+    }
+
+    /// The line at the points where the design numbers are read (the rod's
+    /// Gauss points, the cable's nodes; docs/theory.md §12).
+    pub fn line_points(&self, state: &State) -> Vec<crate::model::outputs::LinePoint> {
+        match self {
+            Engine::Rod(i) => i.model.rod.gauss_points(&state.config),
+            Engine::Cable(i) => i.model.node_points(&state.config.x),
+        }
+    }
+
+    /// Unit tangent of the line at the hang-off, pointing down the line: the
+    /// rod's nodal r′; for the cable the one-sided second-order difference
+    /// (−3x₀ + 4x₁ − x₂)/2 (its first chord is the tangent half a segment down).
+    pub fn hang_off_tangent(&self, state: &State) -> V3 {
+        let x = &state.config.x;
+        match self {
+            Engine::Rod(_) => state.config.xp[0].normalize(),
+            Engine::Cable(_) if x.len() > 2 => (4.0 * x[1] - 3.0 * x[0] - x[2]).normalize(),
+            Engine::Cable(_) => (x[1] - x[0]).normalize(),
         }
     }
 

@@ -64,7 +64,7 @@ struct Cli {
 enum Command {
     /// Static equilibrium under gravity and buoyancy (and the current if the scene's static_current is true).
     Statics {
-        /// Built-in scene (catenary, lazy_wave) or path to a scene file (TOML).
+        /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
         scene: String,
         /// Override a parameter by name, e.g. --set n_elements=120 (see `riser params`).
         #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -78,7 +78,7 @@ enum Command {
     },
     /// Dynamic run from the static state with the hang-off heaving U0 sin(2πt/T).
     Run {
-        /// Built-in scene (catenary, lazy_wave) or path to a scene file (TOML).
+        /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
         scene: String,
         /// Override a parameter by name, e.g. --set time_step=0.1 (see `riser params`).
         #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -95,13 +95,17 @@ enum Command {
         /// Hold the hang-off still after this time (s).
         #[arg(long, value_name = "T")]
         heave_until: Option<f64>,
-        /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default 0,
-        /// the paper's abrupt start, whose velocity jump rings the line's undamped axial waves.
-        #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
-        ramp: f64,
+        /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default one period
+        /// of the slowest motion. --ramp 0 is the paper's abrupt start (a velocity jump at t = 0).
+        #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+        ramp: Option<f64>,
         /// Simulated time, s.
-        #[arg(long, value_name = "D")]
+        #[arg(long, value_name = "D", allow_negative_numbers = true)]
         duration: f64,
+        /// The steady window of the statistics, s (default: from the end of the ramp plus one
+        /// period of the slowest motion to the end of the run).
+        #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
+        window: Option<(f64, f64)>,
         /// Times (s) at which shapes.csv records the shape; default: 8 over the last (longest) period.
         #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
         shape_times: Vec<f64>,
@@ -119,7 +123,10 @@ enum Command {
     Modes(modes::ModesArgs),
     /// List the parameters accepted by --set (the FMU's parameters) with their units and allowed ranges.
     Params {
-        /// Print a JSON array of {name, field, unit, min, max, reason} (min/max absent for non-numbers).
+        /// The scene whose values are shown (the defaults of a run of it).
+        #[arg(default_value = "catenary")]
+        scene: String,
+        /// Print a JSON array of {name, value, field, unit, min, max, reason} (min/max absent for non-numbers).
         #[arg(long)]
         json: bool,
     },
@@ -133,28 +140,74 @@ enum Command {
     },
 }
 
-/// `riser params`: every `--set` name with its unit, range and the range's reason.
-fn params(json: bool) {
+/// `riser params`: every `--set` name with its value in `scene` (the
+/// default when not set), its unit, range and the range's reason.
+fn params(scene: &str, json: bool) -> Result<(), String> {
     use riser::scene::ranges;
+    let sc = load(scene, &[] as &[String]).map_err(|e| e.to_string())?;
+    let value = |name: &str| sc.parameter(name).unwrap_or_else(|| "-".to_string());
     let rows: Vec<serde_json::Value> = PARAMETER_NAMES
         .iter()
         .map(|(name, unit)| match ranges::of_parameter(name) {
             Some(r) => serde_json::json!({
-                "name": name, "field": r.field, "unit": r.unit, "min": r.min, "max": r.max, "reason": r.reason,
+                "name": name, "value": value(name), "field": r.field, "unit": r.unit, "min": r.min, "max": r.max,
+                "reason": r.reason,
             }),
-            None => serde_json::json!({ "name": name, "unit": unit }),
+            None => serde_json::json!({ "name": name, "value": value(name), "unit": unit }),
         })
         .collect();
     if json {
         outln!("{}", serde_json::Value::Array(rows));
-        return;
+        return Ok(());
     }
+    outln!("parameters of --set and the FMU, with their values in scene '{}' (the default when not set):", sc.name);
     for (name, unit) in PARAMETER_NAMES {
         match ranges::of_parameter(name) {
-            Some(r) => outln!("{name:20} {:34} {}", r.interval(), r.reason),
-            None => outln!("{name:20} {unit}"),
+            Some(r) => outln!("{name:20} {:>14} {:34} {}", value(name), r.interval(), r.reason),
+            None => outln!("{name:20} {:>14} {unit}", value(name)),
         }
     }
+    Ok(())
+}
+
+/// `riser scene`: the scene as TOML, then, as TOML comments, the line the
+/// models see: each piece's properties with its modules smeared (theory §11),
+/// and the end conditions.
+fn print_scene(scene: Scene) {
+    out!("{}", scene.to_toml());
+    outln!();
+    outln!("# The line as the models see it (docs/theory.md section 11: buoyancy modules smeared over their section):");
+    outln!(
+        "# {:>9} {:>9} {:>10} {:>11} {:>11} {:>10} {:>10} {:>11} {:>11}",
+        "from (m)",
+        "to (m)",
+        "mass kg/m",
+        "displ. m^2",
+        "added m^2",
+        "Cd D (m)",
+        "D_eq (m)",
+        "EA (N)",
+        "EI (N m^2)"
+    );
+    for p in scene.pieces() {
+        let q = &p.properties;
+        outln!(
+            "# {:>9.2} {:>9.2} {:>10.3} {:>11.5} {:>11.5} {:>10.4} {:>10.4} {:>11.4e} {:>11.4e}",
+            p.start,
+            p.end,
+            q.mass_per_length,
+            q.displaced_area,
+            q.added_mass_area,
+            q.drag_normal,
+            q.diameter,
+            q.axial_stiffness,
+            q.bending_stiffness
+        );
+    }
+    outln!(
+        "# Ends: the hang-off is pinned (position follows the vessel, free to rotate and to twist); the anchor is \
+         pinned (fixed, free to rotate, its twist about the line's axis held)."
+    );
 }
 
 /// The hang-off's harmonic motions asked for: (amplitude m, period s) each.
@@ -189,6 +242,21 @@ fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     Ok((a, t))
 }
 
+fn parse_window(s: &str) -> Result<(f64, f64), String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let number = |p: &str| p.trim().parse::<f64>().map_err(|_| format!("'{}' is not a number", p.trim()));
+    match parts.as_slice() {
+        [a, b] => {
+            let (t0, t1) = (number(a)?, number(b)?);
+            if !(t0.is_finite() && t1.is_finite() && t0 >= 0.0 && t1 > t0) {
+                return Err(format!("the window must be 0 <= T0 < T1, got {t0},{t1} s"));
+            }
+            Ok((t0, t1))
+        }
+        _ => Err(format!("expected T0,T1 (s), got '{s}'")),
+    }
+}
+
 fn load(scene: &str, set: &[String]) -> Result<Scene, riser::RiserError> {
     let scene = Scene::load(scene)?.with_overrides(set)?;
     if let Some(w) = scene.axial_stiffness_jump_warning() {
@@ -216,11 +284,69 @@ fn write_shape_csv(dir: &Path, scene: &Scene, report: &StaticReport) -> std::io:
     Ok(path)
 }
 
+/// The design numbers of the static state and their warnings (docs/theory.md §12).
+fn static_design(
+    scene: &Scene,
+    rep: &StaticReport,
+) -> Result<(riser::sim::design::DesignNumbers, Vec<String>), String> {
+    let engine = riser::sim::Engine::from_scene(scene).map_err(|e| e.to_string())?;
+    let state = riser::model::State::at_rest(rep.solution.config.clone(), 0.0);
+    Ok(riser::sim::design::Design::new(scene).report(scene, &engine, &state))
+}
+
+/// The design numbers as the JSON keys of DESIGN.md's "Summaries".
+fn design_json(d: &riser::sim::design::DesignNumbers) -> serde_json::Value {
+    serde_json::json!({
+        "touchdown_s": d.touchdown_s,
+        "touchdown_x": d.touchdown_x,
+        "hang_off_angle": d.hang_off_angle,
+        "max_curvature": d.max_curvature,
+        "max_curvature_s": d.max_curvature_s,
+        "min_bend_radius": if d.min_bend_radius.is_finite() { Some(d.min_bend_radius) } else { None },
+        "max_bending_moment": d.max_bending_moment,
+        "max_bending_moment_s": d.max_bending_moment_s,
+        "max_strain": d.max_strain,
+        "max_strain_s": d.max_strain_s,
+        "min_tension_s": d.min_tension_s,
+        "max_stress": d.max_stress.map(|m| m.0),
+        "max_stress_s": d.max_stress.map(|m| m.1),
+    })
+}
+
+/// The design numbers as lines of the text summary.
+fn design_text(d: &riser::sim::design::DesignNumbers) {
+    match (d.touchdown_s, d.touchdown_x) {
+        (Some(s), Some(x)) => outln!("  touchdown       S = {s:.2} m, x = {x:.2} m"),
+        _ => outln!("  touchdown       none (the line touches no seabed)"),
+    }
+    outln!("  hang-off angle  {:10.3} deg from the vertical", d.hang_off_angle);
+    outln!(
+        "  max curvature   {:10.5} 1/m at S = {:.1} m (min bend radius {:.2} m)",
+        d.max_curvature,
+        d.max_curvature_s,
+        d.min_bend_radius
+    );
+    outln!("  max bending moment {:7.3} kN m at S = {:.1} m", d.max_bending_moment / 1e3, d.max_bending_moment_s);
+    outln!("  max axial strain {:9.4} % at S = {:.1} m", 100.0 * d.max_strain, d.max_strain_s);
+    match d.max_stress {
+        Some((v, s)) => outln!("  max stress      {:10.3} MPa at S = {s:.1} m (outer fibre, axial + bending)", v / 1e6),
+        None => outln!("  max stress      n/a (EA, EI and D are not those of a homogeneous tube: a flexible pipe)"),
+    }
+}
+
+fn warn_all(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("riser: warning: {w}");
+    }
+}
+
 fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     let t0 = std::time::Instant::now();
     let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
+    let (design, warnings) = static_design(&scene, &rep)?;
+    warn_all(&warnings);
     let csv = match &out {
         Some(dir) => {
             Some(write_shape_csv(dir, &scene, &rep).map_err(|e| format!("cannot write {}: {e}", dir.display()))?)
@@ -228,7 +354,7 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
         None => None,
     };
     if json {
-        let v = serde_json::json!({
+        let mut v = serde_json::json!({
             "scene": scene.name,
             "n_elements": scene.analysis.n_elements,
             "top_tension": rep.top_tension,
@@ -241,7 +367,11 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
             "residual": rep.residual,
             "wall_time": wall,
             "shape": rep.shape.iter().map(|r| [r.s, r.x, r.y, r.z, r.tension]).collect::<Vec<_>>(),
+            "warnings": warnings,
         });
+        if let (Some(o), serde_json::Value::Object(d)) = (v.as_object_mut(), design_json(&design)) {
+            o.extend(d);
+        }
         outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
@@ -265,9 +395,13 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
             kn(rep.top_force.z)
         );
         outln!("  bottom tension  {:10.3} kN", kn(rep.bottom_tension));
-        outln!("  min tension     {:10.3} kN", kn(rep.min_tension));
+        outln!("  min tension     {:10.3} kN at S = {:.1} m", kn(rep.min_tension), design.min_tension_s);
         let low = rep.shape.iter().fold(f64::INFINITY, |m, r| m.min(r.z));
         outln!("  lowest point    {:10.3} m", low);
+        design_text(&design);
+        if !warnings.is_empty() {
+            outln!("  {} warning(s) (on stderr)", warnings.len());
+        }
         if let Some(p) = csv {
             outln!("  wrote {}", p.display());
         }
@@ -322,26 +456,73 @@ impl Progress {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run(
-    scene: &str,
-    set: &[String],
+/// What `riser run` is asked for, beyond the scene.
+struct RunArgs {
     motions: Motions,
     heave_until: Option<f64>,
-    ramp: f64,
+    /// None: one period of the slowest motion.
+    ramp: Option<f64>,
     duration: f64,
+    window: Option<(f64, f64)>,
     shape_times: Vec<f64>,
     max_tangent_age: u32,
     json: bool,
     out: Option<PathBuf>,
-) -> Result<(), String> {
+}
+
+/// The steady window [t0, t1] of a run (s) and, when the run is too short
+/// for one, a warning: the default starts one period of the slowest motion
+/// after the ramp (the start's transients have died out by then with the
+/// default ρ∞ = 0.8: docs/figures/abrupt_vs_smooth.png).
+fn steady_window(asked: Option<(f64, f64)>, ramp: f64, period: f64, duration: f64) -> ((f64, f64), Option<String>) {
+    if let Some((t0, t1)) = asked {
+        let t1 = t1.min(duration);
+        return match t0 < t1 {
+            true => ((t0, t1), None),
+            false => (
+                (0.5 * duration, duration),
+                Some(format!(
+                    "--window {t0},{t1} lies beyond the run's {duration} s: the statistics are of its second half"
+                )),
+            ),
+        };
+    }
+    let t0 = ramp + period;
+    if t0 < duration {
+        ((t0, duration), None)
+    } else {
+        (
+            (0.5 * duration, duration),
+            Some(format!(
+                "the run ({duration} s) is shorter than the ramp and one period ({t0} s): the statistics of its \
+                 second half are not of a steady state; run longer or give --window"
+            )),
+        )
+    }
+}
+
+/// min, mean and max of `v` (NaN when empty).
+fn min_mean_max(v: impl Iterator<Item = f64> + Clone) -> [f64; 3] {
+    let n = v.clone().count();
+    if n == 0 {
+        return [f64::NAN; 3];
+    }
+    let min = v.clone().fold(f64::INFINITY, f64::min);
+    let max = v.clone().fold(f64::NEG_INFINITY, f64::max);
+    [min, v.sum::<f64>() / n as f64, max]
+}
+
+fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     use riser::model::Outputs;
     use riser::sim::{Heave, Simulation};
+    let RunArgs { motions, heave_until, ramp, duration, window, shape_times, max_tangent_age, json, out } = args;
     if !(duration.is_finite() && duration > 0.0) {
-        return Err(format!("--duration must be positive, got {duration}"));
+        return Err(format!("--duration must be a positive number of seconds, got {duration}"));
     }
-    if !(ramp.is_finite() && ramp >= 0.0) {
-        return Err(format!("--ramp must be zero or positive, got {ramp}"));
+    if let Some(r) = ramp
+        && !(r.is_finite() && r >= 0.0)
+    {
+        return Err(format!("--ramp must be zero (the paper's abrupt start) or positive, got {r}"));
     }
     if let Some(u) = heave_until
         && !u.is_finite()
@@ -354,6 +535,8 @@ fn run(
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
+    let period = [motions.heave, motions.surge, motions.sway].into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
+    let ramp = ramp.unwrap_or(period);
     // heave, surge and sway: each a ramped sine along its axis, summed
     let axes: Vec<(V3, Heave)> = [(V3::z(), motions.heave), (V3::x(), motions.surge), (V3::y(), motions.sway)]
         .into_iter()
@@ -361,7 +544,6 @@ fn run(
             m.map(|(amplitude, period)| (axis, Heave { amplitude, period, until: heave_until, ramp }))
         })
         .collect();
-    let period = axes.iter().map(|a| a.1.period).fold(0.0, f64::max);
     let motion_fn = move |t: f64| {
         let mut h = riser::model::HangOff::default();
         for (axis, m) in &axes {
@@ -373,6 +555,12 @@ fn run(
     };
     sim.start(motion_fn(0.0));
     let e0 = sim.initial_energy;
+    let design = riser::sim::design::Design::new(&scene);
+    let (static_design, mut warnings) = design.report(&scene, &sim.integrator, &sim.state);
+    let ((w0, w1), short) = steady_window(window, ramp, period, duration);
+    warnings.extend(short);
+    let mut stress = riser::sim::design::StressRange::default();
+    let track_stress = design.has_stresses();
     let mut shape_times = shape_times;
     if shape_times.is_empty() {
         let t0 = if period > 0.0 && duration >= period { duration - period } else { 0.0 };
@@ -393,6 +581,10 @@ fn run(
         shapes.push((0.0, record_shape(&sim)));
         next_shape += 1;
     }
+    let in_window = |t: f64| t >= w0 - 1e-9 && t <= w1 + 1e-9;
+    if track_stress && in_window(0.0) {
+        stress.add(&design, &sim.integrator.line_points(&sim.state));
+    }
     let solve_start = std::time::Instant::now();
     let mut progress = Progress::new(!json);
     let mut failure = None;
@@ -406,6 +598,9 @@ fn run(
         }
         let o = sim.outputs();
         series.push(o);
+        if track_stress && in_window(o.time) {
+            stress.add(&design, &sim.integrator.line_points(&sim.state));
+        }
         while next_shape < shape_times.len() && shape_times[next_shape] <= sim.state.time + 0.5 * dt {
             shapes.push((sim.state.time, record_shape(&sim)));
             next_shape += 1;
@@ -415,10 +610,24 @@ fn run(
     progress.finish();
     let solve_wall = solve_start.elapsed().as_secs_f64();
     let wall = wall0.elapsed().as_secs_f64();
-    let tt: Vec<f64> = series.iter().map(|o| o.top_tension).collect();
-    let t_min = tt.iter().cloned().fold(f64::INFINITY, f64::min);
-    let t_max = tt.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-    let t_mean = tt.iter().sum::<f64>() / tt.len() as f64;
+    let [t_min, t_mean, t_max] = min_mean_max(series.iter().map(|o| o.top_tension));
+    let steady: Vec<&Outputs> = series.iter().filter(|o| in_window(o.time)).collect();
+    let steady_tension = min_mean_max(steady.iter().map(|o| o.top_tension));
+    let steady_min_tension = steady.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
+    let whole_min_tension = series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
+    let stress_range = stress.largest();
+    if steady_min_tension < 0.0 {
+        warnings.push(format!(
+            "the line goes into compression in the steady window: the smallest axial force is {:.3} kN",
+            steady_min_tension / 1e3
+        ));
+    } else if whole_min_tension < 0.0 {
+        warnings.push(format!(
+            "the line goes into compression during the start ({:.3} kN), not in the steady window",
+            whole_min_tension / 1e3
+        ));
+    }
+    warn_all(&warnings);
     let balance = series.iter().map(|o| o.energy_balance_residual(e0).abs()).fold(0.0, f64::max);
     let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
     let st = &sim.state;
@@ -434,17 +643,32 @@ fn run(
             None => _ = std::fs::remove_file(&path),
         }
     }
+    let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
     if json {
+        let mut statics = design_json(&static_design);
+        if let Some(o) = statics.as_object_mut() {
+            o.insert("top_tension".into(), sim.statics.top_tension.into());
+        }
         let v = serde_json::json!({
             "scene": scene.name,
             "n_elements": scene.analysis.n_elements,
             "time_step": dt,
             "duration": simulated,
+            "ramp": ramp,
             "completed": failure.is_none(),
             "error": failure,
             "static_top_tension": sim.statics.top_tension,
             "top_tension": {"min": t_min, "mean": t_mean, "max": t_max},
-            "min_tension": series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min),
+            "min_tension": whole_min_tension,
+            "steady": {
+                "window": [w0, w1],
+                "top_tension": steady_tension.map(finite),
+                "min_tension": finite(steady_min_tension),
+                "stress_range": stress_range.map(|r| r.0),
+                "stress_range_s": stress_range.map(|r| r.1),
+                "warnings": warnings,
+            },
+            "statics": statics,
             "energy_balance_residual": balance,
             "energy_exchanged": exchanged,
             "dissipated_energy": series.last().map(|o| o.dissipated_energy).unwrap_or(0.0),
@@ -463,6 +687,10 @@ fn run(
         outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
+        let start = match ramp {
+            0.0 => ", abrupt start (the paper's: --ramp 0)".to_string(),
+            r => format!(", ramped over {r} s"),
+        };
         outln!(
             "riser run: scene '{}' ({} elements, time step {} s), {}{}{}",
             scene.name,
@@ -470,10 +698,28 @@ fn run(
             dt,
             motions.describe(),
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
-            if ramp > 0.0 { format!(", ramped over {ramp} s") } else { String::new() }
+            if period > 0.0 { start } else { String::new() }
         );
         outln!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
-        outln!("  top tension min/mean/max {:.3} / {:.3} / {:.3} kN", kn(t_min), kn(t_mean), kn(t_max));
+        outln!("  steady window {w0} to {w1} s:");
+        outln!(
+            "    top tension min/mean/max {:.3} / {:.3} / {:.3} kN",
+            kn(steady_tension[0]),
+            kn(steady_tension[1]),
+            kn(steady_tension[2])
+        );
+        outln!("    min axial force          {:.3} kN (along the line)", kn(steady_min_tension));
+        match stress_range {
+            Some((r, s)) => outln!("    stress range             {:.3} MPa at S = {s:.1} m (outer fibre)", r / 1e6),
+            None => outln!("    stress range             n/a (not a homogeneous tube: a flexible pipe)"),
+        }
+        outln!(
+            "  whole run, with the start: top tension min/mean/max {:.3} / {:.3} / {:.3} kN, min axial force {:.3} kN",
+            kn(t_min),
+            kn(t_mean),
+            kn(t_max),
+            kn(whole_min_tension)
+        );
         outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
         outln!(
             "  {} steps, {:.2} Newton iterations/step, {} split steps; {:.2} s wall, {:.0}x real time",
@@ -483,6 +729,9 @@ fn run(
             solve_wall,
             simulated / solve_wall.max(1e-12)
         );
+        if !warnings.is_empty() {
+            outln!("  {} warning(s) (on stderr)", warnings.len());
+        }
         if let Some(dir) = &out {
             let plot = if dir.join("touchdown.svg").exists() { " and touchdown.svg" } else { "" };
             outln!("  wrote {}/timeseries.csv, shapes.csv{plot}", dir.display());
@@ -533,24 +782,24 @@ fn main() -> ExitCode {
             heave_until,
             ramp,
             duration,
+            window,
             shape_times,
             max_tangent_age,
             json,
             out,
         } => {
             let motions = Motions { heave, surge, sway };
-            run(&scene, &set, motions, heave_until, ramp, duration, shape_times, max_tangent_age, json, out)
+            let args =
+                RunArgs { motions, heave_until, ramp, duration, window, shape_times, max_tangent_age, json, out };
+            run(&scene, &set, args)
         }
         Command::Modes(args) => modes::modes(args),
         Command::ModelDescription => {
             out!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())
         }
-        Command::Params { json } => {
-            params(json);
-            Ok(())
-        }
-        Command::Scene { scene, set } => load(&scene, &set).map(|s| out!("{}", s.to_toml())).map_err(|e| e.to_string()),
+        Command::Params { scene, json } => params(&scene, json),
+        Command::Scene { scene, set } => load(&scene, &set).map(print_scene).map_err(|e| e.to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

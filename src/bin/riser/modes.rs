@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// Natural periods and mode shapes of the line about its static state (with added mass).
 #[derive(clap::Args)]
 pub struct ModesArgs {
-    /// Built-in scene (catenary, lazy_wave) or path to a scene file (TOML).
+    /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
     scene: String,
     /// Override a parameter by name, e.g. --set model=cable (see `riser params`).
     #[arg(long = "set", value_name = "NAME=VALUE")]

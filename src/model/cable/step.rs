@@ -439,6 +439,23 @@ impl CableModel {
             .collect()
     }
 
+    /// The line at each node of `x` ([`Self::node_profile`]'s tension and
+    /// turning curvature, no bending moment): the design numbers' points.
+    pub fn node_points(&self, x: &[V3]) -> Vec<crate::model::outputs::LinePoint> {
+        let n = self.cable.n_el;
+        self.node_profile(x)
+            .into_iter()
+            .enumerate()
+            .map(|(a, (tension, k))| crate::model::outputs::LinePoint {
+                element: a.min(n - 1),
+                s: self.cable.s_node(a),
+                position: x[a],
+                tension,
+                curvature: [k, 0.0],
+            })
+            .collect()
+    }
+
     /// Every output quantity of `state` (the rod's names and meanings).
     pub fn outputs(&self, s: &State) -> Outputs {
         let c = &self.cable;

@@ -438,6 +438,31 @@ impl Rod {
         n.dot(&t)
     }
 
+    /// The line at each Gauss point of `cfg`: position, effective tension and
+    /// the two bending curvatures (docs/theory.md §12).
+    pub fn gauss_points(&self, cfg: &crate::model::RodConfig) -> Vec<crate::model::outputs::LinePoint> {
+        let rod = self;
+        let mut out = Vec::with_capacity(4 * rod.n_el);
+        for e in 0..rod.n_el {
+            let el = ElemDofs::gather(cfg, e);
+            let eps = rod.strains_of(&el, e);
+            for (g, &xi) in crate::math::shape::GAUSS4.xi.iter().enumerate() {
+                let (n, nds) = (crate::math::shape::hermite(xi, rod.h), crate::math::shape::hermite_ds(xi, rod.h));
+                let position: V3 = (0..4).map(|k| el.c[k] * n[k]).sum();
+                let tangent: V3 = (0..4).map(|k| el.c[k] * nds[k]).sum();
+                let axial = V3::new(eps[g][0], eps[g][1], eps[g][2]) * rod.stiff(e)[0];
+                out.push(crate::model::outputs::LinePoint {
+                    element: e,
+                    s: rod.s_node(e) + xi * rod.h,
+                    position,
+                    tension: axial.dot(&tangent.normalize()),
+                    curvature: [eps[g][3], eps[g][4]],
+                });
+            }
+        }
+        out
+    }
+
     /// Smallest axial force at the Gauss points of all elements, N (with the
     /// stored reference coefficients; the quantity `min_tension` scans).
     pub fn min_gauss_axial_force(&self, cfg: &RodConfig) -> f64 {

@@ -1,0 +1,321 @@
+//! The numbers a riser engineer reads first (docs/theory.md §12): the
+//! touchdown point, the hang-off angle, the curvature and bending moment, the
+//! axial strain, the outer-fibre stress and its range over a window; and the
+//! warnings of a model that is implausible or under-resolved.
+
+use super::Engine;
+use crate::math::V3;
+use crate::model::State;
+use crate::model::outputs::LinePoint;
+use crate::model::sections::{self, PerElement};
+use crate::scene::sections::LineProperties;
+use crate::scene::{Model, Scene};
+
+/// Axial strain above which riser warns: no riser, umbilical or cable
+/// stretches this far elastically (steel yields near 0.2 %, a flexible pipe's
+/// armour wires are designed well below that; polyester ropes are mooring
+/// lines, not what riser models).
+pub const STRAIN_LIMIT: f64 = 0.01;
+
+/// The longest element, in bending lengths √(EI/T) at the touchdown, before
+/// riser warns: the curvature peak there spreads over about two bending
+/// lengths; on steel_catenary (λ = 17 m) the largest curvature is within
+/// 0.5 % of the converged value at h = 1.2 λ and 3.4 % off at h = 2.3 λ
+/// (docs/theory.md §12.3).
+pub const MESH_PER_BENDING_LENGTH: f64 = 2.0;
+
+/// Fibres around the circumference at which the stress range is tracked
+/// (every 45°, as fatigue post-processors do).
+pub const FIBRES: usize = 8;
+
+/// The homogeneous tube that has a line's EA, EI and pipe diameter D (12.1):
+/// EA = E π (D² − d²)/4 and EI = E π (D⁴ − d⁴)/64 give d² = 16 EI/EA − D²
+/// and E = EA / A.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tube {
+    /// Wall area A, m².
+    pub area: f64,
+    /// Young's modulus E, Pa.
+    pub modulus: f64,
+    /// Outer radius D/2, m.
+    pub outer_radius: f64,
+}
+
+impl Tube {
+    /// The tube of `p`, or None when no homogeneous tube has its EA, EI and
+    /// D (0 ≤ d² < D² fails): a flexible pipe or an umbilical, whose layers
+    /// slide and whose stresses are per layer, beyond this model.
+    pub fn of(p: &LineProperties) -> Option<Tube> {
+        let d_out = p.pipe_diameter;
+        let d_in2 = 16.0 * p.bending_stiffness / p.axial_stiffness - d_out * d_out; // (12.1)
+        if !(d_in2 >= 0.0 && d_in2 < d_out * d_out) {
+            return None;
+        }
+        let area = std::f64::consts::PI * (d_out * d_out - d_in2) / 4.0;
+        Some(Tube { area, modulus: p.axial_stiffness / area, outer_radius: 0.5 * d_out })
+    }
+
+    /// Stress at the outer fibre at angle θ from the section's first axis:
+    /// σ = T/A + E (D/2)(κ₁ sin θ − κ₂ cos θ), Pa (12.2).
+    pub fn fibre_stress(&self, tension: f64, curvature: [f64; 2], theta: f64) -> f64 {
+        let bending = curvature[0] * theta.sin() - curvature[1] * theta.cos();
+        tension / self.area + self.modulus * self.outer_radius * bending
+    }
+
+    /// The largest stress around the outer fibre: T/A + E (D/2) |κ|, Pa (12.3).
+    pub fn max_stress(&self, tension: f64, curvature: f64) -> f64 {
+        tension / self.area + self.modulus * self.outer_radius * curvature.abs()
+    }
+}
+
+/// The design numbers of one state of the line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignNumbers {
+    /// Arc length from the hang-off to the first seabed contact, m (None: no contact).
+    pub touchdown_s: Option<f64>,
+    /// x of the touchdown point, m.
+    pub touchdown_x: Option<f64>,
+    /// Angle of the line's tangent at the hang-off from the vertical, deg.
+    pub hang_off_angle: f64,
+    /// Largest curvature along the line, 1/m, and its arc length, m.
+    pub max_curvature: f64,
+    pub max_curvature_s: f64,
+    /// 1 / max_curvature, m (infinite for a straight line).
+    pub min_bend_radius: f64,
+    /// Largest bending moment EI |κ|, N m, and its arc length, m (0 for the cable).
+    pub max_bending_moment: f64,
+    pub max_bending_moment_s: f64,
+    /// Largest axial strain T/EA, and its arc length, m.
+    pub max_strain: f64,
+    pub max_strain_s: f64,
+    /// Smallest axial force, N (negative: compression), and its arc length, m.
+    pub min_tension: f64,
+    pub min_tension_s: f64,
+    /// Largest outer-fibre stress, axial plus bending, Pa, and its arc length,
+    /// m; None when the line is not a homogeneous tube ([`Tube::of`]).
+    pub max_stress: Option<(f64, f64)>,
+}
+
+/// What the design numbers of a scene need: each element's properties and
+/// tube, once.
+#[derive(Debug, Clone)]
+pub struct Design {
+    props: PerElement<LineProperties>,
+    tubes: PerElement<Option<Tube>>,
+    model: Model,
+    length: f64,
+    n_el: usize,
+    seabed: bool,
+}
+
+impl Design {
+    pub fn new(scene: &Scene) -> Self {
+        let n_el = scene.analysis.n_elements;
+        let d =
+            Design::of_properties(sections::element_properties(scene), scene.analysis.model, scene.line.length, n_el);
+        Design { seabed: scene.seabed.is_some(), ..d }
+    }
+
+    /// The design numbers of a line of `n_el` elements with these properties.
+    pub fn of_properties(props: PerElement<LineProperties>, model: Model, length: f64, n_el: usize) -> Self {
+        let tubes = props.map(Tube::of);
+        Design { props, tubes, model, length, n_el, seabed: false }
+    }
+
+    /// The tube of element `e` (None: not a homogeneous tube, or the cable's
+    /// line, whose bending is not modelled: its stresses are T/A only when it
+    /// is a tube).
+    pub fn tube(&self, e: usize) -> Option<Tube> {
+        *self.tubes.at(e)
+    }
+
+    /// True when every element is a homogeneous tube (stresses are reported).
+    pub fn has_stresses(&self) -> bool {
+        (0..self.n_el).all(|e| self.tube(e).is_some())
+    }
+
+    /// The outer-fibre stress of `p` at angle θ, Pa (the cable: axial only).
+    fn fibre_stress(&self, p: &LinePoint, theta: f64) -> Option<f64> {
+        let tube = self.tube(p.element)?;
+        let k = if self.model == Model::Rod { p.curvature } else { [0.0; 2] };
+        Some(tube.fibre_stress(p.tension, k, theta))
+    }
+
+    /// The design numbers of `state`, whose `touchdown_s` output is given (m;
+    /// the line's length when it touches nowhere).
+    pub fn numbers(&self, engine: &Engine, state: &State, touchdown_s: f64) -> DesignNumbers {
+        let touchdown = (touchdown_s < self.length).then(|| {
+            let s = engine.node_arc_lengths();
+            let x = &state.config.x;
+            let a = s.partition_point(|&si| si <= touchdown_s).clamp(1, s.len() - 1);
+            let w = (touchdown_s - s[a - 1]) / (s[a] - s[a - 1]);
+            (touchdown_s, x[a - 1].x + w * (x[a].x - x[a - 1].x))
+        });
+        self.of_points(&engine.line_points(state), engine.hang_off_tangent(state), touchdown)
+    }
+
+    /// The design numbers of a line whose points are `points`, whose tangent
+    /// at the hang-off is `hang_off_tangent` and whose touchdown (S, x) is
+    /// `touchdown` (m).
+    pub fn of_points(
+        &self,
+        points: &[LinePoint],
+        hang_off_tangent: V3,
+        touchdown: Option<(f64, f64)>,
+    ) -> DesignNumbers {
+        let t = hang_off_tangent.normalize();
+        let hang_off_angle = (-t.z).clamp(-1.0, 1.0).acos().to_degrees();
+        let argmax = |f: &dyn Fn(&LinePoint) -> f64| {
+            points.iter().map(|p| (f(p), p.s)).fold((f64::NEG_INFINITY, 0.0), |m, v| if v.0 > m.0 { v } else { m })
+        };
+        let (max_curvature, max_curvature_s) = argmax(&|p| p.curvature_magnitude());
+        let (max_bending_moment, max_bending_moment_s) = match self.model {
+            Model::Rod => argmax(&|p| self.props.at(p.element).bending_stiffness * p.curvature_magnitude()),
+            Model::Cable => (0.0, 0.0),
+        };
+        let (max_strain, max_strain_s) = argmax(&|p| p.tension / self.props.at(p.element).axial_stiffness);
+        let (neg_min, min_tension_s) = argmax(&|p| -p.tension);
+        let max_stress = self.has_stresses().then(|| {
+            argmax(&|p| {
+                let tube = self.tube(p.element).expect("every element is a tube");
+                let k = if self.model == Model::Rod { p.curvature_magnitude() } else { 0.0 };
+                tube.max_stress(p.tension, k)
+            })
+        });
+        DesignNumbers {
+            touchdown_s: touchdown.map(|t| t.0),
+            touchdown_x: touchdown.map(|t| t.1),
+            hang_off_angle,
+            max_curvature,
+            max_curvature_s,
+            min_bend_radius: 1.0 / max_curvature,
+            max_bending_moment,
+            max_bending_moment_s,
+            max_strain,
+            max_strain_s,
+            min_tension: -neg_min,
+            min_tension_s,
+            max_stress,
+        }
+    }
+
+    /// Warnings for a state with these design numbers (docs/theory.md §12.3):
+    /// strain above [`STRAIN_LIMIT`], compression, and (the rod) a mesh too
+    /// coarse for the bending length √(EI/T) at the touchdown. `points` are
+    /// the state's [`Engine::line_points`].
+    pub fn warnings(&self, d: &DesignNumbers, points: &[LinePoint]) -> Vec<String> {
+        let mut w = Vec::new();
+        if d.max_strain > STRAIN_LIMIT {
+            w.push(format!(
+                "the axial strain reaches {:.2} % at S = {:.1} m, above the {:.0} % that no riser, umbilical or cable \
+                 takes elastically: check EA, the line's length and the anchor's position",
+                100.0 * d.max_strain,
+                d.max_strain_s,
+                100.0 * STRAIN_LIMIT
+            ));
+        }
+        if d.min_tension < 0.0 {
+            w.push(format!(
+                "the line is in compression: the axial force reaches {:.3} kN at S = {:.1} m (the rod buckles there \
+                 if EI cannot carry it; the cable takes no compression and goes slack)",
+                d.min_tension / 1e3,
+                d.min_tension_s
+            ));
+        }
+        // the touchdown, or on a mesh too coarse to see it, the line's lowest point
+        let near_seabed = d.touchdown_s.map_or_else(
+            || points.iter().min_by(|a, b| a.position.z.total_cmp(&b.position.z)),
+            |s_td| points.iter().min_by(|a, b| (a.s - s_td).abs().total_cmp(&(b.s - s_td).abs())),
+        );
+        if let (Model::Rod, true, Some(p)) = (self.model, self.seabed, near_seabed)
+            && p.tension > 0.0
+        {
+            let h = self.length / self.n_el as f64;
+            let lambda = (self.props.at(p.element).bending_stiffness / p.tension).sqrt();
+            if h > MESH_PER_BENDING_LENGTH * lambda {
+                let n = (self.length / lambda).ceil();
+                let fix = if n <= crate::scene::ranges::MAX_ELEMENTS {
+                    format!("use n_elements >= {n}, one element per bending length (--set n_elements={n})")
+                } else {
+                    format!(
+                        "no mesh of at most {} elements resolves it: a bending length this short is a boundary layer \
+                         that the cable model leaves out (--set model=cable)",
+                        crate::scene::ranges::MAX_ELEMENTS
+                    )
+                };
+                w.push(format!(
+                    "elements of {h:.2} m are longer than twice the bending length sqrt(EI/T) = {lambda:.3} m near \
+                     the touchdown (S = {:.1} m): the curvature and bending moment there are not resolved; {fix}",
+                    p.s
+                ));
+            }
+        }
+        w
+    }
+}
+
+impl Design {
+    /// The design numbers of `state` and every warning they give, the
+    /// anchor's reach included.
+    pub fn report(&self, scene: &Scene, engine: &Engine, state: &State) -> (DesignNumbers, Vec<String>) {
+        let touchdown_s = engine.outputs(state).touchdown_s;
+        let numbers = self.numbers(engine, state, touchdown_s);
+        let mut warnings: Vec<String> = reach_warning(scene).into_iter().collect();
+        warnings.extend(self.warnings(&numbers, &engine.line_points(state)));
+        (numbers, warnings)
+    }
+}
+
+/// The warning for an anchor beyond the line's unstretched reach from the
+/// hang-off, if it is (docs/theory.md §12.3).
+pub fn reach_warning(scene: &Scene) -> Option<String> {
+    let span: V3 = scene.anchor() - scene.hang_off();
+    let reach = scene.line.length;
+    (span.norm() > reach).then(|| {
+        format!(
+            "the anchor is {:.2} m from the hang-off, beyond the line's unstretched length {reach} m: the line can \
+             only hang straight and stretched; lengthen the line or move the anchor",
+            span.norm()
+        )
+    })
+}
+
+/// The outer-fibre stress at every point and fibre over a window: its
+/// smallest and largest value, for the stress range (the input of a fatigue
+/// calculation; docs/theory.md §12.2).
+#[derive(Debug, Clone, Default)]
+pub struct StressRange {
+    /// (s, per fibre (min, max)), Pa.
+    points: Vec<(f64, [(f64, f64); FIBRES])>,
+}
+
+impl StressRange {
+    /// Adds one state's `points` (the same points every time).
+    pub fn add(&mut self, design: &Design, points: &[LinePoint]) {
+        if self.points.is_empty() {
+            self.points = points.iter().map(|p| (p.s, [(f64::INFINITY, f64::NEG_INFINITY); FIBRES])).collect();
+        }
+        for (acc, p) in self.points.iter_mut().zip(points) {
+            for (f, (lo, hi)) in acc.1.iter_mut().enumerate() {
+                let theta = 2.0 * std::f64::consts::PI * f as f64 / FIBRES as f64;
+                if let Some(sigma) = design.fibre_stress(p, theta) {
+                    *lo = lo.min(sigma);
+                    *hi = hi.max(sigma);
+                }
+            }
+        }
+    }
+
+    /// The largest range max − min of one fibre at one point, Pa, and its
+    /// arc length, m; None when nothing was added or the line has no stresses.
+    pub fn largest(&self) -> Option<(f64, f64)> {
+        self.points
+            .iter()
+            .flat_map(|(s, f)| f.iter().map(move |(lo, hi)| (hi - lo, *s)))
+            .filter(|(r, _)| r.is_finite())
+            .fold(None, |m: Option<(f64, f64)>, v| match m {
+                Some(m) if m.0 >= v.0 => Some(m),
+                _ => Some(v),
+            })
+    }
+}
