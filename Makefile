@@ -13,11 +13,11 @@ all: build
 build:
 	$(CARGO) build --release
 
-$(VENV)/.installed: requirements.txt python/riser_sweep/pyproject.toml
+$(VENV)/.installed: requirements.txt python/riser_tools/pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -r requirements.txt
-	$(PY) -m pip install --quiet -e python/riser_sweep
+	$(PY) -m pip install --quiet -e python/riser_tools
 	touch $@
 
 venv: $(VENV)/.installed
