@@ -497,7 +497,7 @@ class Study:
         m_static = self.ics[mn]["T0"]
         md_version = metadata.version("moordyn")
         cp, ic_chk, ud = self.side["coupling"], self.side["ic"], self.side["undamped"]
-        riser_version = subprocess.run([a.bin, "--version"], capture_output=True, text=True).stdout.strip()
+        riser_version = cli.version(a.bin)
         L = []
         w = L.append
         if a.quick:
