@@ -62,8 +62,8 @@ moordyn-seabed: build venv fmu
 
 # The Lowe & Langley (2006) jumper in surge, sway and heave against the
 # paper's digitised tensions (docs/lowe_langley.md, a few seconds).
-lowe-langley: build
-	python3 scripts/lowe_langley.py
+lowe-langley: build venv
+	$(TOOLS) lowe-langley
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv
@@ -74,7 +74,7 @@ stability: build venv
 # (5 to 8 minutes; run it on a quiet machine, it measures wall time).
 .PHONY: bench-sweep
 bench-sweep: venv fmu
-	$(PY) scripts/bench_sweep.py
+	$(TOOLS) bench-sweep
 
 # clippy in the dev profile: `doc` then reuses its check of the dependencies.
 lint:
@@ -126,10 +126,10 @@ clean:
 # FMI call sequences, each in a child process; the result in docs/fuzz.md
 # (~6 minutes on a quiet machine). `make test` runs 400 of them (tests/python/test_fuzz.py).
 fuzz: fmu
-	$(PY) scripts/fuzz_fmu.py
+	$(TOOLS) fuzz
 
 # riser.so under valgrind memcheck: an fmpy run and a sample of the fuzz
 # sequences; errors and leaks attributed by their stacks (docs/fuzz.md,
 # 'valgrind'; ~7 minutes).
 valgrind: fmu
-	$(PY) scripts/valgrind_fmu.py
+	$(TOOLS) valgrind

@@ -21,7 +21,9 @@ def main(argv: Sequence[str] | None = None) -> None:
         return
     module, _ = COMMANDS[args[0]]
     entry = "package_main" if module == "riser_tools.fmu" else "main"
-    getattr(importlib.import_module(module), entry)(args[1:])
+    rc = getattr(importlib.import_module(module), entry)(args[1:])
+    if isinstance(rc, int) and rc:
+        sys.exit(rc)
 
 
 if __name__ == "__main__":

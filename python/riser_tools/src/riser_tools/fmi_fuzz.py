@@ -1,5 +1,5 @@
 """A seeded fuzzer of riser.fmu's FMI 2.0 C ABI, shared by tests/python/test_fuzz.py
-(a few hundred sequences in `make test`) and scripts/fuzz_fmu.py (thousands,
+(a few hundred sequences in `make test`) and riser_tools.fuzz (`riser-tools fuzz`, `make fuzz`: thousands,
 replay, minimisation).
 
 One *sequence* is a seed: a deterministic random walk of FMI calls over one or
