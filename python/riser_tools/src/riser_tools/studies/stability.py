@@ -20,6 +20,7 @@ import math
 import subprocess
 import time
 from collections.abc import Sequence
+from pathlib import Path
 
 from .. import cli
 from ..cases import Case, Motion, unique_labels
@@ -112,6 +113,9 @@ def main(argv=None):
     for c in CELLS:
         rows.append(run_cell(args.bin, c, args.duration * c.duration, args.timeout, f"out/stability/{len(rows)}"))
         print(c.note, "->", rows[-1][2], flush=True)
+    # the hand-written sections after the table (from the first "## " heading) are kept
+    previous = Path(args.out).read_text() if Path(args.out).exists() else ""
+    kept = previous[previous.index("\n## ") + 1:] if "\n## " in previous else ""
     with open(args.out, "w") as f:
         f.write("# Stability at the extremes\n\n")
         f.write("Made by `riser-tools stability` (`make stability`). From the catenary scene (heave 2.5 m / "
@@ -126,6 +130,8 @@ def main(argv=None):
         f.write("|---|---|---|---|---|---|---|\n")
         for r in rows:
             f.write("| " + " | ".join(r) + " |\n")
+        if kept:
+            f.write("\n" + kept)
     print("wrote", args.out)
 
 
