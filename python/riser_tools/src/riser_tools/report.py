@@ -4,6 +4,7 @@ markers, Markdown tables, and the conditions of a timed run (one CPU, one thread
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
@@ -47,3 +48,49 @@ def table(head: Sequence[str], rows: Iterable[Sequence[object]]) -> list[str]:
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
     return out
+
+
+def peer_study_main(argv, doc: str, study, out: str, writes: str, quick: str) -> None:
+    """The command line of a peer comparison (`--bin`, `--out`, `--docs`, `--quick`): parse it,
+    pin this process to one CPU, run `study(args)`."""
+    import argparse
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bin", default="target/release/riser", help="riser binary")
+    ap.add_argument("--out", default=out, help="CSV and work files")
+    ap.add_argument("--docs", default="docs", help=f"where {writes} go")
+    ap.add_argument("--quick", action="store_true", help=quick)
+    args = ap.parse_args(argv)
+    one_cpu()
+    study(args).run()
+
+
+def parser(name: str, doc: str, bin: bool = True, fmu: bool = False, out: str | None = None,
+           docs: bool = True):
+    """The argument parser of `riser-tools NAME`, with the options the studies share:
+    --bin (target/release/riser), --fmu (fmu/riser.fmu), --out (default `out`), --docs (docs)."""
+    import argparse
+    ap = argparse.ArgumentParser(prog=f"riser-tools {name}", description=doc.split("\n\n")[0])
+    if fmu:
+        ap.add_argument("--fmu", default="fmu/riser.fmu")
+    if bin:
+        ap.add_argument("--bin", default="target/release/riser")
+    if out is not None:
+        ap.add_argument("--out", default=out)
+    if docs:
+        ap.add_argument("--docs", default="docs")
+    return ap
+
+
+class PeerStudy:
+    """What a peer comparison keeps: its arguments, its folders (`out`, `out/work`, `docs`) and
+    a log line with the seconds since `self.t0` (set when the study starts)."""
+
+    def __init__(self, args) -> None:
+        self.args = args
+        self.out = Path(args.out)
+        self.docs = Path(args.docs)
+        self.work = self.out / "work"
+        self.t0 = time.perf_counter()
+
+    def log(self, msg: str) -> None:
+        print(f"[{time.perf_counter() - self.t0:7.1f} s] {msg}", flush=True)

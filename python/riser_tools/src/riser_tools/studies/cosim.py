@@ -9,13 +9,12 @@ input is the displacement alone, which riser-sweep (velocity inputs always given
 
     riser-tools cosim [--fmu fmu/riser.fmu] [--bin target/release/riser] [--docs docs]
 """
-import argparse
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from .. import cli, fmu
+from .. import cli, fmu, report
 from ..cases import Motion
 
 A, T, RAMP, DURATION, WINDOW = 2.5, 20.0, 20.0, 100.0, 40.0
@@ -27,10 +26,7 @@ def heave(t):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="riser-tools cosim", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--fmu", default="fmu/riser.fmu")
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--docs", default="docs")
+    ap = report.parser("cosim", __doc__, fmu=True)
     args = ap.parse_args(argv)
     hs = [0.01, 0.025, 0.05, 0.1, 0.2, 0.5]
     rows, rms_err = [], []

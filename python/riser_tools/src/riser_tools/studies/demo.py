@@ -13,14 +13,13 @@ with the displacement alone it is piecewise linear, and its velocity kinks ring 
 
 from __future__ import annotations
 
-import argparse
 import csv
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
-from .. import fmu, plots
+from .. import fmu, plots, report
 from ..cases import Motion
 
 OUTPUTS = ["top_tension", "top_force_x", "top_force_z", "bottom_tension", "min_tension", "total_energy",
@@ -30,9 +29,7 @@ SHAPE = [f"shape[{k}].{c}" for k in range(21) for c in "xz"]
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    ap = argparse.ArgumentParser(prog="riser-tools demo", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--fmu", default=str(fmu.DEFAULT_FMU))
-    ap.add_argument("--out", default="out/demo")
+    ap = report.parser("demo", __doc__, bin=False, fmu=True, out="out/demo", docs=False)
     ap.add_argument("--damping", type=float, default=0.002)
     ap.add_argument("--duration", type=float, default=100.0)
     args = ap.parse_args(argv)

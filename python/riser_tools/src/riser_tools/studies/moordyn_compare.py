@@ -48,7 +48,6 @@ Needs numpy, matplotlib and moordyn (requirements.txt). MoorDyn is driven by
 riser_tools.moordyn, riser by riser_tools.cli.
 """
 
-import argparse
 import csv
 import datetime
 import math
@@ -58,9 +57,8 @@ import statistics
 import sys
 import time
 from importlib import metadata
-from pathlib import Path
 
-from ..report import one_cpu, single_threaded
+from ..report import PeerStudy, peer_study_main, single_threaded
 
 single_threaded()   # before any numerical library is loaded
 
@@ -191,19 +189,13 @@ def moordyn_run(work, nseg, k, scheme, ic, repeats=1, coupling=1, tag="", ba=BA)
 
 
 # ----------------------------------------------------------------------------- the study
-class Study:
+class Study(PeerStudy):
     def __init__(self, args):
-        self.args = args
-        self.out = Path(args.out)
-        self.docs = Path(args.docs)
-        self.work = self.out / "work"
+        super().__init__(args)
         self.rows = []
         self.ics = {}
         self.series = {}
         self.side = {}
-
-    def log(self, msg):
-        print(f"[{time.perf_counter() - self.t_start:7.1f} s] {msg}", flush=True)
 
     # riser -------------------------------------------------------------------------
     def riser_reference(self):
@@ -360,7 +352,7 @@ class Study:
         self.rows.append(row)
 
     def run(self):
-        self.t_start = time.perf_counter()
+        self.t0 = time.perf_counter()
         q = self.args.quick
         self.cfg = {
             "riser_ref": (60, 0.02, 1e-10) if q else (120, 0.01, 1e-10),
@@ -383,7 +375,7 @@ class Study:
         self.moordyn_grid()
         self.side_checks()
         self.load_after = os.getloadavg()
-        self.elapsed = time.perf_counter() - self.t_start
+        self.elapsed = time.perf_counter() - self.t0
         self.write_csv()
         self.write_timeseries()
         self.plot()
@@ -871,15 +863,8 @@ class Study:
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", default="target/release/riser", help="riser binary")
-    ap.add_argument("--out", default="out/moordyn", help="CSV and work files")
-    ap.add_argument("--docs", default="docs", help="where moordyn.md and figures/moordyn_compare.png go")
-    ap.add_argument("--quick", action="store_true", help="a few cells against coarse references (smoke run)")
-    args = ap.parse_args(argv)
-    one_cpu()
-    Study(args).run()
+    peer_study_main(argv, __doc__, Study, "out/moordyn", "moordyn.md and figures/moordyn_compare.png",
+                    "a few cells against coarse references (smoke run)")
 
 
 if __name__ == "__main__":

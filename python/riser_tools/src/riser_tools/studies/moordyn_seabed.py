@@ -33,7 +33,6 @@ Needs numpy, matplotlib and moordyn (requirements.txt). MoorDyn is driven by
 riser_tools.moordyn, riser by riser_tools.cli and riser_tools.fmu.
 """
 
-import argparse
 import csv
 import datetime
 import math
@@ -43,7 +42,7 @@ import time
 from importlib import metadata
 from pathlib import Path
 
-from ..report import one_cpu, single_threaded
+from ..report import PeerStudy, peer_study_main, single_threaded
 
 single_threaded()   # before any numerical library is loaded
 
@@ -227,17 +226,11 @@ def diff(a, b):
 
 
 # ----------------------------------------------------------------------------- the study
-class Study:
+class Study(PeerStudy):
     def __init__(self, args):
-        self.args = args
-        self.out = Path(args.out)
-        self.docs = Path(args.docs)
-        self.work = self.out / "work"
+        super().__init__(args)
         self.runs = {}       # label -> run
         self.meta = {}       # label -> description
-
-    def log(self, msg):
-        print(f"[{time.perf_counter() - self.t0:7.1f} s] {msg}", flush=True)
 
     def riser(self, label, n, dt, model="cable", friction=False, sets=(), desc=""):
         r = riser_run(self.args.bin, self.work / label, n, dt, model, friction, sets)
@@ -488,32 +481,13 @@ class Study:
         order = [lab for n in ms for lab in (f"riser_{n}", f"md_{n}")]
         order += [lab for lab in ("riser_80_dt0.025", "riser_80_dt0.0125", "rod_80_EI1", "rod_80_EI", "md_80_EI")
                   if lab in self.runs]
-        for lab in order:
-            s = S[lab]
-            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
-              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
-              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+        self.run_rows(w, S, order)
         w("")
         w("Differences. ‖ΔT‖ = max |T_b − T_a| / max T_a over the window, sample by sample; "
           "‖ΔT̄‖ the same on the 1 s moving averages (the low-frequency tension, without the ringing); "
           "Δ touchdown: of the window mean, of the excursion, and the largest sample-by-sample difference.\n")
-        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
-          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
-        w("|---|---|---|---|---|---|---|---|---|")
         self.pairs = {}
-
-        def row(name, a, b):
-            d = diff(self.runs[a], self.runs[b])
-            self.pairs[name] = d
-            w(f"| {name} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | {d['dTmax'] / 1e3:+.1f} | "
-              f"{d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | {d['dtd_exc']:+.2f} | "
-              f"{d['dtd_max_abs']:.2f} |")
-
-        for n in ms:
-            row(f"**MoorDyn − riser, {n} seg.**", f"riser_{n}", f"md_{n}")
-        for a, b in zip(ms[:-1], ms[1:]):
-            row(f"riser {b} − {a} el.", f"riser_{a}", f"riser_{b}")
-            row(f"MoorDyn {b} − {a} seg.", f"md_{a}", f"md_{b}")
+        row = self.pair_table(w, ms)
         if "riser_80_dt0.025" in self.runs:
             row("riser 80 el., dt 0.025 − 0.05 s", "riser_80", "riser_80_dt0.025")
             row("riser 80 el., dt 0.0125 − 0.05 s", "riser_80", "riser_80_dt0.0125")
@@ -540,6 +514,36 @@ class Study:
           "`--quick`: 40 segments only, no extras (smoke run).\n")
         self.docs.mkdir(parents=True, exist_ok=True)
         (self.docs / "moordyn_seabed.md").write_text("\n".join(L))
+
+    def run_rows(self, w, S, labels):
+        """A row of window statistics per run: description, wall, tension and touchdown."""
+        for lab in labels:
+            s = S[lab]
+            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
+              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
+              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+
+    def pair_table(self, w, ms, suf="", lab=""):
+        """A table of differences: its header, MoorDyn − riser at each mesh and each code's change
+        between meshes (runs `riser_{n}{lab}`, `md_{n}{lab}`; names end in `suf`, shown without);
+        returns the row writer for more pairs. Every pair is kept in self.pairs by its name."""
+        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
+          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
+        w("|---|---|---|---|---|---|---|---|---|")
+
+        def row(name, a, b):
+            d = diff(self.runs[a], self.runs[b])
+            self.pairs[name] = d
+            w(f"| {name.replace(suf, '') if suf else name} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | "
+              f"{d['dTmax'] / 1e3:+.1f} | {d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | "
+              f"{d['dtd_exc']:+.2f} | {d['dtd_max_abs']:.2f} |")
+
+        for n in ms:
+            row(f"**MoorDyn − riser, {n} seg.**{suf}", f"riser_{n}{lab}", f"md_{n}{lab}")
+        for a, b in zip(ms[:-1], ms[1:]):
+            row(f"riser {b} − {a} el.{suf}", f"riser_{a}{lab}", f"riser_{b}{lab}")
+            row(f"MoorDyn {b} − {a} seg.{suf}", f"md_{a}{lab}", f"md_{b}{lab}")
+        return row
 
     def acceptance(self, w, ms, suf="", title="Acceptance: code difference against discretisation difference"):
         w(f"### {title}\n")
@@ -618,28 +622,9 @@ class Study:
         w("|---|---|---|---|---|---|---|---|---|")
         labs = [lab for n in ms for lab in (f"riser_{n}_surge", f"md_{n}_surge")]
         labs += [lab for n in (40, 80) for lab in (f"riser_{n}_surge_fric", f"md_{n}_surge_fric")]
-        for lab in labs:
-            s = S[lab]
-            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
-              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
-              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+        self.run_rows(w, S, labs)
         w("")
-        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
-          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
-        w("|---|---|---|---|---|---|---|---|---|")
-
-        def row(name, a, b):
-            d = diff(self.runs[a], self.runs[b])
-            self.pairs[name] = d
-            w(f"| {name.replace(' (surge)', '')} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | {d['dTmax'] / 1e3:+.1f} | "
-              f"{d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | {d['dtd_exc']:+.2f} | "
-              f"{d['dtd_max_abs']:.2f} |")
-
-        for n in ms:
-            row(f"**MoorDyn − riser, {n} seg.** (surge)", f"riser_{n}_surge", f"md_{n}_surge")
-        for a, b in zip(ms[:-1], ms[1:]):
-            row(f"riser {b} − {a} el. (surge)", f"riser_{a}_surge", f"riser_{b}_surge")
-            row(f"MoorDyn {b} − {a} seg. (surge)", f"md_{a}_surge", f"md_{b}_surge")
+        row = self.pair_table(w, ms, " (surge)", "_surge")
         for n in (40, 80):
             row(f"MoorDyn − riser, {n} seg., friction (surge)", f"riser_{n}_surge_fric", f"md_{n}_surge_fric")
         row("riser 80 − 40, friction (surge)", "riser_40_surge_fric", "riser_80_surge_fric")
@@ -765,15 +750,8 @@ class Study:
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", default="target/release/riser", help="riser binary")
-    ap.add_argument("--out", default="out/moordyn_seabed", help="CSV and work files")
-    ap.add_argument("--docs", default="docs", help="where moordyn_seabed.md and figures/moordyn_seabed.png go")
-    ap.add_argument("--quick", action="store_true", help="40 segments only, no extras (smoke run)")
-    args = ap.parse_args(argv)
-    one_cpu()
-    Study(args).run()
+    peer_study_main(argv, __doc__, Study, "out/moordyn_seabed", "moordyn_seabed.md and figures/moordyn_seabed.png",
+                    "40 segments only, no extras (smoke run)")
 
 
 if __name__ == "__main__":

@@ -19,7 +19,6 @@ A plain loop of `riser run` (the table has the wall time of each run).
     riser-tools noise [--bin target/release/riser] [--docs docs]   (make noise)
 """
 
-import argparse
 from pathlib import Path
 
 import numpy as np
@@ -51,10 +50,7 @@ def run(bin_, scene, dt, eta, ramp, out):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="riser-tools noise", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--out", default="out/noise")
-    ap.add_argument("--docs", default="docs")
+    ap = report.parser("noise", __doc__, out="out/noise")
     args = ap.parse_args(argv)
     out = Path(args.out)
     lines = ["## Tension noise and numerical dissipation", "",

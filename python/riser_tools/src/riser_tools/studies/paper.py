@@ -13,12 +13,11 @@ with the figures of every run.
 
 from __future__ import annotations
 
-import argparse
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from .. import cli, plots
+from .. import cli, plots, report
 from ..cases import Case, Motion, unique_labels
 
 CURRENT_05 = ("current_top=0.5", "current_bottom=0.5")
@@ -52,10 +51,7 @@ RUNS = unique_labels([
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    ap = argparse.ArgumentParser(prog="riser-tools paper", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--bin", default=cli.DEFAULT_BIN)
-    ap.add_argument("--out", default="out/paper")
-    ap.add_argument("--docs", default="docs")
+    ap = report.parser("paper", __doc__, out="out/paper")
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--damping", type=float, default=0.0, help="structural_damping (s); 0 = the paper's scheme")
     args = ap.parse_args(argv)

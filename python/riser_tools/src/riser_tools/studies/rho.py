@@ -10,13 +10,12 @@ A plain loop of `riser run`: the real-time factors are part of the table.
 
     riser-tools rho [--bin target/release/riser] [--docs docs]
 """
-import argparse
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from .. import cli
+from .. import cli, report
 from ..cases import Motion
 from ..series import in_window
 
@@ -34,9 +33,7 @@ def window(t, y, a, b):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="riser-tools rho", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--docs", default="docs")
+    ap = report.parser("rho", __doc__)
     args = ap.parse_args(argv)
     rhos = [1.0, 0.95, 0.9, 0.8, 0.6, 0.5, 0.3]
     lines = ["# Choosing `rho_infinity` (issue 12)", "",

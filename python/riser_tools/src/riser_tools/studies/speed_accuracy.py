@@ -13,7 +13,6 @@ ringing), structural damping 2 ms. A plain loop, one run at a time: the wall tim
     riser-tools study [--bin target/release/riser] [--quick] [--no-timing-docs]
 """
 
-import argparse
 import csv
 from pathlib import Path
 
@@ -73,10 +72,7 @@ def describe(b):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="riser-tools study", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--out", default="out/study")
-    ap.add_argument("--docs", default="docs")
+    ap = report.parser("study", __doc__, out="out/study")
     ap.add_argument("--quick", action="store_true", help="fewer cells (a smoke run)")
     ap.add_argument("--no-timing-docs", action="store_true",
                     help="write study.csv and study.md but leave the figure and performance.md (timed on a loaded machine)")
