@@ -657,16 +657,20 @@ class Executor:
         self.check_reals(text, s, names, got)
         return text, s
 
+    def _state_handle(self, inst, reuse):
+        """The handle fmi2GetFMUstate or fmi2DeSerializeFMUstate writes: a new one, or the state
+        `reuse`'s; None when `reuse` names no state of the instance."""
+        if reuse is None:
+            return c_void_p()
+        return inst.states[reuse][0] if reuse in inst.states else None
+
     def op_get_state(self, inst, slot, sid=None, reuse=None):
         """fmi2GetFMUstate into a new handle (sid) or over an existing one (reuse)."""
         if not self.live(inst):
             return None, None
-        if reuse is not None:
-            if reuse not in inst.states:
-                return None, None
-            handle = inst.states[reuse][0]
-        else:
-            handle = c_void_p()
+        handle = self._state_handle(inst, reuse)
+        if handle is None:
+            return None, None
         s = self.lib.call("fmi2GetFMUstate", self.comp(inst), byref(handle))
         key = reuse if reuse is not None else sid
         if handle.value:
@@ -726,12 +730,9 @@ class Executor:
         what = "intact"
         if mutation is not None:
             blob, what, mode, t = mutation["bytes"], mutation["what"], None, None
-        if reuse is not None:
-            if reuse not in inst.states:
-                return None, None
-            handle = inst.states[reuse][0]
-        else:
-            handle = c_void_p()
+        handle = self._state_handle(inst, reuse)
+        if handle is None:
+            return None, None
         buf = create_string_buffer(blob, len(blob)) if blob else create_string_buffer(1)
         s = self.lib.call("fmi2DeSerializeFMUstate", self.comp(inst), buf, len(blob), byref(handle))
         key = reuse if reuse is not None else sid
