@@ -12,7 +12,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -253,10 +253,3 @@ def unique_labels(cases: Sequence[Case]) -> list[Case]:
         seen.add(c.label)
     return list(cases)
 
-
-@dataclass
-class Grid:
-    """Cases one axis at a time around a base case (the stability matrix's shape)."""
-
-    base: Case
-    cases: list[Case] = field(default_factory=list)
