@@ -115,7 +115,7 @@ check: lint rust-test venv check-fmu
 
 check-fmu:
 	$(CARGO) build --profile $(TEST_PROFILE) --lib --bin riser
-	$(PY) scripts/package_fmu.py --bin target/$(TEST_PROFILE)/riser \
+	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
 		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu
 
 clean:
