@@ -3,6 +3,8 @@ SHELL := /bin/bash
 CARGO ?= cargo
 VENV := .venv
 PY := $(VENV)/bin/python
+# the studies and tools of python/riser_tools (riser_tools.studies; `$(TOOLS)` alone lists them)
+TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
@@ -13,11 +15,11 @@ all: build
 build:
 	$(CARGO) build --release
 
-$(VENV)/.installed: requirements.txt python/riser_sweep/pyproject.toml
+$(VENV)/.installed: requirements.txt python/riser_tools/pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -r requirements.txt
-	$(PY) -m pip install --quiet -e python/riser_sweep
+	$(PY) -m pip install --quiet -e python/riser_tools
 	touch $@
 
 venv: $(VENV)/.installed
@@ -28,53 +30,51 @@ venv: $(VENV)/.installed
 demo: build venv fmu
 	mkdir -p $(DEMO_DIR)
 	$(BIN) statics catenary --out $(DEMO_DIR)
-	$(PY) scripts/plot_statics.py $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
-	$(PY) scripts/demo_fmu.py --fmu fmu/riser.fmu --out $(DEMO_DIR)
+	$(TOOLS) plot-statics $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
+	$(TOOLS) demo --fmu fmu/riser.fmu --out $(DEMO_DIR)
 	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png"
 
 # The seed paper's runs: docs/paper_runs.md, docs/paper_runs_damped.md
 # and docs/figures/paper_*.png (a few minutes).
 paper: build venv
-	$(PY) scripts/paper_runs.py
-	$(PY) scripts/paper_runs.py --damping 0.002
+	$(TOOLS) paper
+	$(TOOLS) paper --damping 0.002
 
 # Speed against accuracy (issue 5): docs/study.md and docs/figures/work_precision.png
 # (tens of minutes; run it on a quiet machine, it measures wall time).
 study: build venv
-	$(PY) scripts/study.py
+	$(TOOLS) study
 
 # Tension noise of the conserving scheme, with and without the dissipative
 # option (issue 5): the noise section of docs/performance.md (a few minutes).
 noise: build venv
-	$(PY) scripts/tension_noise.py
+	$(TOOLS) noise
 
 # MoorDyn side by side on the catenary scene (issue 5): docs/moordyn.md and
-# docs/figures/moordyn_compare.png (installs the pinned moordyn; ~15 minutes).
+# docs/figures/moordyn_compare.png (~15 minutes; the pinned moordyn is in requirements.txt).
 moordyn: build venv
-	$(PY) -m pip install --quiet -r requirements-peers.txt
-	$(PY) scripts/moordyn_compare.py --bin $(BIN) --out out/moordyn --docs docs
+	$(TOOLS) moordyn --bin $(BIN) --out out/moordyn --docs docs
 
 # MoorDyn side by side on the steel catenary with seabed contact (issue 17):
 # docs/moordyn_seabed.md and docs/figures/moordyn_seabed.png (~2 minutes).
 moordyn-seabed: build venv fmu
-	$(PY) -m pip install --quiet -r requirements-peers.txt
-	$(PY) scripts/moordyn_seabed.py --bin $(BIN) --out out/moordyn_seabed --docs docs
+	$(TOOLS) moordyn-seabed --bin $(BIN) --out out/moordyn_seabed --docs docs
 
 # The Lowe & Langley (2006) jumper in surge, sway and heave against the
 # paper's digitised tensions (docs/lowe_langley.md, a few seconds).
-lowe-langley: build
-	python3 scripts/lowe_langley.py
+lowe-langley: build venv
+	$(TOOLS) lowe-langley
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv
-	$(PY) scripts/stability.py
+	$(TOOLS) stability
 
 # riser-sweep on Dask (issue 15): 48 cases as a plain loop and on a local
 # cluster of 1 and 2 workers; the "Sweeps on Dask" figures of docs/performance.md
 # (5 to 8 minutes; run it on a quiet machine, it measures wall time).
 .PHONY: bench-sweep
 bench-sweep: venv fmu
-	$(PY) scripts/bench_sweep.py
+	$(TOOLS) bench-sweep
 
 # clippy in the dev profile: `doc` then reuses its check of the dependencies.
 lint:
@@ -94,7 +94,7 @@ doc:
 # fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
 # build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
 fmu: build venv
-	$(PY) scripts/package_fmu.py
+	$(TOOLS) package-fmu
 
 # The FMU as fmpy drives it (tests/python).
 fmu-test: fmu
@@ -115,7 +115,7 @@ check: lint rust-test venv check-fmu
 
 check-fmu:
 	$(CARGO) build --profile $(TEST_PROFILE) --lib --bin riser
-	$(PY) scripts/package_fmu.py --bin target/$(TEST_PROFILE)/riser \
+	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
 		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu
 
 clean:
@@ -126,10 +126,10 @@ clean:
 # FMI call sequences, each in a child process; the result in docs/fuzz.md
 # (~6 minutes on a quiet machine). `make test` runs 400 of them (tests/python/test_fuzz.py).
 fuzz: fmu
-	$(PY) scripts/fuzz_fmu.py
+	$(TOOLS) fuzz
 
 # riser.so under valgrind memcheck: an fmpy run and a sample of the fuzz
 # sequences; errors and leaks attributed by their stacks (docs/fuzz.md,
 # 'valgrind'; ~7 minutes).
 valgrind: fmu
-	$(PY) scripts/valgrind_fmu.py
+	$(TOOLS) valgrind

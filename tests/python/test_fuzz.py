@@ -1,8 +1,8 @@
 """A seeded fuzz test of the FMU's C ABI (the robustness issue): 400 random FMI
 call sequences (seeds 20261125 .. 20261524, about 55,000 calls) through
 fmpy's FMU2Slave functions, each in a forked child, two at a time. The
-generator, the oracle and the runner are in fmi_fuzz.py; the long run is
-scripts/fuzz_fmu.py (`make fuzz`); both are described in docs/fuzz.md.
+generator, the oracle and the runner are in riser_tools.fmi_fuzz; the long run is
+`riser-tools fuzz` (`make fuzz`); both are described in docs/fuzz.md.
 
 Asserted for every sequence: no crash (death by a signal); no hang (30 s per
 sequence); no getter returning fmi2OK/fmi2Warning with a NaN or an infinity;
@@ -16,14 +16,14 @@ Measured: 32.7 s for the 400 sequences on the 2-core machine (load average
 1.9 from other work; 71 s under a load average of 4.5). The test stops
 starting new sequences after 10 failing ones, so a broken FMU fails in
 bounded time. One sequence call by call:
-`.venv/bin/python scripts/fuzz_fmu.py --replay SEED`; shrunk to the calls
+`.venv/bin/riser-tools fuzz --replay SEED`; shrunk to the calls
 that matter: `--minimize SEED`.
 """
 
 import time
 
 import pytest
-from fmi_fuzz import Library, run_many, seeds, tally
+from riser_tools.fmi_fuzz import Library, run_many, seeds, tally
 
 BASE_SEED = 20261125
 SEQUENCES = 400
@@ -43,7 +43,7 @@ def test_random_fmi_call_sequences_never_crash_hang_or_return_ok_with_non_finite
         report.append(o.summary())
         for f in o.failures[1:3]:
             report.append(f"    also: {f['call']} -> {f['status']}: {f['detail']}")
-    report.append("replay one: .venv/bin/python scripts/fuzz_fmu.py --replay SEED  "
+    report.append("replay one: .venv/bin/riser-tools fuzz --replay SEED  "
                   "(shrink it: --minimize SEED)")
     if bad:
         pytest.fail("\n".join(report), pytrace=False)

@@ -1,5 +1,5 @@
 """docs/interface.md is the repository's own copy of the contract: it must be
-what scripts/interface_doc.py writes from the current variable table and CLI,
+what riser_tools.interface_doc (`riser-tools interface-doc`) writes from the current variable table and CLI,
 and it must list every variable the packaged FMU declares."""
 import subprocess
 import sys
@@ -11,7 +11,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_interface_doc_is_up_to_date(riser_bin):
-    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "interface_doc.py"), "--bin", riser_bin, "--check"],
+    r = subprocess.run([sys.executable, "-m", "riser_tools", "interface-doc", "--bin", riser_bin, "--check"], cwd=ROOT,
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
 

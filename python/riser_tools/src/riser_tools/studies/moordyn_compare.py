@@ -41,31 +41,26 @@ Outputs: OUT/runs.csv (every run, including the unstable dtM probes),
 OUT/reference_timeseries.csv, DOCS/figures/moordyn_compare.png and
 DOCS/moordyn.md.
 
-Usage:
-    python scripts/moordyn_compare.py --bin target/release/riser --out out/moordyn --docs docs
-    python scripts/moordyn_compare.py --quick ...     (a few cells, a smoke run)
-Needs numpy, matplotlib and moordyn (requirements-peers.txt).
+Usage (`make moordyn`):
+    riser-tools moordyn --bin target/release/riser --out out/moordyn --docs docs
+    riser-tools moordyn --quick ...     (a few cells, a smoke run)
+Needs numpy, matplotlib and moordyn (requirements.txt). MoorDyn is driven by
+riser_tools.moordyn, riser by riser_tools.cli.
 """
 
-import argparse
-import contextlib
 import csv
-import ctypes
 import datetime
-import json
 import math
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import time
 from importlib import metadata
-from pathlib import Path
 
-# One core, no threads, before any numerical library is loaded.
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "RAYON_NUM_THREADS"):
-    os.environ[_var] = "1"
+from ..report import PeerStudy, peer_study_main, single_threaded
+
+single_threaded()   # before any numerical library is loaded
 
 import matplotlib  # noqa: E402
 
@@ -73,59 +68,35 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import moordyn  # noqa: E402
+from .. import cli, moordyn  # noqa: E402
+from ..cases import CATENARY, Motion  # noqa: E402
+from ..series import window_stats as _window_stats  # noqa: E402
 
 # ----------------------------------------------------------------------------- the case
-LENGTH = 100.0           # m, unstretched
-MASS = 226.7             # kg/m in air
-DIAM = 0.3172            # m, outer (buoyancy and drag)
-EA = 7.96e8              # N
-EI = 5.882e4             # N m^2
-CD_N = 0.6               # on D
-CD_T_RISER = 0.05        # riser: on D
-CD_AX = CD_T_RISER / math.pi   # MoorDyn: CdAx is on the surface pi*D
+LINE = CATENARY          # 100 m, 226.7 kg/m, D 0.3172 m, EA 7.96e8 N, EI 5.882e4 N m^2, Cd 0.6 / 0.05
+LENGTH, MASS, EA = LINE.length, LINE.mass, LINE.ea
+CD_AX = moordyn.cd_axial(LINE)   # MoorDyn: CdAx is on the surface pi*D
 ETA = 0.002              # s, Kelvin-Voigt structural damping
 BA = ETA * EA            # N s, MoorDyn's internal damping
-RHO_W = 1025.0
-GRAVITY = 9.81
 CURRENT = 0.8            # m/s along +x, uniform
-SURFACE_Z = 10.0         # riser frame: hang-off at the origin, surface at z = +10
-FAIRLEAD = (0.0, 0.0, -SURFACE_Z)                  # MoorDyn frame (z = 0 at the surface)
-ANCHOR = (60.0, 0.0, -70.0 - SURFACE_Z)
 WATER_DEPTH = 200.0      # deeper than the anchor: no seabed contact
 AMPLITUDE, PERIOD, RAMP = 2.5, 20.0, 20.0
 DURATION = 100.0
 WINDOW = 40.0            # errors over the last three periods, t in [40, 100]
+MOTION = Motion(AMPLITUDE, PERIOD, ramp=RAMP, duration=DURATION, window=WINDOW)
 SAMPLE = 0.01            # s, output grid of the references and of MoorDyn
-WAVE_SPEED = math.sqrt(EA / MASS)
+WAVE_SPEED = LINE.wave_speed
 LEVELS = (1e-2, 1e-3, 1e-4)
 CHEAP = 3.0              # s: runs cheaper than this are timed 3 times (median)
 MAX_VALID_ERROR = 0.05   # a MoorDyn run further than this from its reference is "unstable"
 K_CANDIDATES = [1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40, 50, 60, 75, 80, 100, 120, 150,
                 200, 250, 300, 400, 500, 600, 800, 1000]   # dtM = 0.01 s / k
-
-
-def heave(t):
-    """Hang-off heave z(t) = A w(t) sin(2 pi t / T), riser's --ramp weight w."""
-    t = np.asarray(t, dtype=float)
-    w = np.where(t < RAMP, 0.5 * (1.0 - np.cos(np.pi * np.minimum(t, RAMP) / RAMP)), 1.0)
-    return AMPLITUDE * w * np.sin(2.0 * np.pi * t / PERIOD)
-
-
-def heave_acceleration(t):
-    """d²z/dt² of heave(), by central differences (smooth, so h = 1e-4 s is plenty)."""
-    h = 1e-4
-    return (heave(t + h) - 2.0 * heave(t) + heave(t - h)) / (h * h)
+TITLE = "riser catenary scene: comparison with riser (riser_tools.studies.moordyn_compare)"
 
 
 def support_tension(run, nseg):
-    """MoorDyn's end force with its end node's inertia added back: |F − M a|, M = m l / 2.
-    `Step` returns the net force of the line on the coupled point; the support also has
-    to accelerate the (driven) end node, which riser's hang-off reaction includes."""
-    m_end = 0.5 * MASS * segment_length(nseg)
-    f = run["F"].copy()
-    f[:, 2] -= m_end * heave_acceleration(run["t"])
-    return np.linalg.norm(f, axis=1)
+    """MoorDyn's end force with its end node's inertia added back (riser_tools.moordyn.support_force)."""
+    return moordyn.support_force(run["run"], LINE, nseg)
 
 
 def relative_error(t, tension, t_ref, tension_ref):
@@ -137,71 +108,34 @@ def relative_error(t, tension, t_ref, tension_ref):
 
 
 def window_stats(t, tension):
-    m = t >= WINDOW - 1e-9
-    return float(np.mean(tension[m])), float(np.min(tension[m])), float(np.max(tension[m]))
+    return _window_stats(t, tension, WINDOW)
 
 
 # ----------------------------------------------------------------------------- riser
 def riser_run(bin_, out_dir, n, dt, tol=None, repeats=1, model="rod"):
-    """Run `riser run catenary` with the line `model` (rod or cable); returns
-    the time series and the median solve time."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    cmd = [bin_, "run", "catenary", "--heave", f"{AMPLITUDE},{PERIOD}", "--ramp", f"{RAMP:g}",
-           "--duration", f"{DURATION:g}", "--json", "--out", str(out_dir), "--set", f"model={model}",
-           "--set", f"n_elements={n}", "--set", f"time_step={dt}", "--set", f"structural_damping={ETA}"]
+    """`riser run catenary` with the line `model` (rod or cable): the time series and the
+    median solve time."""
+    sets = {"model": model, "n_elements": n, "time_step": dt, "structural_damping": ETA}
     if tol is not None:
-        cmd += ["--set", f"newton_tolerance={tol}"]
-    walls = []
-    summary = None
-    for i in range(max(1, repeats)):
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        if p.returncode != 0 or not p.stdout.strip():
-            raise RuntimeError(f"riser failed: {' '.join(cmd)}\n{p.stderr}")
-        summary = json.loads(p.stdout)
-        walls.append(summary["solve_wall_time"])
-        if i == 0 and repeats > 1 and walls[0] > CHEAP:
-            break
-    with open(out_dir / "timeseries.csv") as f:
-        rows = list(csv.DictReader(f))
-    t = np.array([float(r["t"]) for r in rows])
-    tension = np.array([float(r["top_tension"]) for r in rows])
-    return {"t": t, "T": tension, "walls": walls, "wall": statistics.median(walls), "summary": summary,
-            "cmd": " ".join(cmd)}
+        sets["newton_tolerance"] = tol
+    r = cli.run(bin_, "catenary", sets, MOTION, DURATION, out_dir, repeats=repeats, cheap=CHEAP)
+    return {"t": r.t, "T": r.top_tension, "walls": r.walls, "wall": r.wall, "summary": r.summary,
+            "cmd": " ".join(r.cmd)}
 
 
 # ----------------------------------------------------------------------------- MoorDyn
-@contextlib.contextmanager
-def quiet(log_path):
-    """Send the C++ library's console output (fd 1 and 2) to a log file."""
-    libc = ctypes.CDLL(None)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = os.dup(1), os.dup(2)
-    with open(log_path, "a") as log:
-        os.dup2(log.fileno(), 1)
-        os.dup2(log.fileno(), 2)
-        try:
-            yield
-        finally:
-            libc.fflush(None)
-            os.dup2(saved[0], 1)
-            os.dup2(saved[1], 2)
-            os.close(saved[0])
-            os.close(saved[1])
-
-
 def segment_length(nseg):
     return LENGTH / nseg
 
 
 def damping_dt(nseg):
     """m l^2 / (2 BA): the explicit-integration limit set by the axial damping."""
-    return MASS * segment_length(nseg) ** 2 / (2.0 * BA)
+    return moordyn.damping_dt(LINE, nseg, BA)
 
 
 def wave_dt(nseg):
     """l / c: the limit set by the axial waves."""
-    return segment_length(nseg) / WAVE_SPEED
+    return moordyn.wave_dt(LINE, nseg)
 
 
 def k_at_most(dt):
@@ -213,48 +147,9 @@ def k_at_most(dt):
 
 
 def write_moordyn_input(path, nseg, dtm, options, ba=BA):
-    """A MoorDyn v2 input file (and the current profile beside it)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    extra = "\n".join(f"{v:<14} {k}" for k, v in options.items())
-    path.write_text(f"""--------------------- MoorDyn Input File ------------------------------------
-riser catenary scene: comparison with riser (scripts/moordyn_compare.py)
----------------------- LINE TYPES ----------------------------------------------------------------------
-TypeName   Diam      Mass/m     EA           BA/-zeta     EI           Cd     Ca     CdAx          CaAx
-(name)     (m)       (kg/m)     (N)          (N-s/-)      (N-m^2)      (-)    (-)    (-)           (-)
-riser      {DIAM}    {MASS}     {EA:.6e}   {ba:.6e}   {EI:.6e}   {CD_N}    0.0    {CD_AX:.10f}  0.0
----------------------- POINTS ---------------------------------------
-ID   Attachment  X       Y     Z      Mass   Volume  CdA    Ca
-(#)   (word/ID)  (m)     (m)   (m)    (kg)   (m^3)   (m^2)  (-)
-1     Fixed      {ANCHOR[0]}    {ANCHOR[1]}   {ANCHOR[2]}    0      0       0      0
-2     Coupled    {FAIRLEAD[0]}     {FAIRLEAD[1]}   {FAIRLEAD[2]}    0      0       0      0
----------------------- LINES ----------------------------------------
-ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)   (name)     (ID)     (ID)      (m)       (-)      (-)
-1     riser       1        2        {LENGTH}     {nseg}       -
----------------------- OPTIONS -----------------------------------------
-{dtm!r}   dtM
-{GRAVITY}           g
-{RHO_W}           rho
-{WATER_DEPTH}            WtrDpth
-1              Currents
-1              disableOutput
-1              disableOutTime
-{extra}
---------------------- need this line ------------------
-""")
-    # dtM is written with repr() so that MoorDyn reads back the very double the driver passes
-    # as the coupling step: a dtM rounded below it would add a tiny extra internal step per call.
-    # Currents = 1: steady profile read from current_profile.txt beside the input file
-    (path.parent / "current_profile.txt").write_text(
-        "--------------------- MoorDyn steady currents File ----------------------------------\n"
-        "Uniform current along +x\n"
-        "z (m), ux (m/s), uy (m/s), uz (m/s)\n"
-        f"-{WATER_DEPTH + 100:g} {CURRENT} 0 0\n"
-        f"0.0 {CURRENT} 0 0\n")
-
-
-def force_magnitude(f):
-    return math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+    """The catenary as a MoorDyn v2 input file, with the uniform current beside it."""
+    moordyn.write_input(path, LINE, nseg, dtm, {**moordyn.NO_OUTPUT, **options}, ba=ba, depth=WATER_DEPTH,
+                        current=CURRENT, title=TITLE)
 
 
 def moordyn_ic(work, nseg):
@@ -266,19 +161,11 @@ def moordyn_ic(work, nseg):
         inp = d / "ic.txt"
         write_moordyn_input(inp, nseg, SAMPLE / k, {
             "ICgenDynamic": 1, "CdScaleIC": 20, "threshIC": 1e-5, "dtIC": 1.0, "TmaxIC": 300})
-        t0 = time.perf_counter()
         try:
-            with quiet(d / "moordyn.log"):
-                s = moordyn.Create(str(inp))
-                moordyn.Init(s, list(FAIRLEAD), [0.0, 0.0, 0.0])
-                f = moordyn.Step(s, list(FAIRLEAD), [0.0, 0.0, 0.0], 0.0, 0.0)
-                state = d / f"state_{nseg}.ic"
-                moordyn.SaveState(s, str(state))
-                moordyn.Close(s)
-            t_static = force_magnitude(f)
-            if math.isfinite(t_static) and 0.5e5 < t_static < 3e5:
-                return {"state": state, "T0": t_static, "F0": f, "dtm_ic": SAMPLE / k,
-                        "ic_time": time.perf_counter() - t0}
+            st = moordyn.static_state(inp, LINE, nseg, save=d / f"state_{nseg}.ic")
+            if math.isfinite(st.tension) and 0.5e5 < st.tension < 3e5:
+                return {"state": st.state, "T0": st.tension, "F0": st.force, "dtm_ic": SAMPLE / k,
+                        "ic_time": st.seconds}
         except RuntimeError:
             pass
         if k >= K_CANDIDATES[-1]:
@@ -292,85 +179,23 @@ def moordyn_run(work, nseg, k, scheme, ic, repeats=1, coupling=1, tag="", ba=BA)
     wall times. `ic`: a state from moordyn_ic (loaded with LoadState), or None for MoorDyn's
     own initial-condition solver with its default options."""
     dtm = SAMPLE / k
-    dtc = dtm * coupling
-    per_sample = k // coupling
-    d = work / f"run_{nseg}_{scheme}_{k}{tag}"
-    inp = d / "lines.txt"
+    inp = work / f"run_{nseg}_{scheme}_{k}{tag}" / "lines.txt"
     write_moordyn_input(inp, nseg, dtm, {"tScheme": scheme}, ba=ba)
-    ncalls = int(round(DURATION / dtc))
-    t_calls = np.arange(ncalls) * dtc
-    z0 = heave(t_calls)
-    z1 = heave(t_calls + dtc)
-    # Position at the start of each call and the secant velocity: MoorDyn moves the coupled
-    # point as x + v (t - t_start) over the call, so it lands exactly on x(t + dtc).
-    xs = [[FAIRLEAD[0], FAIRLEAD[1], FAIRLEAD[2] + z] for z in z0.tolist()]
-    vs = [[0.0, 0.0, v] for v in ((z1 - z0) / dtc).tolist()]
-    ts = t_calls.tolist()
-    nout = int(round(DURATION / SAMPLE))
-    walls = []
-    ok = True
-    tension = None
-    t_static = ic["T0"] if ic else float("nan")
-    for _ in range(max(1, repeats)):
-        tension = np.full(nout + 1, np.nan)
-        force = np.full((nout + 1, 3), np.nan)
-        with quiet(d / "moordyn.log"):
-            s = moordyn.Create(str(inp))
-            if ic:
-                moordyn.Init_NoIC(s, list(FAIRLEAD), [0.0, 0.0, 0.0])
-                moordyn.LoadState(s, str(ic["state"]))
-            else:
-                moordyn.Init(s, list(FAIRLEAD), [0.0, 0.0, 0.0])
-                t_static = force_magnitude(moordyn.Step(s, list(FAIRLEAD), [0.0, 0.0, 0.0], 0.0, 0.0))
-            tension[0] = t_static
-            step = moordyn.Step
-            t0 = time.perf_counter()
-            calls = 0
-            try:
-                j = 0
-                for i in range(ncalls):
-                    calls = i + 1
-                    f = step(s, xs[i], vs[i], ts[i], dtc)
-                    if (i + 1) % per_sample == 0:
-                        j += 1
-                        tension[j] = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
-                        force[j] = f
-                        if not tension[j] < 1e8:          # NaN or blown up
-                            ok = False
-                            break
-            except RuntimeError:
-                ok = False
-            wall = time.perf_counter() - t0
-            # Cost of the Python call itself: the same calls with dt = 0 (MoorDyn then only
-            # returns the forces).
-            n_probe = min(ncalls, 20000)
-            t1 = time.perf_counter()
-            for i in range(n_probe):
-                step(s, xs[i], vs[i], ts[i], 0.0)
-            per_call = (time.perf_counter() - t1) / n_probe
-            moordyn.Close(s)
-        walls.append(wall)
-        if not ok or wall > CHEAP:
-            break
-    return {"t": np.arange(nout + 1) * SAMPLE, "T": tension, "F": force, "ok": ok, "walls": walls,
-            "wall": statistics.median(walls), "per_call": per_call, "steps": calls * coupling,
-            "overhead": per_call * calls, "dtm": dtm, "T0": t_static}
+    r = moordyn.run(inp, LINE, nseg, MOTION, DURATION, dtm, SAMPLE, coupling=coupling,
+                    state=ic["state"] if ic else None, T0=ic["T0"] if ic else float("nan"),
+                    repeats=repeats, cheap=CHEAP, probe_overhead=True)
+    return {"t": r.t, "T": r.T, "F": r.F, "ok": r.ok, "walls": r.walls, "wall": r.wall, "per_call": r.per_call,
+            "steps": r.steps, "overhead": r.overhead, "dtm": dtm, "T0": r.T0, "run": r}
 
 
 # ----------------------------------------------------------------------------- the study
-class Study:
+class Study(PeerStudy):
     def __init__(self, args):
-        self.args = args
-        self.out = Path(args.out)
-        self.docs = Path(args.docs)
-        self.work = self.out / "work"
+        super().__init__(args)
         self.rows = []
         self.ics = {}
         self.series = {}
         self.side = {}
-
-    def log(self, msg):
-        print(f"[{time.perf_counter() - self.t_start:7.1f} s] {msg}", flush=True)
 
     # riser -------------------------------------------------------------------------
     def riser_reference(self):
@@ -527,7 +352,7 @@ class Study:
         self.rows.append(row)
 
     def run(self):
-        self.t_start = time.perf_counter()
+        self.t0 = time.perf_counter()
         q = self.args.quick
         self.cfg = {
             "riser_ref": (60, 0.02, 1e-10) if q else (120, 0.01, 1e-10),
@@ -550,7 +375,7 @@ class Study:
         self.moordyn_grid()
         self.side_checks()
         self.load_after = os.getloadavg()
-        self.elapsed = time.perf_counter() - self.t_start
+        self.elapsed = time.perf_counter() - self.t0
         self.write_csv()
         self.write_timeseries()
         self.plot()
@@ -664,13 +489,13 @@ class Study:
         m_static = self.ics[mn]["T0"]
         md_version = metadata.version("moordyn")
         cp, ic_chk, ud = self.side["coupling"], self.side["ic"], self.side["undamped"]
-        riser_version = subprocess.run([a.bin, "--version"], capture_output=True, text=True).stdout.strip()
+        riser_version = cli.version(a.bin)
         L = []
         w = L.append
         if a.quick:
             w("> **Quick smoke run (`--quick`): coarse references and a few cells only; not the study.**\n")
         w("# riser and MoorDyn on the catenary scene\n")
-        w(f"Generated by `scripts/moordyn_compare.py` on {datetime.date.today()} "
+        w(f"Generated by `riser-tools moordyn` (riser_tools.studies.moordyn_compare) on {datetime.date.today()} "
           f"({riser_version}, MoorDyn {md_version} from PyPI `moordyn=={md_version}`, "
           f"Python {platform.python_version()}, numpy {np.__version__}).\n")
         w("## The case\n")
@@ -947,12 +772,11 @@ class Study:
           f"Across the repeated runs of one setting the wall time spread by up to {self.spread():.0f} % "
           "of the median.\n")
         w("## Reproduce\n")
-        w("`make moordyn` (installs the pinned `moordyn` from requirements-peers.txt into the project's venv), "
-          "or by hand:\n")
+        w("`make moordyn` (the pinned `moordyn` is in requirements.txt, installed into the project's venv by "
+          "`make venv`), or by hand:\n")
         w("```")
-        w("python3 -m venv .venv-peers && .venv-peers/bin/pip install -r requirements-peers.txt numpy matplotlib")
-        w("cargo build --release")
-        w(".venv-peers/bin/python scripts/moordyn_compare.py --bin target/release/riser --out out/moordyn --docs docs")
+        w("make venv && cargo build --release")
+        w(".venv/bin/riser-tools moordyn --bin target/release/riser --out out/moordyn --docs docs")
         w("```\n")
         w(f"This run: `{' '.join(sys.argv)}`, {self.elapsed / 60:.1f} min. Every run (also the unstable "
           f"dtM probes) is in `{self.out / 'runs.csv'}`; the two converged series in "
@@ -1038,22 +862,9 @@ class Study:
               f"({self.agreement['max_rel_corrected']:.1e} with its end node's inertia added back).\n")
 
 
-def pin_to_one_cpu():
-    """Run this process and its children on a single CPU (the highest one allowed)."""
-    if hasattr(os, "sched_setaffinity"):
-        os.sched_setaffinity(0, {max(os.sched_getaffinity(0))})
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", default="target/release/riser", help="riser binary")
-    ap.add_argument("--out", default="out/moordyn", help="CSV and work files")
-    ap.add_argument("--docs", default="docs", help="where moordyn.md and figures/moordyn_compare.png go")
-    ap.add_argument("--quick", action="store_true", help="a few cells against coarse references (smoke run)")
-    args = ap.parse_args()
-    pin_to_one_cpu()
-    Study(args).run()
+def main(argv=None):
+    peer_study_main(argv, __doc__, Study, "out/moordyn", "moordyn.md and figures/moordyn_compare.png",
+                    "a few cells against coarse references (smoke run)")
 
 
 if __name__ == "__main__":

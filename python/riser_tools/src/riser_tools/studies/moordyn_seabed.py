@@ -26,29 +26,25 @@ the markdown for the mapping of FricDamp).
 Outputs: OUT/runs.csv (window statistics of every run), OUT/series_*.csv,
 DOCS/figures/moordyn_seabed.png and DOCS/moordyn_seabed.md.
 
-Usage:
-    python scripts/moordyn_seabed.py --bin target/release/riser --out out/moordyn_seabed --docs docs
-    python scripts/moordyn_seabed.py --quick ...   (40 segments only, no extras: a smoke run)
-Needs numpy, matplotlib and moordyn (requirements-peers.txt).
+Usage (`make moordyn-seabed`):
+    riser-tools moordyn-seabed --bin target/release/riser --out out/moordyn_seabed --docs docs
+    riser-tools moordyn-seabed --quick ...   (40 segments only, no extras: a smoke run)
+Needs numpy, matplotlib and moordyn (requirements.txt). MoorDyn is driven by
+riser_tools.moordyn, riser by riser_tools.cli and riser_tools.fmu.
 """
 
-import argparse
-import contextlib
 import csv
-import ctypes
 import datetime
-import json
 import math
-import os
 import platform
-import subprocess
 import sys
 import time
 from importlib import metadata
 from pathlib import Path
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "RAYON_NUM_THREADS"):
-    os.environ[_var] = "1"
+from ..report import PeerStudy, peer_study_main, single_threaded
+
+single_threaded()   # before any numerical library is loaded
 
 import matplotlib  # noqa: E402
 
@@ -56,26 +52,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import moordyn  # noqa: E402
+from .. import cli, fmu, moordyn  # noqa: E402
+from ..cases import STEEL_CATENARY, Motion  # noqa: E402
+from ..series import centred_average  # noqa: E402
 
 # ----------------------------------------------------------------------------- the case
 SCENE = "steel_catenary"
-LENGTH = 400.0
-MASS = 162.1
-DIAM = 0.2731
-EA = 3.38e9
-EI_SCENE = 2.71e7
-CD_N = 1.0
-CD_T = 0.008                 # riser: on D
-CD_AX = CD_T / math.pi       # MoorDyn: CdAx is on the surface pi D
-CA_N = 1.0
-RHO_W = 1025.0
-GRAVITY = 9.81
-SURFACE_Z = 10.0
-FAIRLEAD = (0.0, 0.0, -SURFACE_Z)            # MoorDyn frame (z = 0 at the surface)
-ANCHOR = (292.0, 0.0, -200.0 - SURFACE_Z)
-WATER_DEPTH = 210.0
-SEABED_Z_MD = -WATER_DEPTH
+LINE = STEEL_CATENARY.replace(ei=0.0)   # MoorDyn's line without bending (the main case); extras set EI
+LENGTH, MASS, DIAM, EA = LINE.length, LINE.mass, LINE.diameter, LINE.ea
+EI_SCENE = STEEL_CATENARY.ei
+CD_N, CD_T, CA_N = LINE.cd_normal, LINE.cd_tangential, LINE.ca_normal
+CD_AX = moordyn.cd_axial(LINE)          # MoorDyn: CdAx is on the surface pi D
+WATER_DEPTH = moordyn.water_depth(LINE)  # 210 m: the seabed 200 m below the hang-off, 10 m below the surface
 K_BOT, C_BOT = 3.0e6, 3.0e5
 MU_AXIAL, MU_LATERAL, SLIP_V = 0.5, 0.8, 0.01   # riser's scene
 ETA = 0.001                  # s, Kelvin-Voigt damping in both codes
@@ -83,127 +71,63 @@ BA = ETA * EA
 AMPLITUDE, PERIOD, RAMP = 3.0, 10.0, 10.0
 DURATION = 60.0
 WINDOW = 30.0                # statistics over t in [30, 60]
-# hang-off motions: axis (0 = x surge, 2 = z heave), amplitude, period, ramp, duration, window start
 MOTIONS = {
-    "heave": {"axis": 2, "A": AMPLITUDE, "T": PERIOD, "R": RAMP, "D": DURATION, "W": WINDOW},
-    "surge": {"axis": 0, "A": 5.0, "T": 20.0, "R": 20.0, "D": 70.0, "W": 30.0},
+    "heave": Motion(AMPLITUDE, PERIOD, "heave", RAMP, duration=DURATION, window=WINDOW),
+    "surge": Motion(5.0, 20.0, "surge", 20.0, duration=70.0, window=30.0),
     # MoorDyn held still from its initial condition, to let it settle to its own static state
-    "still": {"axis": 2, "A": 0.0, "T": 10.0, "R": 10.0, "D": 40.0, "W": 35.0},
+    "still": Motion(0.0, 10.0, "heave", 10.0, duration=40.0, window=35.0),
 }
-FMU = Path(__file__).resolve().parent.parent / "fmu" / "riser.fmu"
+FMU = Path("fmu") / "riser.fmu"
 SAMPLE = 0.05                # s, output grid (riser's dt at the scene's default)
 SMOOTH = 1.0                 # s, centred moving average for the "filtered" tension difference
-W_SUB = (MASS - RHO_W * math.pi * DIAM ** 2 / 4.0) * GRAVITY   # N/m, submerged weight
-WAVE_SPEED = math.sqrt(EA / MASS)
-
-
-def motion(t, mo):
-    """Hang-off displacement A w(t) sin(2 pi t / T) along the motion's axis, riser's --ramp weight w."""
-    t = np.asarray(t, dtype=float)
-    w = np.where(t < mo["R"], 0.5 * (1.0 - np.cos(np.pi * np.minimum(t, mo["R"]) / mo["R"])), 1.0)
-    return mo["A"] * w * np.sin(2.0 * np.pi * t / mo["T"])
-
-
-def motion_velocity(t, mo):
-    h = 1e-6
-    return (motion(np.asarray(t) + h, mo) - motion(np.asarray(t) - h, mo)) / (2.0 * h)
+W_SUB = LINE.submerged_weight   # N/m
+WAVE_SPEED = LINE.wave_speed
+TITLE = "riser steel_catenary scene: comparison with riser (riser_tools.studies.moordyn_seabed)"
 
 
 def moordyn_dtm(nseg):
     """dtM a little below the damping limit m l^2 / (2 BA) and the wave time l / c,
     as 0.05 s / k so that the output grid falls on steps."""
-    l = LENGTH / nseg
-    lim = min(0.8 * MASS * l * l / (2.0 * BA), 0.5 * l / WAVE_SPEED)
+    lim = min(0.8 * moordyn.damping_dt(LINE, nseg, BA), 0.5 * moordyn.wave_dt(LINE, nseg))
     k = math.ceil(SAMPLE / lim)
     return SAMPLE / k, k
 
 
+def _riser_series(r, mo, wall, cmd):
+    s = r["series"]
+    return {"t": s["t"], "T": s["top_tension"], "Fx": s["top_force_x"], "Fz": s["top_force_z"],
+            "td": s["touchdown_s"], "wall": wall, "mo": mo, "cmd": cmd}
+
+
 # ----------------------------------------------------------------------------- riser
 def riser_run(bin_, out_dir, n, dt, model="cable", friction=False, sets=()):
-    out_dir.mkdir(parents=True, exist_ok=True)
-    cmd = [bin_, "run", SCENE, "--set", f"model={model}", "--set", f"n_elements={n}",
-           "--set", f"time_step={dt}", "--set", f"structural_damping={ETA}"]
+    """`riser run steel_catenary` in heave (the CLI, waiting for a binary being rebuilt)."""
+    s = {"model": model, "n_elements": n, "time_step": dt, "structural_damping": ETA}
     if not friction:
-        cmd += ["--set", "seabed_friction=0"]
-    for s in sets:
-        cmd += ["--set", s]
-    cmd += ["--heave", f"{AMPLITUDE:g},{PERIOD:g}", "--ramp", f"{RAMP:g}", "--duration", f"{DURATION:g}",
-            "--json", "--out", str(out_dir)]
-    for attempt in range(20):             # the binary may be being rebuilt: wait and retry
-        if os.path.exists(bin_):
-            try:
-                p = subprocess.run(cmd, capture_output=True, text=True)
-                if p.returncode == 0 and p.stdout.strip():
-                    break
-                err = p.stderr
-            except OSError as e:          # e.g. "text file busy"
-                err = str(e)
-        else:
-            err = "binary missing"
-        time.sleep(15)
-    else:
-        raise RuntimeError(f"riser failed: {' '.join(cmd)}\n{err}")
-    summary = json.loads(p.stdout)
-    with open(out_dir / "timeseries.csv") as f:
-        rows = list(csv.DictReader(f))
-    col = lambda k: np.array([float(r[k]) for r in rows])  # noqa: E731
-    t = col("t")
-    return {"t": t, "T": col("top_tension"), "Fx": col("top_force_x"), "Fz": col("top_force_z"),
-            "td": col("touchdown_s"), "summary": summary, "wall": summary["solve_wall_time"],
-            "mo": MOTIONS["heave"],
-            "cmd": " ".join(cmd[:1] + [c for c in cmd[1:]]).replace(str(out_dir), "DIR")}
+        s["seabed_friction"] = 0
+    r = cli.run(bin_, SCENE, [f"{k}={v}" for k, v in s.items()] + list(sets), MOTIONS["heave"], DURATION,
+                out_dir, wait_for_binary=300.0)
+    out = _riser_series({"series": r.series}, MOTIONS["heave"], r.summary["solve_wall_time"],
+                        " ".join(r.cmd).replace(str(out_dir), "DIR"))
+    out["summary"] = r.summary
+    return out
 
 
 def riser_fmu_run(n, dt, mo, friction=False):
-    """riser through its FMU (fmpy), for the surge case (the CLI has heave only): scene
-    steel_catenary, cable model; the displacement and its velocity given at every
-    communication point (= dt, one internal step per fmi2DoStep)."""
-    from fmpy import simulate_fmu
-    t = np.arange(int(round(mo["D"] / dt)) + 1) * dt
-    zero = np.zeros_like(t)
-    u, v = motion(t, mo), motion_velocity(t, mo)
-    cols = {"heave": zero, "surge": zero, "sway": zero,
-            "heave_velocity": zero, "surge_velocity": zero, "sway_velocity": zero}
-    name = {0: "surge", 2: "heave"}[mo["axis"]]
-    cols[name], cols[name + "_velocity"] = u, v
-    names = list(cols)
-    sig = np.array(list(zip(t, *[cols[k] for k in names])),
-                   dtype=[("time", np.float64)] + [(k, np.float64) for k in names])
+    """riser through its FMU (fmpy), for the surge case: scene steel_catenary, cable model;
+    the displacement and its velocity given at every communication point (= dt, one internal
+    step per fmi2DoStep)."""
     start = {"scene": SCENE, "model": "cable", "n_elements": n, "time_step": dt, "structural_damping": ETA}
     if not friction:
         start["seabed_friction"] = 0.0
-    t0 = time.perf_counter()
-    res = simulate_fmu(str(FMU), stop_time=mo["D"], output_interval=dt, step_size=dt, input=sig,
-                       output=["top_tension", "top_force_x", "top_force_z", "touchdown_s"], start_values=start)
-    wall = time.perf_counter() - t0
-    return {"t": np.asarray(res["time"]), "T": np.asarray(res["top_tension"]),
-            "Fx": np.asarray(res["top_force_x"]), "Fz": np.asarray(res["top_force_z"]),
-            "td": np.asarray(res["touchdown_s"]), "wall": wall, "mo": mo,
-            "cmd": f"fmpy.simulate_fmu(fmu/riser.fmu, start_values={start}, step_size={dt}, "
-                   f"inputs {name} and {name}_velocity)"}
+    r = fmu.simulate(FMU, mo, mo.duration, dt, ["top_tension", "top_force_x", "top_force_z", "touchdown_s"],
+                     start, velocity="difference")
+    return _riser_series({"series": r.series}, mo, r.wall,
+                         f"fmpy.simulate_fmu(fmu/riser.fmu, start_values={start}, step_size={dt}, "
+                         f"inputs {mo.axis} and {mo.axis}_velocity)")
 
 
 # ----------------------------------------------------------------------------- MoorDyn
-@contextlib.contextmanager
-def quiet(log_path):
-    """Send the C++ library's console output (fd 1 and 2) to a log file."""
-    libc = ctypes.CDLL(None)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = os.dup(1), os.dup(2)
-    with open(log_path, "a") as log:
-        os.dup2(log.fileno(), 1)
-        os.dup2(log.fileno(), 2)
-        try:
-            yield
-        finally:
-            libc.fflush(None)
-            os.dup2(saved[0], 1)
-            os.dup2(saved[1], 2)
-            os.close(saved[0])
-            os.close(saved[1])
-
-
 def fric_damp(nseg):
     """MoorDyn's friction is mu * min(FricDamp * v, |B_z|) per node (B_z its contact force);
     FricDamp = w_sub l / v_eps puts the saturation of a resting interior node at riser's
@@ -211,135 +135,47 @@ def fric_damp(nseg):
     return W_SUB * (LENGTH / nseg) / SLIP_V
 
 
-def moordyn_input_text(nseg, dtm, ei=0.0, friction=False):
-    opts = {"dtM": repr(dtm), "g": GRAVITY, "rho": RHO_W, "WtrDpth": WATER_DEPTH, "kBot": K_BOT,
-            "cBot": C_BOT, "tScheme": "RK2", "disableOutput": 1, "disableOutTime": 1}
+def moordyn_options(nseg, friction=False):
+    opts = {"kBot": K_BOT, "cBot": C_BOT, "tScheme": "RK2", **moordyn.NO_OUTPUT}
     if friction:
         opts.update({"FrictionCoefficient": MU_AXIAL, "FricDamp": f"{fric_damp(nseg):.6g}",
                      "StatDynFricScale": 1.0})
-    extra = "\n".join(f"{v:<14} {k}" for k, v in opts.items())
-    return f"""--------------------- MoorDyn Input File ------------------------------------
-riser steel_catenary scene: comparison with riser (scripts/moordyn_seabed.py)
----------------------- LINE TYPES ----------------------------------------------------------------------
-TypeName   Diam      Mass/m     EA           BA/-zeta     EI           Cd     Ca     CdAx          CaAx
-(name)     (m)       (kg/m)     (N)          (N-s/-)      (N-m^2)      (-)    (-)    (-)           (-)
-riser      {DIAM}    {MASS}     {EA:.6e}   {BA:.6e}   {ei:.6e}   {CD_N}    {CA_N}    {CD_AX:.10f}  0.0
----------------------- POINTS ---------------------------------------
-ID   Attachment  X       Y     Z      Mass   Volume  CdA    Ca
-(#)   (word/ID)  (m)     (m)   (m)    (kg)   (m^3)   (m^2)  (-)
-1     Fixed      {ANCHOR[0]}    {ANCHOR[1]}   {ANCHOR[2]}    0      0       0      0
-2     Coupled    {FAIRLEAD[0]}     {FAIRLEAD[1]}   {FAIRLEAD[2]}    0      0       0      0
----------------------- LINES ----------------------------------------
-ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)   (name)     (ID)     (ID)      (m)       (-)      (-)
-1     riser       1        2        {LENGTH}     {nseg}       -
----------------------- OPTIONS -----------------------------------------
-{extra}
---------------------- need this line ------------------
-"""
-
-
-def md_touchdown(line, nseg):
-    """riser's definition (src/loads/seabed.rs `touchdown`): from the fairlead (node N), the
-    first node below the seabed, the crossing interpolated linearly in the penetration from
-    the node before it; arc length = unstretched distance from the fairlead."""
-    ds = LENGTH / nseg
-    before = -math.inf
-    for j, i in enumerate(range(nseg, -1, -1)):
-        d = SEABED_Z_MD - moordyn.GetLineNodePos(line, i)[2]
-        if d > 0.0:
-            if j == 0:
-                return 0.0
-            w = -before / (d - before)
-            return (j - 1) * ds + w * ds
-        before = d
-    return LENGTH
+    return opts
 
 
 def moordyn_run(work, nseg, dtm=None, ei=0.0, friction=False, tag="", mo=MOTIONS["heave"]):
-    """One MoorDyn run, one internal step per `Step` call (the fairlead moved exactly onto
-    z(t + dtM) with the secant velocity), outputs every SAMPLE s. Halves dtM on a blow-up."""
+    """One MoorDyn run, one internal step per `Step` call, outputs every SAMPLE s, from
+    MoorDyn's stationary initial-condition solver. Halves dtM on a blow-up."""
     if dtm is None:
         dtm, k = moordyn_dtm(nseg)
     else:
         k = int(round(SAMPLE / dtm))
     while True:
         d = work / f"md_{nseg}_{k}{tag}"
-        d.mkdir(parents=True, exist_ok=True)
-        inp = d / "lines.txt"
-        inp.write_text(moordyn_input_text(nseg, SAMPLE / k, ei, friction))
-        r = _moordyn_once(d, inp, nseg, k, mo)
-        if r["ok"]:
-            r["input"] = inp
-            return r
-        print(f"    MoorDyn {nseg} seg at dtM {SAMPLE / k:.3g} s blew up at t = {r['t_fail']:.2f} s; halving",
+        inp = moordyn.write_input(d / "lines.txt", LINE, nseg, SAMPLE / k, moordyn_options(nseg, friction),
+                                  ba=BA, ei=ei, title=TITLE)
+        r = moordyn.run(inp, LINE, nseg, mo, mo.duration, SAMPLE / k, SAMPLE, record_touchdown=True)
+        if r.ok:
+            return {"t": r.t, "T": r.T, "Fx": r.F[:, 0], "Fz": r.F[:, 2], "td": r.td, "ok": r.ok,
+                    "t_fail": r.t_fail, "wall": r.wall, "ic_time": r.ic_time, "dtm": r.dtm, "steps": r.steps,
+                    "mo": mo, "input": inp}
+        print(f"    MoorDyn {nseg} seg at dtM {SAMPLE / k:.3g} s blew up at t = {r.t_fail:.2f} s; halving",
               flush=True)
         k *= 2
         if k > 4000:
             raise RuntimeError("MoorDyn unstable")
 
 
-def _moordyn_once(d, inp, nseg, k, mo):
-    dtm = SAMPLE / k
-    ncalls = int(round(mo["D"] / dtm))
-    tc = np.arange(ncalls) * dtm
-    u0 = motion(tc, mo)
-    u1 = motion(tc + dtm, mo)
-    x0 = np.tile(np.array(FAIRLEAD), (ncalls, 1))
-    x0[:, mo["axis"]] += u0
-    v0 = np.zeros((ncalls, 3))
-    v0[:, mo["axis"]] = (u1 - u0) / dtm
-    xs = x0.tolist()
-    vs = v0.tolist()
-    ts = tc.tolist()
-    nout = int(round(mo["D"] / SAMPLE))
-    F = np.full((nout + 1, 3), np.nan)
-    td = np.full(nout + 1, np.nan)
-    ok, t_fail = True, float("nan")
-    with quiet(d / "moordyn.log"):
-        t0 = time.perf_counter()
-        s = moordyn.Create(str(inp))
-        moordyn.Init(s, list(FAIRLEAD), [0.0, 0.0, 0.0])
-        line = moordyn.GetLine(s, 1)
-        F[0] = moordyn.Step(s, list(FAIRLEAD), [0.0, 0.0, 0.0], 0.0, 0.0)
-        td[0] = md_touchdown(line, nseg)
-        t_ic = time.perf_counter() - t0
-        step = moordyn.Step
-        t0 = time.perf_counter()
-        j = 0
-        try:
-            for i in range(ncalls):
-                f = step(s, xs[i], vs[i], ts[i], dtm)
-                if (i + 1) % k == 0:
-                    j += 1
-                    F[j] = f
-                    td[j] = md_touchdown(line, nseg)
-                    if not abs(f[0]) + abs(f[2]) < 1e8:
-                        ok, t_fail = False, ts[i]
-                        break
-        except RuntimeError:
-            ok, t_fail = False, ts[i]
-        wall = time.perf_counter() - t0
-        moordyn.Close(s)
-    t = np.arange(nout + 1) * SAMPLE
-    return {"t": t, "T": np.linalg.norm(F, axis=1), "Fx": F[:, 0], "Fz": F[:, 2], "td": td, "ok": ok,
-            "t_fail": t_fail, "wall": wall, "ic_time": t_ic, "dtm": dtm, "steps": ncalls, "mo": mo}
+def smooth(x):
+    """Centred moving average over SMOOTH s; NaN within half a window of the ends."""
+    return centred_average(x, int(round(SMOOTH / SAMPLE)))
 
 
 # ----------------------------------------------------------------------------- statistics
-def smooth(x):
-    """Centred moving average over SMOOTH s; NaN within half a window of the ends."""
-    n = int(round(SMOOTH / SAMPLE))
-    ker = np.ones(n + 1) / (n + 1)     # odd length, centred
-    y = np.convolve(x, ker, mode="same")
-    y[: n // 2] = np.nan
-    y[len(y) - n // 2:] = np.nan
-    return y
-
 
 def on_grid(r):
     """The run's series on the common SAMPLE grid (riser's dt may be finer)."""
-    t = np.arange(int(round(r["mo"]["D"] / SAMPLE)) + 1) * SAMPLE
+    t = np.arange(int(round(r["mo"].duration / SAMPLE)) + 1) * SAMPLE
     out = {"t": t}
     for key in ("T", "Fx", "Fz", "td"):
         out[key] = np.interp(t, r["t"], r[key])
@@ -348,7 +184,7 @@ def on_grid(r):
 
 def stats(r):
     g = on_grid(r)
-    m = g["t"] >= r["mo"]["W"] - 1e-9
+    m = g["t"] >= r["mo"].window - 1e-9
     T, td = g["T"][m], g["td"][m]
     Ts = smooth(g["T"])[m]
     return {"static_H": float(r["Fx"][0]), "static_V": float(-r["Fz"][0]), "static_T": float(r["T"][0]),
@@ -374,7 +210,7 @@ def static_of(r, settled):
 def diff(a, b):
     """Differences of run b from run a: window series and statistics."""
     ga, gb = on_grid(a), on_grid(b)
-    m = ga["t"] >= a["mo"]["W"] - 1e-9
+    m = ga["t"] >= a["mo"].window - 1e-9
     tmax = float(np.max(ga["T"][m]))
     sa, sb = stats(a), stats(b)
     return {
@@ -390,17 +226,11 @@ def diff(a, b):
 
 
 # ----------------------------------------------------------------------------- the study
-class Study:
+class Study(PeerStudy):
     def __init__(self, args):
-        self.args = args
-        self.out = Path(args.out)
-        self.docs = Path(args.docs)
-        self.work = self.out / "work"
+        super().__init__(args)
         self.runs = {}       # label -> run
         self.meta = {}       # label -> description
-
-    def log(self, msg):
-        print(f"[{time.perf_counter() - self.t0:7.1f} s] {msg}", flush=True)
 
     def riser(self, label, n, dt, model="cable", friction=False, sets=(), desc=""):
         r = riser_run(self.args.bin, self.work / label, n, dt, model, friction, sets)
@@ -434,7 +264,7 @@ class Study:
 
     def run(self):
         self.t0 = time.perf_counter()
-        self.stamps_before = (file_stamp(self.args.bin), file_stamp(FMU))
+        self.stamps_before = (cli.file_stamp(self.args.bin), cli.file_stamp(FMU))
         q = self.args.quick
         self.meshes = (40,) if q else (40, 80, 160)
         for n in self.meshes:
@@ -468,7 +298,7 @@ class Study:
                 self.moordyn(f"md_{n}_surge_fric", n, friction=True, mo=surge,
                              desc=f"MoorDyn, FrictionCoefficient 0.5, FricDamp {fric_damp(n):.3g}, {n} seg.")
         self.elapsed = time.perf_counter() - self.t0
-        self.stamps_after = (file_stamp(self.args.bin), file_stamp(FMU))
+        self.stamps_after = (cli.file_stamp(self.args.bin), cli.file_stamp(FMU))
         self.write_csv()
         self.plot()
         self.write_markdown()
@@ -524,7 +354,7 @@ class Study:
             axes[0, j].set_title(f"steel_catenary, {title}, no friction unless marked (shaded: comparison window)")
             axes[2, j].set_xlabel("t (s)")
             for ax in axes[:, j]:
-                ax.axvspan(mo["W"], mo["D"], color="0.93", zorder=0)
+                ax.axvspan(mo.window, mo.duration, color="0.93", zorder=0)
                 ax.legend(loc="lower left", fontsize=8, ncol=2)
                 ax.grid(alpha=0.3)
         axes[0, 0].set_ylabel("top tension (kN)")
@@ -545,7 +375,7 @@ class Study:
         except metadata.PackageNotFoundError:
             md_ver = "?"
         w("# riser and MoorDyn on the steel catenary (seabed contact)\n")
-        w(f"Generated by `scripts/moordyn_seabed.py` on {datetime.date.today().isoformat()} "
+        w(f"Generated by `riser-tools moordyn-seabed` (riser_tools.studies.moordyn_seabed) on {datetime.date.today().isoformat()} "
           f"(MoorDyn {md_ver} from PyPI, Python {platform.python_version()}, numpy {np.__version__}); "
           f"this run: `{' '.join(sys.argv)}`, {self.elapsed / 60:.1f} min. riser binary `{self.args.bin}` "
           f"({self.stamps_before[0]}), FMU `fmu/riser.fmu` ({self.stamps_before[1]})."
@@ -577,7 +407,7 @@ class Study:
           "Both codes therefore get the same small Kelvin–Voigt damping η = 1 ms (riser's scene has none, "
           "riser's own ρ∞ = 0.8 numerical damping is left at the scene's value). MoorDyn's dtM is then set a "
           "little below the damping limit m·l²/(2·BA) (0.8 of it), as 0.05 s/k.\n")
-        w("**Driving MoorDyn and reading it** (as in `scripts/moordyn_compare.py`): one `Step` call per internal "
+        w("**Driving MoorDyn and reading it** (riser_tools.moordyn, the driver of `make moordyn` too): one `Step` call per internal "
           "step, with the exact fairlead position at the start of the step and the secant velocity; the static "
           "state from MoorDyn's default stationary initial-condition solver (`Init`). Top tension = magnitude of "
           "the force `Step` returns (the line on the coupled point; it leaves out the driven end node's "
@@ -651,32 +481,13 @@ class Study:
         order = [lab for n in ms for lab in (f"riser_{n}", f"md_{n}")]
         order += [lab for lab in ("riser_80_dt0.025", "riser_80_dt0.0125", "rod_80_EI1", "rod_80_EI", "md_80_EI")
                   if lab in self.runs]
-        for lab in order:
-            s = S[lab]
-            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
-              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
-              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+        self.run_rows(w, S, order)
         w("")
         w("Differences. ‖ΔT‖ = max |T_b − T_a| / max T_a over the window, sample by sample; "
           "‖ΔT̄‖ the same on the 1 s moving averages (the low-frequency tension, without the ringing); "
           "Δ touchdown: of the window mean, of the excursion, and the largest sample-by-sample difference.\n")
-        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
-          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
-        w("|---|---|---|---|---|---|---|---|---|")
         self.pairs = {}
-
-        def row(name, a, b):
-            d = diff(self.runs[a], self.runs[b])
-            self.pairs[name] = d
-            w(f"| {name} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | {d['dTmax'] / 1e3:+.1f} | "
-              f"{d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | {d['dtd_exc']:+.2f} | "
-              f"{d['dtd_max_abs']:.2f} |")
-
-        for n in ms:
-            row(f"**MoorDyn − riser, {n} seg.**", f"riser_{n}", f"md_{n}")
-        for a, b in zip(ms[:-1], ms[1:]):
-            row(f"riser {b} − {a} el.", f"riser_{a}", f"riser_{b}")
-            row(f"MoorDyn {b} − {a} seg.", f"md_{a}", f"md_{b}")
+        row = self.pair_table(w, ms)
         if "riser_80_dt0.025" in self.runs:
             row("riser 80 el., dt 0.025 − 0.05 s", "riser_80", "riser_80_dt0.025")
             row("riser 80 el., dt 0.0125 − 0.05 s", "riser_80", "riser_80_dt0.0125")
@@ -695,14 +506,44 @@ class Study:
         self.conclusion(w, S, ms)
         w("## Reproduce\n")
         w("```")
-        w(".venv/bin/pip install -r requirements-peers.txt   # moordyn==2.7.2")
-        w(".venv/bin/python scripts/moordyn_seabed.py --bin target/release/riser --out out/moordyn_seabed --docs docs")
+        w("make venv   # moordyn==2.7.2 (requirements.txt)")
+        w(".venv/bin/riser-tools moordyn-seabed --bin target/release/riser --out out/moordyn_seabed --docs docs")
         w("```\n")
         w(f"Window statistics of every run in `{self.out / 'runs.csv'}`, the series on the 0.05 s grid in "
           f"`{self.out}/series_*.csv`, MoorDyn's inputs and logs and riser's outputs under `{self.work}`. "
           "`--quick`: 40 segments only, no extras (smoke run).\n")
         self.docs.mkdir(parents=True, exist_ok=True)
         (self.docs / "moordyn_seabed.md").write_text("\n".join(L))
+
+    def run_rows(self, w, S, labels):
+        """A row of window statistics per run: description, wall, tension and touchdown."""
+        for lab in labels:
+            s = S[lab]
+            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
+              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
+              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+
+    def pair_table(self, w, ms, suf="", lab=""):
+        """A table of differences: its header, MoorDyn − riser at each mesh and each code's change
+        between meshes (runs `riser_{n}{lab}`, `md_{n}{lab}`; names end in `suf`, shown without);
+        returns the row writer for more pairs. Every pair is kept in self.pairs by its name."""
+        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
+          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
+        w("|---|---|---|---|---|---|---|---|---|")
+
+        def row(name, a, b):
+            d = diff(self.runs[a], self.runs[b])
+            self.pairs[name] = d
+            w(f"| {name.replace(suf, '') if suf else name} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | "
+              f"{d['dTmax'] / 1e3:+.1f} | {d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | "
+              f"{d['dtd_exc']:+.2f} | {d['dtd_max_abs']:.2f} |")
+
+        for n in ms:
+            row(f"**MoorDyn − riser, {n} seg.**{suf}", f"riser_{n}{lab}", f"md_{n}{lab}")
+        for a, b in zip(ms[:-1], ms[1:]):
+            row(f"riser {b} − {a} el.{suf}", f"riser_{a}{lab}", f"riser_{b}{lab}")
+            row(f"MoorDyn {b} − {a} seg.{suf}", f"md_{a}{lab}", f"md_{b}{lab}")
+        return row
 
     def acceptance(self, w, ms, suf="", title="Acceptance: code difference against discretisation difference"):
         w(f"### {title}\n")
@@ -767,8 +608,8 @@ class Study:
 
     def surge_section(self, w, S, ms):
         mo = MOTIONS["surge"]
-        w(f"## 4. Surge {mo['A']:g} m / {mo['T']:g} s (ramp {mo['R']:g} s), through riser's FMU: "
-          f"t ∈ [{mo['W']:g}, {mo['D']:g}] s\n")
+        w(f"## 4. Surge {mo.amplitude:g} m / {mo.period:g} s (ramp {mo.ramp:g} s), through riser's FMU: "
+          f"t ∈ [{mo.window:g}, {mo.duration:g}] s\n")
         w("riser's CLI has no surge option, so riser runs through `fmu/riser.fmu` with fmpy (scene "
           "`steel_catenary`, `model = cable`, `structural_damping = 0.001`, `seabed_friction = 0` unless "
           "marked; communication step = time step = 0.05 s; inputs `surge` and `surge_velocity` at every "
@@ -781,28 +622,9 @@ class Study:
         w("|---|---|---|---|---|---|---|---|---|")
         labs = [lab for n in ms for lab in (f"riser_{n}_surge", f"md_{n}_surge")]
         labs += [lab for n in (40, 80) for lab in (f"riser_{n}_surge_fric", f"md_{n}_surge_fric")]
-        for lab in labs:
-            s = S[lab]
-            w(f"| {self.meta[lab]['desc']} | {self.runs[lab]['wall']:.1f} | {s['T_max'] / 1e3:.1f} | "
-              f"{s['T_min'] / 1e3:.1f} | {s['T_mean'] / 1e3:.2f} | {s['Ts_max'] / 1e3:.1f} / {s['Ts_min'] / 1e3:.1f} | "
-              f"{s['td_min']:.2f}–{s['td_max']:.2f} | {s['td_exc']:.2f} | {s['td_mean']:.2f} |")
+        self.run_rows(w, S, labs)
         w("")
-        w("| pair (b − a) | ‖ΔT‖ | ‖ΔT̄‖ | ΔT max (kN) | ΔT min (kN) | ΔT mean (kN) | Δ touchdown mean (m) | "
-          "Δ excursion (m) | max \\|Δ touchdown\\| (m) |")
-        w("|---|---|---|---|---|---|---|---|---|")
-
-        def row(name, a, b):
-            d = diff(self.runs[a], self.runs[b])
-            self.pairs[name] = d
-            w(f"| {name.replace(' (surge)', '')} | {d['dT_rel']:.3f} | {d['dTs_rel']:.4f} | {d['dTmax'] / 1e3:+.1f} | "
-              f"{d['dTmin'] / 1e3:+.1f} | {d['dTmean'] / 1e3:+.2f} | {d['dtd_mean']:+.2f} | {d['dtd_exc']:+.2f} | "
-              f"{d['dtd_max_abs']:.2f} |")
-
-        for n in ms:
-            row(f"**MoorDyn − riser, {n} seg.** (surge)", f"riser_{n}_surge", f"md_{n}_surge")
-        for a, b in zip(ms[:-1], ms[1:]):
-            row(f"riser {b} − {a} el. (surge)", f"riser_{a}_surge", f"riser_{b}_surge")
-            row(f"MoorDyn {b} − {a} seg. (surge)", f"md_{a}_surge", f"md_{b}_surge")
+        row = self.pair_table(w, ms, " (surge)", "_surge")
         for n in (40, 80):
             row(f"MoorDyn − riser, {n} seg., friction (surge)", f"riser_{n}_surge_fric", f"md_{n}_surge_fric")
         row("riser 80 − 40, friction (surge)", "riser_40_surge_fric", "riser_80_surge_fric")
@@ -927,32 +749,9 @@ class Study:
           "damping that the scene itself does not have.\n")
 
 
-def file_stamp(path):
-    """Modification time and the start of the SHA-256 of a file, for the provenance line."""
-    import hashlib
-    try:
-        data = Path(path).read_bytes()
-    except OSError:
-        return "missing"
-    mtime = datetime.datetime.fromtimestamp(os.path.getmtime(path), datetime.timezone.utc)
-    return f"modified {mtime:%Y-%m-%d %H:%M} UTC, sha256 {hashlib.sha256(data).hexdigest()[:12]}"
-
-
-def pin_to_one_cpu():
-    if hasattr(os, "sched_setaffinity"):
-        os.sched_setaffinity(0, {max(os.sched_getaffinity(0))})
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", default="target/release/riser", help="riser binary")
-    ap.add_argument("--out", default="out/moordyn_seabed", help="CSV and work files")
-    ap.add_argument("--docs", default="docs", help="where moordyn_seabed.md and figures/moordyn_seabed.png go")
-    ap.add_argument("--quick", action="store_true", help="40 segments only, no extras (smoke run)")
-    args = ap.parse_args()
-    pin_to_one_cpu()
-    Study(args).run()
+def main(argv=None):
+    peer_study_main(argv, __doc__, Study, "out/moordyn_seabed", "moordyn_seabed.md and figures/moordyn_seabed.png",
+                    "40 segments only, no extras (smoke run)")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ sees every allocation), --leak-check=full, --track-origins=yes,
              interpreter and its extensions alone;
   simulate   fmpy.simulate_fmu of the catenary (n_elements 10, 5 s, heave
              input), as a co-simulation user's tooling runs it;
-  fuzz       a sample of the fuzzer's sequences (tests/python/fmi_fuzz.py),
+  fuzz       a sample of the fuzzer's sequences (riser_tools.fmi_fuzz),
              in this process (no fork), each ending with the reset and normal
              run, every state and instance freed.
 
@@ -21,7 +21,7 @@ bytes) and the stacks of what is attributed to riser.so plus the top of the
 others' definitely-lost stacks; exits 1 if any error is attributed to
 riser.so.
 
-    scripts/valgrind_fmu.py [--fmu fmu/riser.fmu] [--sequences 30] [--seed 1] [--only RUN] [--no-track-origins]
+    riser-tools valgrind [--fmu fmu/riser.fmu] [--sequences 30] [--seed 1] [--only RUN] [--no-track-origins]
 """
 
 import argparse
@@ -33,7 +33,7 @@ import tempfile
 import time
 import xml.etree.ElementTree as ET
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.getcwd()
 PY = os.path.join(ROOT, ".venv", "bin", "python")
 OUT = os.path.join(ROOT, "out", "valgrind")
 VALGRIND = "/usr/bin/valgrind"
@@ -64,8 +64,7 @@ def inner(args):
               f"finite: {bool(np.isfinite(tt).all())}")
         return 0
     # fuzz: in this process
-    sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
-    import fmi_fuzz as F
+    from riser_tools import fmi_fuzz as F
     from fmpy import extract
     lib = F.Library(extract(args.fmu, unzipdir=tempfile.mkdtemp(prefix="riser_vg_")))
     n_calls, bad = 0, 0
@@ -87,7 +86,7 @@ def run_valgrind(name, inner_args, log, origins=False):
     cmd = [VALGRIND, "--tool=memcheck", "--leak-check=full", "--show-leak-kinds=definite,indirect,possible",
            "--errors-for-leak-kinds=definite,indirect", "--trace-children=no", "--num-callers=40",
            f"--track-origins={'yes' if origins else 'no'}",
-           "--xml=yes", f"--xml-file={xml}", PY, os.path.abspath(__file__), "--inner", name] + inner_args
+           "--xml=yes", f"--xml-file={xml}", PY, "-m", "riser_tools.valgrind", "--inner", name] + inner_args
     env = dict(os.environ, PYTHONMALLOC="malloc")
     t0 = time.monotonic()
     p = subprocess.run(cmd, env=env, capture_output=True, text=True)
@@ -183,7 +182,7 @@ def summarize(name, errs, log, baseline_keys=None):
     return by
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--fmu", default=os.path.join(ROOT, "fmu", "riser.fmu"))
     ap.add_argument("--sequences", type=int, default=30)
@@ -193,7 +192,7 @@ def main():
                     help="faster, but where an uninitialised value was made is not known (nor attributed)")
     ap.add_argument("--only", choices=["baseline", "simulate", "fuzz"], action="append",
                     help="run only these (repeatable)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if args.inner:
         return inner(args)
     TRACK[0] = not args.no_track_origins

@@ -1,24 +1,19 @@
-#!/usr/bin/env python3
-"""Speed against accuracy (issue 5): `riser run` over model (rod, cable) x
-elements x time step x Newton tolerance on the catenary and lazy-wave scenes.
-Wall time and the error of the top tension (max and RMS over the last three
-periods), and of the shape (max distance of the 21 shape points at the end),
-against a converged reference of the rod (whose convergence is shown): the
-cable's error includes what it leaves out (bending, torsion). Writes CSV, a
-work-precision plot, docs/study.md (every cell) and the summary section of
+"""Speed against accuracy (issue 5; `make study`): `riser run` over model (rod, cable) x
+elements x time step x Newton tolerance on the catenary and lazy-wave scenes. Wall time and the
+error of the top tension (max and RMS over the last three periods), and of the shape (max
+distance of the 21 shape points at the end), against a converged reference of the rod (whose
+convergence is shown): the cable's error includes what it leaves out (bending, torsion). Writes
+CSV, a work-precision plot, docs/study.md (every cell) and the summary section of
 docs/performance.md (between its `study` markers).
 
-All runs: 100 s, heave 2.5 m with the scene's period, grown over one period
-(a smooth start: an abrupt one rings the undamped axial waves chaotically, and
-no mesh or step converges on the ringing), structural damping 2 ms.
+All runs: 100 s, heave 2.5 m with the scene's period, grown over one period (a smooth start: an
+abrupt one rings the undamped axial waves chaotically, and no mesh or step converges on the
+ringing), structural damping 2 ms. A plain loop, one run at a time: the wall time is the result.
 
-Usage: python scripts/study.py [--bin target/release/riser] [--quick]
+    riser-tools study [--bin target/release/riser] [--quick] [--no-timing-docs]
 """
 
-import argparse
 import csv
-import json
-import subprocess
 from pathlib import Path
 
 import matplotlib
@@ -27,35 +22,32 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-SCENES = {"catenary": 20.0, "lazy_wave": 30.0}
+from .. import cli, report  # noqa: E402
+from ..cases import SCENE_PERIODS, Motion, product  # noqa: E402
+
+SCENES = SCENE_PERIODS
 ELEMENTS = [10, 20, 40, 60, 120, 240]
 STEPS = [0.2, 0.1, 0.05, 0.02, 0.01]
 DURATION = 100.0
 MODELS = ["rod", "cable"]
-MARK_BEGIN = "<!-- study:begin (scripts/study.py writes this section) -->"
-MARK_END = "<!-- study:end -->"
+MARK_BEGIN, MARK_END = report.markers("study", "riser-tools study")
 
 
 def run(bin_, scene, model, n, dt, tol, out):
+    """One cell: the wall time, the top tension and the 21 shape points at the end (None if riser failed)."""
     period = SCENES[scene]
-    cmd = [bin_, "run", scene, "--heave", f"2.5,{period}", "--ramp", str(period), "--duration", str(DURATION),
-           "--json", "--out", str(out), "--shape-times", str(DURATION), "--set", f"model={model}",
-           "--set", f"n_elements={n}", "--set", f"time_step={dt}", "--set", f"newton_tolerance={tol}",
-           "--set", "structural_damping=0.002"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
+    r = cli.try_run(bin_, scene, {"model": model, "n_elements": n, "time_step": dt, "newton_tolerance": tol,
+                                  "structural_damping": 0.002},
+                    Motion(2.5, period, ramp=period), DURATION, out, extra=["--shape-times", str(DURATION)])
+    if r is None:
         return None
-    v = json.loads(p.stdout)
-    ts = list(csv.DictReader(open(out / "timeseries.csv")))
-    t = np.array([float(r["t"]) for r in ts])
-    tt = np.array([float(r["top_tension"]) for r in ts])
-    shape = [r for r in csv.DictReader(open(out / "shapes.csv"))]
+    shape = cli.read_columns(Path(out) / "shapes.csv")
     # the 21 shape points of the FMU: interpolate the node rows at S = k L/20
-    s = np.array([float(r["S"]) for r in shape])
-    xyz = np.array([[float(r["x"]), float(r["y"]), float(r["z"])] for r in shape])
+    s = shape["S"]
     sk = np.linspace(0, s[-1], 21)
-    pts = np.stack([np.interp(sk, s, xyz[:, c]) for c in range(3)], axis=1)
-    return {"wall": v["solve_wall_time"], "t": t, "tt": tt, "shape": pts, "iters": v["iterations_per_step"]}
+    pts = np.stack([np.interp(sk, s, shape[c]) for c in "xyz"], axis=1)
+    return {"wall": r.summary["solve_wall_time"], "t": r.t, "tt": r.top_tension, "shape": pts,
+            "iters": r.summary["iterations_per_step"]}
 
 
 def errors(r, ref, period):
@@ -79,13 +71,12 @@ def describe(b):
             f"error {b[6]:.1e}")
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--out", default="out/study")
-    ap.add_argument("--docs", default="docs")
+def main(argv=None):
+    ap = report.parser("study", __doc__, out="out/study")
     ap.add_argument("--quick", action="store_true", help="fewer cells (a smoke run)")
-    args = ap.parse_args()
+    ap.add_argument("--no-timing-docs", action="store_true",
+                    help="write study.csv and study.md but leave the figure and performance.md (timed on a loaded machine)")
+    args = ap.parse_args(argv)
     out = Path(args.out)
     elements = [10, 60] if args.quick else ELEMENTS
     steps = [0.1, 0.05] if args.quick else STEPS
@@ -103,25 +94,25 @@ def main():
                      f"converged well below the errors tabulated. The cable at the same resolution differs from it "
                      f"by {ec[0]:.1e} / {ec[1]:.1e} and {ec[2]:.1e} m: the error of leaving out bending and "
                      "torsion, the floor of the cable's errors below.")
-        for model in MODELS:
-            for n in elements:
-                for dt in steps:
-                    for tol in ([1e-8, 1e-6] if n == 60 else [1e-8]):
-                        r = run(args.bin, scene, model, n, dt, tol, out / scene / f"{model}_{n}_{dt}_{tol}")
-                        if r is None:
-                            rows.append((scene, model, n, dt, tol, None, None, None, None, None))
-                            continue
-                        emax, erms, eshape = errors(r, ref, period)
-                        rows.append((scene, model, n, dt, tol, r["wall"], emax, erms, eshape, r["iters"]))
-                        print(scene, model, n, dt, tol, f"{r['wall']:.2f} s", f"{emax:.2e}", flush=True)
+        for cell in product(model=MODELS, n=elements, dt=steps):
+            model, n, dt = cell["model"], cell["n"], cell["dt"]
+            for tol in ([1e-8, 1e-6] if n == 60 else [1e-8]):
+                r = run(args.bin, scene, model, n, dt, tol, out / scene / f"{model}_{n}_{dt}_{tol}")
+                if r is None:
+                    rows.append((scene, model, n, dt, tol, None, None, None, None, None))
+                    continue
+                emax, erms, eshape = errors(r, ref, period)
+                rows.append((scene, model, n, dt, tol, r["wall"], emax, erms, eshape, r["iters"]))
+                print(scene, model, n, dt, tol, f"{r['wall']:.2f} s", f"{emax:.2e}", flush=True)
     out.mkdir(parents=True, exist_ok=True)
-    for path in [out / "study.csv", Path(args.docs) / "study.csv"]:
+    # --no-timing-docs: the page, the CSV and the figure go to --out, docs/ keeps its timings
+    docs = out if args.no_timing_docs else Path(args.docs)
+    for path in [out / "study.csv", docs / "study.csv"]:
         with open(path, "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["scene", "model", "n_elements", "time_step", "newton_tolerance", "wall_s",
                         "top_tension_err_max", "top_tension_err_rms", "shape_err_m", "newton_per_step"])
             w.writerows(rows)
-    docs = Path(args.docs)
     figs = docs / "figures"
     figs.mkdir(parents=True, exist_ok=True)
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
@@ -144,7 +135,7 @@ def main():
 
     with open(docs / "study.md", "w") as f:
         f.write("# Speed against accuracy: every cell\n\n")
-        f.write("Made by `python scripts/study.py` (`make study`); the summary is in "
+        f.write("Made by `riser-tools study` (`make study`, riser_tools.studies.speed_accuracy); the summary is in "
                 "[performance.md](performance.md#speed-against-accuracy). Every run: 100 s, heave 2.5 m at the "
                 "scene's period grown over one period, structural damping 2 ms. Errors of the top tension over "
                 "the last three periods, relative to its maximum; shape error = largest distance of the 21 shape "
@@ -167,7 +158,7 @@ def main():
 
     # the summary section of performance.md
     sec = ["## Speed against accuracy", "",
-           "Made by `make study` (`scripts/study.py`, about 20 minutes; run it on a quiet machine): the rod and the "
+           "Made by `make study` (`riser-tools study`, about 20 minutes; run it on a quiet machine): the rod and the "
            "cable model on both scenes over elements {10, 20, 40, 60, 120, 240} × time step {0.2, 0.1, 0.05, "
            "0.02, 0.01} s × Newton tolerance {1e-8; 1e-6 at 60 elements}, 100 s of heave 2.5 m grown over one "
            "period, structural damping 2 ms. Error: the top tension's largest deviation over the last three "
@@ -196,18 +187,9 @@ def main():
                     a, b = a[0], b[0]
                     sec.append(f"| {scene} | {n} | {dt} | {a[5]:.2f} | {b[5]:.2f} | {a[5] / b[5]:.1f}× | "
                                f"{a[6]:.1e} | {b[6]:.1e} |")
+    if args.no_timing_docs:
+        print("wrote", docs / "study.md", "(docs/ left as it was)")
+        return
     perf = docs / "performance.md"
-    text = perf.read_text()
-    block = MARK_BEGIN + "\n" + "\n".join(sec) + "\n" + MARK_END
-    if MARK_BEGIN in text:
-        a = text.index(MARK_BEGIN)
-        b = text.index(MARK_END) + len(MARK_END)
-        text = text[:a] + block + text[b:]
-    else:
-        text = text.rstrip() + "\n\n" + block + "\n"
-    perf.write_text(text)
+    report.replace_section(perf, MARK_BEGIN, MARK_END, sec)
     print("wrote", docs / "study.md", "and the study section of", perf)
-
-
-if __name__ == "__main__":
-    main()

@@ -4,59 +4,55 @@ communication points), against `riser run` with the exact motion at the same
 internal step. Catenary scene, heave 2.5 m / 20 s grown over 20 s, current
 0.8 m/s, t in [40, 100] s, default rho_infinity. Writes docs/cosim.md.
 
-Usage: python scripts/cosim_study.py [--fmu fmu/riser.fmu] [--bin target/release/riser]
+A plain loop (six communication steps, each an fmpy run against a `riser run`): the case's
+input is the displacement alone, which riser-sweep (velocity inputs always given) does not drive.
+
+    riser-tools cosim [--fmu fmu/riser.fmu] [--bin target/release/riser] [--docs docs]
 """
-import argparse
-import subprocess
 import tempfile
 from pathlib import Path
 
 import numpy as np
-from fmpy import simulate_fmu
+
+from .. import cli, fmu, report
+from ..cases import Motion
 
 A, T, RAMP, DURATION, WINDOW = 2.5, 20.0, 20.0, 100.0, 40.0
+MOTION = Motion(A, T, ramp=RAMP)
 
 
 def heave(t):
-    r = np.where(t < RAMP, 0.5 * (1.0 - np.cos(np.pi * t / RAMP)), 1.0)
-    return A * r * np.sin(2 * np.pi * t / T)
+    return MOTION.displacement(t)
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--fmu", default="fmu/riser.fmu")
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--docs", default="docs")
-    args = ap.parse_args()
+def main(argv=None):
+    ap = report.parser("cosim", __doc__, fmu=True)
+    args = ap.parse_args(argv)
     hs = [0.01, 0.025, 0.05, 0.1, 0.2, 0.5]
     rows, rms_err = [], []
     refs = {}
     for h in hs:
         dt = min(0.05, h)
         if dt not in refs:
-            d = Path(tempfile.mkdtemp())
-            subprocess.run([args.bin, "run", "catenary", "--heave", f"{A},{T}", "--ramp", str(RAMP), "--duration",
-                            str(DURATION), "--set", f"time_step={dt}", "--out", str(d)], check=True, capture_output=True)
-            refs[dt] = np.genfromtxt(d / "timeseries.csv", delimiter=",", names=True)
+            refs[dt] = cli.run(args.bin, "catenary", {"time_step": dt}, MOTION, DURATION,
+                               Path(tempfile.mkdtemp())).series
         ref = refs[dt]
-        t = np.arange(0.0, DURATION + 1e-9, h)
-        table = np.array(list(zip(t, heave(t))), dtype=[("time", np.float64), ("heave", np.float64)])
-        res = simulate_fmu(args.fmu, stop_time=DURATION, output_interval=h, input=table,
-                           output=["top_tension", "shape[0].z"], start_values={"time_step": dt})
-        m = res["time"] >= WINDOW - 1e-9
+        res = fmu.simulate(args.fmu, MOTION, DURATION, h, ["top_tension", "shape[0].z"], {"time_step": dt},
+                           velocity=None, t=np.arange(0.0, DURATION + 1e-9, h)).series
+        m = res["t"] >= WINDOW - 1e-9
         tt = res["top_tension"][m]
-        rt = np.interp(res["time"][m], ref["t"], ref["top_tension"])
+        rt = np.interp(res["t"][m], ref["t"], ref["top_tension"])
         mr = ref["t"] >= WINDOW - 1e-9
         stats = np.array([tt.min(), tt.max(), tt.mean()])
         rstats = np.array([ref["top_tension"][mr].min(), ref["top_tension"][mr].max(), ref["top_tension"][mr].mean()])
         rel = np.abs(stats - rstats) / rstats
         rms = np.sqrt(np.mean((tt - rt) ** 2)) / rstats[2]
-        lag = np.max(np.abs(res["shape[0].z"] - res["shape[0].z"][0] - heave(res["time"])))
+        lag = np.max(np.abs(res["shape[0].z"] - res["shape[0].z"][0] - heave(res["t"])))
         rms_err.append(rms)
         rows.append((h, dt, stats / 1e3, rstats / 1e3, rel, rms, lag))
         print(f"h {h}: {stats / 1e3} vs {rstats / 1e3}, rms {rms:.2e}, hang-off error {lag:.2e} m", flush=True)
     lines = ["# Co-simulation fidelity against the communication step (issue 12)", "",
-             "Made by `python scripts/cosim_study.py`. The FMU driven by fmpy's `simulate_fmu` with the displacement "
+             "Made by `riser-tools cosim` (riser_tools.studies.cosim). The FMU driven by fmpy's `simulate_fmu` with the displacement "
              "alone (`heave` sampled at the communication points; no velocity inputs, no input derivatives), against "
              "`riser run` with the exact motion at the same internal step (min(0.05 s, h)). Catenary scene, 60 "
              "elements, heave 2.5 m / 20 s grown over 20 s, current 0.8 m/s, default `rho_infinity` (0.8); top "

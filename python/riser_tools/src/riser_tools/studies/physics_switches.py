@@ -6,13 +6,15 @@ solve_wall_time (the time stepping with its per-step outputs, statics
 excluded), median of 3 runs, the real-time factor, Newton iterations per step
 and the top tension's range.
 
-Usage: python scripts/physics_switches.py [--bin target/release/riser] [--runs 3]
+A plain loop: the wall time is the result.
+
+    riser-tools physics-switches [--bin target/release/riser] [--runs 3]
 """
 
 import argparse
-import json
-import statistics
-import subprocess
+
+from .. import cli
+from ..cases import Motion
 
 CASES = [
     ("scene as built (drag, current 0.8 m/s)", []),
@@ -24,23 +26,16 @@ CASES = [
 ]
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="riser-tools physics-switches", description=__doc__.splitlines()[0])
     ap.add_argument("--bin", default="target/release/riser")
     ap.add_argument("--runs", type=int, default=3)
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     print("| case | wall (s) | real-time factor | Newton / step | top tension min / max (kN) |")
     print("|---|---|---|---|---|")
     for name, sets in CASES:
-        walls = []
-        for _ in range(args.runs):
-            cmd = [args.bin, "run", "catenary"]
-            for s in sets:
-                cmd += ["--set", s]
-            cmd += ["--heave", "2.5,20", "--ramp", "20", "--duration", "100", "--json"]
-            d = json.loads(subprocess.run(cmd, capture_output=True, text=True, check=True).stdout)
-            walls.append(d["solve_wall_time"])
-        w = statistics.median(walls)
+        r = cli.run(args.bin, "catenary", sets, Motion(2.5, 20.0, ramp=20.0), 100.0, repeats=args.runs)
+        d, w = r.summary, r.wall
         t = d["top_tension"]
         print(
             f"| {name} | {w:.2f} | {100 / w:.0f}× | {d['iterations_per_step']:.2f} "

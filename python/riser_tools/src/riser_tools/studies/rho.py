@@ -6,43 +6,38 @@
 - Newton iterations per step and the real-time factor of both.
 Writes docs/rho_infinity.md and docs/figures/abrupt_vs_smooth.png.
 
-Usage: python scripts/rho_study.py [--bin target/release/riser] [--model rod|cable]
+A plain loop of `riser run`: the real-time factors are part of the table.
+
+    riser-tools rho [--bin target/release/riser] [--docs docs]
 """
-import argparse
-import csv
-import json
-import subprocess
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .. import cli, report
+from ..cases import Motion
+from ..series import in_window
+
 
 def run(binary, rho, ramp, dt=0.05, model="rod", out=None):
-    cmd = [binary, "run", "catenary", "--heave", "2.5,20", "--ramp", str(ramp), "--duration", "100", "--json",
-           "--set", f"rho_infinity={rho}", "--set", f"time_step={dt}", "--set", f"model={model}"]
-    d = Path(out or tempfile.mkdtemp())
-    cmd += ["--out", str(d)]
-    v = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-    rows = list(csv.DictReader(open(d / "timeseries.csv")))
-    t = np.array([float(r["t"]) for r in rows])
-    tt = np.array([float(r["top_tension"]) for r in rows]) / 1e3
-    return v, t, tt
+    """The summary, t and the top tension (kN) of one run of 100 s."""
+    r = cli.run(binary, "catenary", {"rho_infinity": rho, "time_step": dt, "model": model},
+                Motion(2.5, 20.0, ramp=ramp), 100.0, Path(out or tempfile.mkdtemp()))
+    return r.summary, r.t, r.top_tension / 1e3
 
 
 def window(t, y, a, b):
-    m = (t >= a - 1e-9) & (t <= b + 1e-9)
+    m = in_window(t, a, b)
     return t[m], y[m]
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--docs", default="docs")
-    args = ap.parse_args()
+def main(argv=None):
+    ap = report.parser("rho", __doc__)
+    args = ap.parse_args(argv)
     rhos = [1.0, 0.95, 0.9, 0.8, 0.6, 0.5, 0.3]
     lines = ["# Choosing `rho_infinity` (issue 12)", "",
-             "Made by `python scripts/rho_study.py`. Catenary scene, 60 elements, time_step 0.05 s, heave 2.5 m / 20 s "
+             "Made by `riser-tools rho` (riser_tools.studies.rho). Catenary scene, 60 elements, time_step 0.05 s, heave 2.5 m / 20 s "
              "with the current, 100 s through `riser run`. *Abrupt*: the paper's start (velocity jump at t = 0); "
              "*smooth*: the amplitude grown over 20 s. Reference for the smooth start: time_step 0.0125 s with "
              "rho_infinity = 1 (the conserving scheme, converged to 0.02 % in the tension). Error: RMS of the top "

@@ -1,5 +1,5 @@
 """A seeded fuzzer of riser.fmu's FMI 2.0 C ABI, shared by tests/python/test_fuzz.py
-(a few hundred sequences in `make test`) and scripts/fuzz_fmu.py (thousands,
+(a few hundred sequences in `make test`) and riser_tools.fuzz (`riser-tools fuzz`, `make fuzz`: thousands,
 replay, minimisation).
 
 One *sequence* is a seed: a deterministic random walk of FMI calls over one or
@@ -465,26 +465,22 @@ class Executor:
         return f"fmi2SetupExperiment(tol={fmt(tol) if tol_defined else '-'}, start={fmt(start)}, " \
                f"stop={fmt(stop) if stop_defined else '-'})", s
 
-    def op_enter_init(self, inst, slot):
+    def _instance_call(self, inst, fn, *modes):
+        """A call that takes the instance alone; on success the instance goes to modes[0]."""
         if not self.live(inst):
             return None, None
-        s = self.lib.call("fmi2EnterInitializationMode", self.comp(inst))
-        self.after(inst, s, "init")
-        return "fmi2EnterInitializationMode", s
+        s = self.lib.call(fn, self.comp(inst))
+        self.after(inst, s, *modes)
+        return fn, s
+
+    def op_enter_init(self, inst, slot):
+        return self._instance_call(inst, "fmi2EnterInitializationMode", "init")
 
     def op_exit_init(self, inst, slot):
-        if not self.live(inst):
-            return None, None
-        s = self.lib.call("fmi2ExitInitializationMode", self.comp(inst))
-        self.after(inst, s, "step")
-        return "fmi2ExitInitializationMode", s
+        return self._instance_call(inst, "fmi2ExitInitializationMode", "step")
 
     def op_terminate(self, inst, slot):
-        if not self.live(inst):
-            return None, None
-        s = self.lib.call("fmi2Terminate", self.comp(inst))
-        self.after(inst, s, "terminated")
-        return "fmi2Terminate", s
+        return self._instance_call(inst, "fmi2Terminate", "terminated")
 
     def op_reset(self, inst, slot):
         if not self.live(inst):
@@ -506,29 +502,23 @@ class Executor:
     def _vrs(self, vrs):
         return (c_uint * len(vrs))(*vrs) if vrs else None
 
-    def op_set_real(self, inst, slot, vrs=(), values=()):
+    def _set_values(self, inst, fn, ctype, vrs, values):
+        """fmi2SetReal/Integer/Boolean of `values` (C type `ctype`) at `vrs`."""
         if not self.live(inst):
             return None, None
-        vals = (c_double * len(values))(*values) if values else None
-        s = self.lib.call("fmi2SetReal", self.comp(inst), self._vrs(vrs), len(vrs), vals)
+        vals = (ctype * len(values))(*values) if values else None
+        s = self.lib.call(fn, self.comp(inst), self._vrs(vrs), len(vrs), vals)
         self.after(inst, s)
-        return f"fmi2SetReal({fmt([self.vr_name(v) for v in vrs])}, {fmt(list(values))})", s
+        return f"{fn}({fmt([self.vr_name(v) for v in vrs])}, {fmt(list(values))})", s
+
+    def op_set_real(self, inst, slot, vrs=(), values=()):
+        return self._set_values(inst, "fmi2SetReal", c_double, vrs, values)
 
     def op_set_integer(self, inst, slot, vrs=(), values=()):
-        if not self.live(inst):
-            return None, None
-        vals = (c_int * len(values))(*values) if values else None
-        s = self.lib.call("fmi2SetInteger", self.comp(inst), self._vrs(vrs), len(vrs), vals)
-        self.after(inst, s)
-        return f"fmi2SetInteger({fmt([self.vr_name(v) for v in vrs])}, {fmt(list(values))})", s
+        return self._set_values(inst, "fmi2SetInteger", c_int, vrs, values)
 
     def op_set_boolean(self, inst, slot, vrs=(), values=()):
-        if not self.live(inst):
-            return None, None
-        vals = (c_int * len(values))(*values) if values else None
-        s = self.lib.call("fmi2SetBoolean", self.comp(inst), self._vrs(vrs), len(vrs), vals)
-        self.after(inst, s)
-        return f"fmi2SetBoolean({fmt([self.vr_name(v) for v in vrs])}, {fmt(list(values))})", s
+        return self._set_values(inst, "fmi2SetBoolean", c_int, vrs, values)
 
     def op_set_string(self, inst, slot, vrs=(), values=()):
         if not self.live(inst):
@@ -610,11 +600,7 @@ class Executor:
         return f"fmi2DoStep(t={fmt(t)}, h={fmt(h)})", s
 
     def op_cancel_step(self, inst, slot):
-        if not self.live(inst):
-            return None, None
-        s = self.lib.call("fmi2CancelStep", self.comp(inst))
-        self.after(inst, s)
-        return "fmi2CancelStep", s
+        return self._instance_call(inst, "fmi2CancelStep")
 
     def op_get_status(self, inst, slot, which="status", kind=0, null=False):
         if not self.live(inst):
@@ -671,16 +657,20 @@ class Executor:
         self.check_reals(text, s, names, got)
         return text, s
 
+    def _state_handle(self, inst, reuse):
+        """The handle fmi2GetFMUstate or fmi2DeSerializeFMUstate writes: a new one, or the state
+        `reuse`'s; None when `reuse` names no state of the instance."""
+        if reuse is None:
+            return c_void_p()
+        return inst.states[reuse][0] if reuse in inst.states else None
+
     def op_get_state(self, inst, slot, sid=None, reuse=None):
         """fmi2GetFMUstate into a new handle (sid) or over an existing one (reuse)."""
         if not self.live(inst):
             return None, None
-        if reuse is not None:
-            if reuse not in inst.states:
-                return None, None
-            handle = inst.states[reuse][0]
-        else:
-            handle = c_void_p()
+        handle = self._state_handle(inst, reuse)
+        if handle is None:
+            return None, None
         s = self.lib.call("fmi2GetFMUstate", self.comp(inst), byref(handle))
         key = reuse if reuse is not None else sid
         if handle.value:
@@ -740,12 +730,9 @@ class Executor:
         what = "intact"
         if mutation is not None:
             blob, what, mode, t = mutation["bytes"], mutation["what"], None, None
-        if reuse is not None:
-            if reuse not in inst.states:
-                return None, None
-            handle = inst.states[reuse][0]
-        else:
-            handle = c_void_p()
+        handle = self._state_handle(inst, reuse)
+        if handle is None:
+            return None, None
         buf = create_string_buffer(blob, len(blob)) if blob else create_string_buffer(1)
         s = self.lib.call("fmi2DeSerializeFMUstate", self.comp(inst), buf, len(blob), byref(handle))
         key = reuse if reuse is not None else sid
@@ -868,6 +855,10 @@ class Generator:
         r = self.rng
         return r.randint(4, 20) if r.random() < 0.85 else r.choice(INT_SPECIAL)
 
+    def set_n_elements(self, slot):
+        """fmi2SetInteger of n_elements (a draw of n_elements)."""
+        return Call("set_integer", slot, {"vrs": [self.lib.by_name["n_elements"].vr], "values": [self.n_elements()]})
+
     def string_value(self, var_name):
         r = self.rng
         x = r.random()
@@ -913,64 +904,30 @@ class Generator:
         mode = inst.mode
         if r.random() < 0.12:
             return self.any_call(slot, inst)
-        if mode == "error" or mode == "terminated":
-            x = r.random()
-            if x < 0.6:
-                return Call("reset", slot)
-            if x < 0.7:
-                return Call("free_instance", slot)
-            return self.any_call(slot, inst)
-        if mode == "failed":
-            x = r.random()
-            if x < 0.3 and inst.states:
-                return Call("set_state", slot, {"sid": r.choice(list(inst.states))})
-            if x < 0.5:
-                return Call("reset", slot)
-            if x < 0.6:
-                return Call("terminate", slot)
-            return self.any_call(slot, inst)
-        if mode == "instantiated":
-            x = r.random()
-            if x < 0.35:
-                return Call("set_integer", slot, {"vrs": [lib.by_name["n_elements"].vr], "values": [self.n_elements()]})
-            if x < 0.5:
-                return self.set_param(slot)
-            if x < 0.7:
-                return self.setup(slot)
-            if x < 0.9:
-                return Call("enter_init", slot)
-            return self.any_call(slot, inst)
-        if mode == "init":
-            x = r.random()
-            if x < 0.25:
-                return self.set_param(slot)
-            if x < 0.35:
-                return Call("set_integer", slot, {"vrs": [lib.by_name["n_elements"].vr], "values": [self.n_elements()]})
-            if x < 0.45:
-                return self.set_input(slot)
-            if x < 0.55:
-                return self.get_outputs(slot)
-            if x < 0.9:
-                return Call("exit_init", slot)
-            return self.any_call(slot, inst)
-        # mode == "step"
+        # the calls each state draws: cumulative probabilities against one uniform draw, the first
+        # row with x < p taken (a row of None is skipped), any call past the last
+        again = [(0.6, lambda: Call("reset", slot)), (0.7, lambda: Call("free_instance", slot))]
+        tables = {
+            "error": again,
+            "terminated": again,
+            "failed": [(0.3, (lambda: Call("set_state", slot, {"sid": r.choice(list(inst.states))}))
+                        if inst.states else None),
+                       (0.5, lambda: Call("reset", slot)), (0.6, lambda: Call("terminate", slot))],
+            "instantiated": [(0.35, lambda: self.set_n_elements(slot)), (0.5, lambda: self.set_param(slot)),
+                             (0.7, lambda: self.setup(slot)), (0.9, lambda: Call("enter_init", slot))],
+            "init": [(0.25, lambda: self.set_param(slot)), (0.35, lambda: self.set_n_elements(slot)),
+                     (0.45, lambda: self.set_input(slot)), (0.55, lambda: self.get_outputs(slot)),
+                     (0.9, lambda: Call("exit_init", slot))],
+            "step": [(0.2, lambda: self.set_input(slot)), (0.45, lambda: self.do_step(slot, inst)),
+                     (0.58, lambda: self.get_outputs(slot)), (0.76, lambda: self.state_call(slot, inst)),
+                     (0.8, lambda: Call("directional_derivative", slot, self.dd_args())),
+                     (0.82, lambda: self.state_round_trip(slot)), (0.84, lambda: Call("terminate", slot)),
+                     (0.87, lambda: Call("reset", slot))],
+        }
         x = r.random()
-        if x < 0.2:
-            return self.set_input(slot)
-        if x < 0.45:
-            return self.do_step(slot, inst)
-        if x < 0.58:
-            return self.get_outputs(slot)
-        if x < 0.76:
-            return self.state_call(slot, inst)
-        if x < 0.8:
-            return Call("directional_derivative", slot, self.dd_args())
-        if x < 0.82:
-            return self.state_round_trip(slot)
-        if x < 0.84:
-            return Call("terminate", slot)
-        if x < 0.87:
-            return Call("reset", slot)
+        for p, make in tables.get(mode, tables["step"]):
+            if make is not None and x < p:
+                return make()
         return self.any_call(slot, inst)
 
     def setup(self, slot):

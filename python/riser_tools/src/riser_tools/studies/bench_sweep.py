@@ -8,7 +8,7 @@ the FMU, the cases, writing results.csv, closing). Two case sizes: *tiny*
 runs). Medians of --repeat runs. Prints a Markdown table (the "Sweeps on Dask"
 section of docs/performance.md) and writes out/bench_sweep/bench.json.
 
-Usage: python scripts/bench_sweep.py [--fmu fmu/riser.fmu] [--repeat 3] [--sizes tiny,small]
+Usage (`make bench-sweep`): riser-tools bench-sweep [--fmu fmu/riser.fmu] [--repeat 3] [--sizes tiny,small]
 (5 to 8 minutes on 2 cores; run it on a quiet machine, it measures wall time).
 """
 
@@ -127,13 +127,13 @@ def empty_cluster(workers: int, fmu: Path) -> tuple[float, float]:
     return time.perf_counter() - t0, cpu() - c0
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--fmu", default="fmu/riser.fmu")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--sizes", default="tiny,small")
     ap.add_argument("--out", default="out/bench_sweep")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     fmu = Path(args.fmu)
     results: dict[str, dict[str, float]] = {}
     load0 = os.getloadavg()

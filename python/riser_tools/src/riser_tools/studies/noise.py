@@ -14,35 +14,31 @@ moving average, relative to the mean top tension (the wave-frequency response,
 periods of 20–30 s, passes the moving average; the axial ringing at ~10 Hz
 does not).
 
-Usage: python scripts/tension_noise.py [--bin target/release/riser] [--docs docs]
+A plain loop of `riser run` (the table has the wall time of each run).
+
+    riser-tools noise [--bin target/release/riser] [--docs docs]   (make noise)
 """
 
-import argparse
-import csv
-import json
-import subprocess
 from pathlib import Path
 
 import numpy as np
 
-SCENES = {"catenary": 20.0, "lazy_wave": 30.0}
+from .. import cli, report
+from ..cases import SCENE_PERIODS, Motion
+
+SCENES = SCENE_PERIODS
 DURATION = 100.0
-MARK_BEGIN = "<!-- noise:begin (scripts/tension_noise.py writes this section) -->"
-MARK_END = "<!-- noise:end -->"
+MARK_BEGIN, MARK_END = report.markers("noise", "riser-tools noise")
 READING = ("**Reading.** With a smooth start the conserving scheme leaves a small high-frequency noise in the top tension that grows with the step (largest on the lazy wave at dt 0.2 s); the dissipative option removes most of it, η = h/10 more so at large steps. The paper's abrupt start is another matter: its velocity jump rings the undamped axial waves for the whole run (noise of tens of per cent), which η = 2 ms removes at dt 0.05 s; at dt 0.2 s neither value does, because what remains is the response to a jump the step does not resolve, not a mode the scheme leaves undamped. Hence: ramp the start (`--ramp`, or the FMU's velocity inputs) and use η = 2 ms or η = h/10 when tension noise matters. The option is off by default, as the paper's conserving scheme.")
 
 
 def run(bin_, scene, dt, eta, ramp, out):
     period = SCENES[scene]
-    cmd = [bin_, "run", scene, "--heave", f"2.5,{period}", "--ramp", str(ramp), "--duration", str(DURATION),
-           "--json", "--out", str(out), "--set", f"time_step={dt}", "--set", f"structural_damping={eta}"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
+    r = cli.try_run(bin_, scene, {"time_step": dt, "structural_damping": eta}, Motion(2.5, period, ramp=ramp),
+                    DURATION, out)
+    if r is None:
         return None
-    v = json.loads(p.stdout)
-    rows = list(csv.DictReader(open(out / "timeseries.csv")))
-    t = np.array([float(r["t"]) for r in rows])
-    tt = np.array([float(r["top_tension"]) for r in rows])
+    v, t, tt = r.summary, r.t, r.top_tension
     sel = t >= DURATION - 3 * period
     window = max(1, int(round(1.0 / dt)))
     smooth = np.convolve(tt, np.ones(window) / window, mode="same")
@@ -53,15 +49,12 @@ def run(bin_, scene, dt, eta, ramp, out):
             "iters": v["iterations_per_step"], "dissipated": v.get("dissipated_energy", 0.0)}
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="target/release/riser")
-    ap.add_argument("--out", default="out/noise")
-    ap.add_argument("--docs", default="docs")
-    args = ap.parse_args()
+def main(argv=None):
+    ap = report.parser("noise", __doc__, out="out/noise")
+    args = ap.parse_args(argv)
     out = Path(args.out)
     lines = ["## Tension noise and numerical dissipation", "",
-             "Made by `python scripts/tension_noise.py`. The rod, 60 elements, 100 s of heave 2.5 m at the "
+             "Made by `riser-tools noise` (`make noise`). The rod, 60 elements, 100 s of heave 2.5 m at the "
              "scene's period. Noise: RMS of the top tension minus its 1 s moving average over the last three "
              "periods, relative to the mean top tension. η: the structural damping option (theory §5.9), "
              "energy-decaying and momentum-conserving (`dynamics_conservation::structural_damping_never_creates_"
@@ -84,15 +77,5 @@ def main():
                     print(lines[-1], flush=True)
     lines += ["", READING]
     perf = Path(args.docs) / "performance.md"
-    text = perf.read_text()
-    block = MARK_BEGIN + "\n" + "\n".join(lines) + "\n" + MARK_END
-    if MARK_BEGIN in text:
-        text = text[:text.index(MARK_BEGIN)] + block + text[text.index(MARK_END) + len(MARK_END):]
-    else:
-        text = text.rstrip() + "\n\n" + block + "\n"
-    perf.write_text(text)
+    report.replace_section(perf, MARK_BEGIN, MARK_END, lines)
     print("wrote the noise section of", perf)
-
-
-if __name__ == "__main__":
-    main()

@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
 """The long fuzz run of fmu/riser.fmu's FMI 2.0 C ABI (`make fuzz`;
 docs/fuzz.md): thousands of seeded random call sequences, each in a forked
-child (the generator and the oracle: tests/python/fmi_fuzz.py; the few
+child (the generator and the oracle: riser_tools.fmi_fuzz; the few
 hundred of `make test`: tests/python/test_fuzz.py).
 
-    scripts/fuzz_fmu.py                      # 5000 sequences from seed 1, 2 at a time
-    scripts/fuzz_fmu.py --count 500 --seed 7
-    scripts/fuzz_fmu.py --replay SEED        # one sequence in this process, every call and status
-    scripts/fuzz_fmu.py --minimize SEED      # shrink a failing sequence to the calls that matter
+    riser-tools fuzz                      # 5000 sequences from seed 1, 2 at a time
+    riser-tools fuzz --count 500 --seed 7
+    riser-tools fuzz --replay SEED        # one sequence in this process, every call and status
+    riser-tools fuzz --minimize SEED      # shrink a failing sequence to the calls that matter
 
 Prints a summary table (sequences, FMI calls, crashes, hangs,
 OK-with-non-finite, reset failures, outputs unreadable after an OK state
-change, fmi2Fatal, seconds; the oracle: tests/python/fmi_fuzz.py), the
+change, fmi2Fatal, seconds; the oracle: riser_tools.fmi_fuzz), the
 distinct failures with their seeds, and what the sequences reached (calls by
 function and status). Exits 1 if any sequence failed.
 """
@@ -26,10 +26,9 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+from . import fmi_fuzz as F
 
-import fmi_fuzz as F  # noqa: E402
+ROOT = os.getcwd()
 
 
 def load(fmu):
@@ -231,7 +230,7 @@ def record_calls(lib, seed):
     return calls
 
 
-def main():
+def main(argv=None):
     # SIGTERM: the children are killed on the way out (run_many's finally)
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -243,7 +242,7 @@ def main():
     ap.add_argument("--json", help="write the counts and every failing outcome here")
     ap.add_argument("--replay", type=int, metavar="SEED", help="run one sequence here, printing every call")
     ap.add_argument("--minimize", type=int, metavar="SEED", help="shrink a failing sequence and print it")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if args.replay is not None:
         return replay(args)
     if args.minimize is not None:

@@ -1,0 +1,31 @@
+"""Time series as the studies reduce them: statistics over a window, errors
+against a reference, moving averages."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def in_window(t: np.ndarray, start: float, stop: float = np.inf) -> np.ndarray:
+    """The mask start <= t <= stop (to 1e-9 s)."""
+    return (t >= start - 1e-9) & (t <= stop + 1e-9)
+
+
+def window_stats(t: np.ndarray, y: np.ndarray, start: float) -> tuple[float, float, float]:
+    """(mean, min, max) of y over t >= start."""
+    m = t >= start - 1e-9
+    return float(np.mean(y[m])), float(np.min(y[m])), float(np.max(y[m]))
+
+
+def centred_average(x: np.ndarray, n: int) -> np.ndarray:
+    """Centred moving average over n + 1 samples (n even); NaN within n/2 of the ends."""
+    ker = np.ones(n + 1) / (n + 1)
+    y = np.convolve(x, ker, mode="same")
+    y[: n // 2] = np.nan
+    y[len(y) - n // 2:] = np.nan
+    return y
+
+
+def relative_rms(y: np.ndarray, ref: np.ndarray) -> float:
+    """RMS of y - ref relative to the mean of ref."""
+    return float(np.sqrt(np.mean((y - ref) ** 2)) / np.mean(ref))

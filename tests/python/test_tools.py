@@ -1,0 +1,163 @@
+"""riser_tools, the package that drives riser from outside: its MoorDyn driver against a
+case with a known answer, its references against riser, and its case, grid and spec code
+against bad input (each refused naming the field)."""
+
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+from riser_tools import moordyn, reference
+from riser_tools.cases import CATENARY, STEEL_CATENARY, Case, CaseError, Line, Motion, product, unique_labels
+from riser_tools.cli import CliError, read_columns, run_command, statics
+
+
+# --------------------------------------------------------------------------- the MoorDyn driver
+
+def moordyn_static(tmp_path, line, nseg):
+    path = moordyn.write_input(tmp_path / f"static_{nseg}" / "line.txt", line, nseg, 1e-3,
+                               {"threshIC": 1e-6, **moordyn.NO_OUTPUT}, depth=200.0)
+    return moordyn.static_state(path, line, nseg)
+
+
+def test_moordyn_static_catenary_converges_to_the_elastic_catenary(tmp_path):
+    """MoorDyn's static solve (its stationary initial-condition solver) of the catenary scene's
+    line without bending, made soft (EA = 1e7 N: 1.4 % stretch, so the elastic term matters:
+    the inextensible catenary is 5 % off in H) against Irvine's elastic catenary. A lumped-mass
+    chain converges to the catenary at second order: at 40 segments H within 1e-3 and V within
+    5e-4 (measured 4.4e-4 and 1.6e-4), the error falling 3 to 5 times from 20 to 40 segments
+    (measured 4.0); the nodes within 2 cm of the closed-form shape."""
+    line = CATENARY.replace(ei=0.0, ea=1e7)
+    ref = reference.elastic_catenary(line.length, line.submerged_weight, line.ea, line.span, line.anchor[2])
+    rigid = reference.elastic_catenary(line.length, line.submerged_weight, 1e13, line.span, line.anchor[2])
+    assert abs(rigid.h / ref.h - 1) > 0.04            # the case tells an elastic line from a rigid one
+    err = {}
+    for nseg in (20, 40):
+        st = moordyn_static(tmp_path, line, nseg)
+        err[nseg] = (st.horizontal / ref.h - 1, st.vertical / ref.v_top - 1)
+    assert abs(err[40][0]) < 1e-3 and abs(err[40][1]) < 5e-4, err
+    assert 3.0 < err[20][0] / err[40][0] < 5.0, err
+    # the nodes (MoorDyn's frame, anchor first) on the closed-form shape at the same arc length
+    st = moordyn_static(tmp_path, line, 40)
+    dist = []
+    for i, node in enumerate(st.nodes):
+        s = line.length * (1.0 - i / 40)
+        x, z = reference.elastic_catenary_shape(line.submerged_weight, line.ea, ref, s)
+        dist.append(math.hypot(node[0] - x, node[2] - (z - line.surface_z)))
+    assert max(dist) < 0.02, max(dist)
+
+
+def test_moordyn_run_holds_a_still_line_at_its_static_force(tmp_path):
+    """A run with the fairlead held still (amplitude 0) from MoorDyn's own static state keeps
+    the static fairlead force to 1e-3 over 2 s; the outputs land on the sample grid."""
+    line = CATENARY.replace(ei=0.0, ea=1e7)
+    path = moordyn.write_input(tmp_path / "still" / "line.txt", line, 20, 1e-3,
+                               {"threshIC": 1e-6, **moordyn.NO_OUTPUT}, ba=1e5, depth=200.0)
+    r = moordyn.run(path, line, 20, Motion(0.0, 10.0), 2.0, 1e-3, 0.01)
+    assert r.ok and len(r.t) == 201 and np.all(np.isfinite(r.T))
+    assert np.max(np.abs(r.T / r.T[0] - 1.0)) < 1e-3
+
+
+# --------------------------------------------------------------------------- the references
+
+def test_the_references_agree_with_riser_statics(riser_bin):
+    """The Python port of tests/common/reference.rs against riser's cable statics: the catenary
+    (no seabed) within 3e-4 of H and V at the scene's 60 elements, the steel catenary on a
+    frictionless seabed within 5e-4 (the Rust tests' tolerances are 2e-4 on the rod)."""
+    for scene, sets, ref in (
+        ("catenary", ["model=cable"],
+         reference.elastic_catenary(CATENARY.length, CATENARY.submerged_weight, CATENARY.ea, 60.0, -70.0)),
+        ("steel_catenary", ["model=cable", "seabed_friction=0"],
+         reference.catenary_on_seabed(STEEL_CATENARY.length, STEEL_CATENARY.submerged_weight, STEEL_CATENARY.ea,
+                                      292.0, 200.0)),
+    ):
+        j = statics(riser_bin, scene, sets)
+        h, v = j["top_force"][0], -j["top_force"][2]
+        assert abs(h / ref.h - 1) < 5e-4 and abs(v / ref.v_top - 1) < 5e-4, (scene, h, ref.h, v, ref.v_top)
+
+
+def test_the_seabed_catenary_lies_on_the_seabed():
+    """The lying length closes the horizontal span: what is not lying spans the rest."""
+    s = STEEL_CATENARY
+    r = reference.catenary_on_seabed(s.length, s.submerged_weight, s.ea, 292.0, 200.0)
+    assert 0 < r.lying < s.length
+    assert abs(r.v_top - s.submerged_weight * (s.length - r.lying)) < 1e-6 * r.v_top
+
+
+# --------------------------------------------------------------------------- bad input
+
+@pytest.mark.parametrize("make, field", [
+    (lambda: Motion(2.5, -20.0), "motion.period = -20.0"),
+    (lambda: Motion(2.5, 20.0, axis="roll"), "motion.axis = 'roll'"),
+    (lambda: Motion(float("nan"), 20.0), "motion.amplitude = nan"),
+    (lambda: Motion(2.5, 20.0, ramp=-1.0), "motion.ramp = -1.0"),
+    (lambda: Motion(2.5, 20.0, "surge", until=10.0), "motion.until"),
+    (lambda: Motion(2.5, 20.0, duration=60.0, window=60.0), "motion.window = 60.0"),
+    (lambda: Line(**{**CATENARY.__dict__, "mass": -1.0}), "line.mass = -1.0"),
+    (lambda: Line(**{**CATENARY.__dict__, "anchor": (60.0, 0.0)}), "line.anchor"),
+    (lambda: Line(**{**CATENARY.__dict__, "seabed_z": 5.0}), "line.seabed_z = 5.0"),
+    (lambda: Case("a", "catenary", ("n_elements",)), "case a: sets: 'n_elements': expected name=value"),
+    (lambda: Case("a", "catenary", "n_elements=10"), "case a: sets = 'n_elements=10'"),
+    (lambda: Case("a", "catenary", duration=0.0), "case a: duration = 0.0"),
+    (lambda: Case("", "catenary"), "case.label"),
+    (lambda: unique_labels([Case("a", "catenary"), Case("a", "lazy_wave")]), "case a: label used twice"),
+    (lambda: product(n_elements=[]), "grid.n_elements: an empty list"),
+    (lambda: product(n_elements="10,20"), "grid.n_elements = '10,20'"),
+    (lambda: product(time_step=[0.1, 0.1]), "grid.time_step: 0.1 appears twice"),
+    (lambda: product(), "grid: no axes"),
+    (lambda: run_command("riser", "catenary", ["=1"]), "sets: '=1'"),
+    (lambda: moordyn.input_text(CATENARY, 0, 1e-3), "moordyn.nseg = 0"),
+    (lambda: moordyn.input_text(CATENARY, 10, -1e-3), "moordyn.dtm = -0.001"),
+    (lambda: moordyn.run("x", CATENARY, 10, Motion(1.0, 10.0), 1.0, 3e-3, 0.01), "moordyn.sample = 0.01"),
+])
+def test_cases_grids_and_the_moordyn_driver_refuse_bad_input_naming_the_field(make, field):
+    with pytest.raises(CaseError) as e:
+        make()
+    assert str(e.value).startswith(field), str(e.value)
+
+
+@pytest.mark.parametrize("call, field", [
+    (lambda: reference.elastic_catenary(100.0, -1.0, 1e9, 60.0, -70.0), "w = -1.0"),
+    (lambda: reference.elastic_catenary(100.0, 1e3, 1e9, 60.0, math.inf), "dz = inf"),
+    (lambda: reference.catenary_on_seabed(400.0, 1e3, 3e9, 292.0, 0.0), "depth = 0.0"),
+    (lambda: reference.catenary_on_seabed(400.0, 1e3, 3e9, 500.0, 200.0), "catenary_on_seabed: no touchdown"),
+])
+def test_the_references_refuse_bad_input_naming_the_argument(call, field):
+    with pytest.raises(reference.ReferenceError) as e:
+        call()
+    assert str(e.value).startswith(field), str(e.value)
+
+
+@pytest.mark.parametrize("text, field", [
+    ("[run]\nduration = -10.0\n", "run.duration"),
+    ("[run]\nduration = 10.0\ncommunication_step = 0.3\n", "run.duration"),
+    ("[run]\nduration = 10.0\n[motion]\nheave_amplitude = \"big\"\n", "motion.heave_amplitude"),
+    ("[run]\nduration = 10.0\n[motion]\nheave_periode = 10.0\n", "motion.heave_periode"),
+    ("[run]\nduration = 10.0\n[outputs]\nwindow = [20.0, 5.0]\n", "outputs.window"),
+    ("[run]\nduration = 10.0\n[grid]\nn_elements = { start = 10, stop = 40 }\n", "grid.n_elements"),
+    ("[run]\nduration = 10.0\n[grid]\nmode = \"diagonal\"\nn_elements = [10]\n", "grid.mode"),
+    ("[runn]\nduration = 10.0\n", "runn"),
+    ("[parameters]\nn_elements = 10\n", "run"),
+])
+def test_a_spec_refuses_bad_input_naming_the_field(tmp_path, text, field):
+    """riser-sweep's spec (riser_sweep.spec.load_spec), before any FMU is read: each error's
+    message starts with the field (the grid's FMU checks are test_sweep.py's)."""
+    from riser_sweep import SpecError, load_spec
+    p = tmp_path / "spec.toml"
+    p.write_text(text)
+    with pytest.raises(SpecError) as e:
+        load_spec(p)
+    assert field in str(e.value).split(":")[0], str(e.value)
+
+
+def test_the_cli_driver_reports_a_failing_run(riser_bin, tmp_path):
+    """A run riser refuses is a CliError carrying riser's message (the field and its range)."""
+    from riser_tools import cli
+    with pytest.raises(CliError) as e:
+        cli.run(riser_bin, "catenary", {"n_elements": 0}, Motion(1.0, 10.0), 1.0, tmp_path / "x")
+    assert "n_elements" in str(e.value)
+    r = cli.run(riser_bin, "catenary", {"n_elements": 4, "model": "cable"}, Motion(1.0, 10.0, ramp=5.0), 2.0,
+                tmp_path / "ok")
+    assert r.summary["completed"] and set(read_columns(tmp_path / "ok" / "timeseries.csv")) >= {"t", "top_tension"}
+    assert subprocess.run([riser_bin, "--version"], capture_output=True).returncode == 0
