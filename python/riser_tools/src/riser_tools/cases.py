@@ -110,10 +110,12 @@ class Motion:
         t = np.asarray(t, dtype=float)
         return (self.displacement(t + h) - 2.0 * self.displacement(t) + self.displacement(t - h)) / (h * h)
 
-    def cli_args(self) -> list[str]:
-        """The motion as `riser run` options (`--heave A,T --ramp R [--heave-until T]`)."""
+    def cli_args(self, ramp: bool = True) -> list[str]:
+        """The motion as `riser run` options (`--heave A,T --ramp R [--heave-until T]`). The
+        ramp is always given: `riser run`'s default is one period, and `--ramp 0` is the
+        paper's abrupt start. `ramp=False` leaves it out (for the second motion of a run)."""
         args = [f"--{self.axis}", f"{self.amplitude:g},{self.period:g}"]
-        if self.ramp > 0.0:
+        if ramp:
             args += ["--ramp", f"{self.ramp:g}"]
         if self.until is not None:
             args += ["--heave-until", f"{self.until:g}"]

@@ -66,8 +66,10 @@ def run_command(binary: str, scene: str, sets: Mapping[str, Any] | Iterable[str]
     """`riser run SCENE --set... MOTION... --duration D --json [--out DIR] EXTRA...`"""
     motions = [] if motion is None else [motion] if isinstance(motion, Motion) else list(motion)
     cmd = [str(binary), "run", scene, *set_args(sets)]
-    for m in motions:
-        cmd += m.cli_args()
+    if len({m.ramp for m in motions}) > 1:
+        raise CliError(f"motions with different ramps {[m.ramp for m in motions]}: riser run has one --ramp")
+    for i, m in enumerate(motions):
+        cmd += m.cli_args(ramp=i == 0)
     cmd += ["--duration", f"{duration:g}", "--json"]
     if out is not None:
         cmd += ["--out", str(out)]
