@@ -1,0 +1,294 @@
+"""The co-simulation loop of a vessel and riser's FMU, linearised (docs/theory.md §7.4, issue 29).
+
+The loop, one axis (heave), uniform communication step h:
+
+* the **vessel**: (M + A) x'' + C x' + K x = F(t) with F held over each step (a vessel FMU sees
+  the force set before its step, zero-order hold), integrated exactly: s_{n+1} = Φ s_n + Γ F,
+  s = (x, x');
+* the **master**: libcosim's fixed-step algorithm is Jacobi, the vessel steps with the force of
+  t_n (F_n); Gauss–Seidel with the riser first would give it F_{n+1};
+* the riser's **input path** (src/fmi/input_path.rs): the end state of the step from t_n,
+  e_n = (P(h), h P'(h), h² P''(h)), is a linear filter of the displacement inputs,
+  e_{n,j} = Σ_i W[j, i] x_{n-i} (the predictor; `predictor_weights`), and the hang-off moves along
+  the quintic Hermite interpolant between successive end states: a sum of C2 bumps, one of each
+  kind j (value, slope, curvature) at every communication point;
+* the **line**: linear about its state, F_n = Σ_k Σ_j g_j[k] e_{n-1-k, j}, g_j[k] the change of
+  top_force_z at t_c + k h per unit bump of kind j centred at t_c. Measured with the model itself
+  (`examples/hang_off_response.rs`, every h at the internal step min(0.05 s, h)), or the lumped
+  model the brief names for contrast: g_0[0] = −S (the static tangent stiffness, §8.3) and
+  g_2[0] = −m / h² (a mass m at the hang-off).
+
+The riser alone is then F_n = Σ_k r[k] x_{n-1-k} with r = Σ_j g_j * W_j, and the loop is a linear
+recurrence whose spectral radius decides stability (< 1). From the same pieces: the hang-off's
+answer to an alternating input, |E_0(π)| per metre; the tension's, |Σ_j G_j(π) E_j(π)|; and the
+one-way error of a sinusoidal heave, |Σ_j G_j(θ)(E_j(θ) − X_j(θ))| U with X the exact end state.
+
+    riser-tools coupling [--response docs/coupling_response.csv] [--measure] [--docs docs]
+"""
+from __future__ import annotations
+
+import argparse
+import subprocess
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[4]
+
+# communication steps of the analysis (s)
+STEPS = [0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.5, 0.7, 1.0]
+# the bumps are centred at T_CENTRE (the current has moved the line off its still-water shape by
+# then) and followed for T_MEMORY; amplitude small enough for the linear answer
+T_CENTRE, T_MEMORY, BUMP = 10.0, 30.0, 1e-4
+
+
+@dataclass(frozen=True)
+class Body:
+    """A floating body at the hang-off, heave only: mass, added mass (kg), linear damping
+    (N s/m), hydrostatic stiffness (N/m)."""
+    name: str
+    mass: float
+    added_mass: float
+    damping: float
+    stiffness: float
+
+    @staticmethod
+    def of(name, mass, added_mass, waterplane, zeta, rho=1025.0, g=9.81):
+        k = rho * g * waterplane
+        return Body(name, mass, added_mass, 2.0 * zeta * np.sqrt(k * (mass + added_mass)), k)
+
+
+# a 2000 t vessel (added mass half its mass, 500 m² waterplane: heave period 4.9 s, 5 % damping)
+# and a 50 t surface buoy (added mass 25 t, 10 m² waterplane: 5.4 s, 5 %)
+VESSEL = Body.of("vessel 2000 t", 2.0e6, 1.0e6, 500.0, 0.05)
+BUOY = Body.of("buoy 50 t", 5.0e4, 2.5e4, 10.0, 0.05)
+
+
+@dataclass(frozen=True)
+class Predictor:
+    """The end state of a step from the last n_poly + n_alt displacement samples: the polynomial
+    part of degree n_poly − 1 of the samples written as polynomial + alternating nuisance
+    Σ_{i < n_alt} a_i (τ_k/h)^i (−1)^k (n_alt = 0: the interpolating polynomial)."""
+    name: str
+    n_poly: int
+    n_alt: int = 0
+
+    @property
+    def taps(self):
+        return self.n_poly + self.n_alt
+
+
+TODAY = Predictor("quartic interpolation (before)", 5)
+CANDIDATES = [
+    TODAY,
+    Predictor("cubic interpolation", 4),
+    Predictor("quadratic interpolation", 3),
+    Predictor("linear extrapolation", 2),
+    Predictor("quartic, alternation removed (1)", 5, 1),
+    Predictor("quartic, alternation removed (2)", 5, 2),
+    Predictor("cubic, alternation removed (2)", 4, 2),
+]
+
+
+def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
+    """W (3 × taps): the end state (P, h P', h² P'') at σ = 1 from the samples at σ = τ_k/h
+    (newest first; default the uniform τ_k = −k h)."""
+    n = p.taps
+    s = -np.arange(n, dtype=float) if taus is None else np.asarray(taus, dtype=float)
+    cols = [s ** j for j in range(p.n_poly)] + [s ** i * (-1.0) ** np.arange(n) for i in range(p.n_alt)]
+    a = np.array(cols).T  # a @ coef = samples
+    inv = np.linalg.inv(a)[: p.n_poly]  # polynomial coefficients from the samples
+    j = np.arange(p.n_poly)
+    value = np.ones(p.n_poly)
+    slope = j.astype(float)
+    curv = (j * (j - 1)).astype(float)
+    return np.array([value @ inv, slope @ inv, curv @ inv])
+
+
+def end_state_response(w: np.ndarray, theta) -> np.ndarray:
+    """E_j(θ) = Σ_i W[j, i] e^{−iθi}: the end state per unit of a sampled e^{iθn}, relative to x_n."""
+    theta = np.atleast_1d(theta)
+    return w @ np.exp(-1j * np.outer(np.arange(w.shape[1]), theta))
+
+
+def exact_end_state(theta) -> np.ndarray:
+    """X_j(θ): the exact motion's end state (value, h·slope, h²·curvature) at t_{n+1} per unit x_n."""
+    theta = np.atleast_1d(theta)
+    z = np.exp(1j * theta)
+    return np.array([z, 1j * theta * z, -(theta ** 2) * z])
+
+
+def line_transfer(g: np.ndarray, theta) -> np.ndarray:
+    """G_j(θ) = Σ_k g_j[k] e^{−iθ(k+1)}: the force at t_n per unit end state e_{n−1}."""
+    theta = np.atleast_1d(theta)
+    return g @ np.exp(-1j * np.outer(np.arange(1, g.shape[1] + 1), theta))
+
+
+def lumped_line(h: float, stiffness: float, mass: float) -> np.ndarray:
+    g = np.zeros((3, 1))
+    g[0, 0], g[2, 0] = -stiffness, -mass / h ** 2
+    return g
+
+
+def expm(a: np.ndarray) -> np.ndarray:
+    """Matrix exponential by scaling and squaring a Taylor series (small matrices)."""
+    s = max(0, int(np.ceil(np.log2(max(np.abs(a).sum(axis=1).max(), 1e-300)))) + 1)
+    b = a / 2.0 ** s
+    out, term = np.eye(len(a)), np.eye(len(a))
+    for k in range(1, 25):
+        term = term @ b / k
+        out = out + term
+    for _ in range(s):
+        out = out @ out
+    return out
+
+
+def body_zoh(body: Body, h: float):
+    """Φ, Γ of the body's heave over h with the force held: s_{n+1} = Φ s_n + Γ F."""
+    m = body.mass + body.added_mass
+    a = np.array([[0.0, 1.0], [-body.stiffness / m, -body.damping / m]])
+    aug = np.zeros((3, 3))
+    aug[:2, :2], aug[1, 2] = a, 1.0 / m
+    e = expm(aug * h)
+    return e[:2, :2], e[:2, 2]
+
+
+def riser_fir(g: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """r[k]: the force at t_n per unit x_{n−1−k} (the riser alone, input to output)."""
+    return sum(np.convolve(g[j], w[j]) for j in range(3))
+
+
+def spectral_radius(body: Body, h: float, r: np.ndarray, master: str = "jacobi") -> float:
+    """Largest |eigenvalue| of the loop: state (x_n, v_n, x_{n−1}, ..., x_{n−L})."""
+    phi, gam = body_zoh(body, h)
+    r = np.trim_zeros(r, "b")
+    big = np.abs(r).max()
+    keep = np.nonzero(np.abs(r) > 1e-7 * big)[0]
+    r = r[: keep[-1] + 1] if len(keep) else r[:1]
+    n_hist = len(r) + 1
+    dim = 2 + n_hist
+    a = np.zeros((dim, dim))
+    # history slots: index 2 + i holds x_{n−1−i}
+    a[:2, :2] = phi
+    if master == "jacobi":
+        # F_n = Σ r[k] x_{n−1−k}
+        for k, rk in enumerate(r):
+            a[:2, 2 + k] += gam * rk
+    else:
+        # Gauss–Seidel, the riser first: the vessel steps with F_{n+1} = Σ r[k] x_{n−k}
+        a[:2, 0] += gam * r[0]
+        for k, rk in enumerate(r[1:]):
+            a[:2, 2 + k] += gam * rk
+    a[2, 0] = 1.0
+    for i in range(1, n_hist):
+        a[2 + i, 2 + i - 1] = 1.0
+    return float(np.abs(np.linalg.eigvals(a)).max())
+
+
+def measure(hs, out: Path, scene="catenary", profile="fasttest") -> None:
+    """Runs examples/hang_off_response.rs for every h and writes its CSV."""
+    subprocess.run(["cargo", "build", "--profile", profile, "--example", "hang_off_response"], cwd=ROOT, check=True)
+    exe = ROOT / "target" / profile / "examples" / "hang_off_response"
+    txt = subprocess.run([str(exe), scene, str(T_CENTRE), str(T_MEMORY), str(BUMP)] + [str(h) for h in hs],
+                         check=True, capture_output=True, text=True).stdout
+    out.write_text(txt)
+
+
+def read_response(path: Path) -> dict[float, np.ndarray]:
+    """{h: g (3 × K)} from the CSV of `measure`."""
+    d = np.genfromtxt(path, delimiter=",", names=True)
+    out = {}
+    for h in np.unique(d["h"]):
+        m = d["h"] == h
+        k = int(d["k"][m].max()) + 1
+        g = np.zeros((3, k))
+        for j in range(3):
+            mj = m & (d["kind"] == j)
+            g[j, d["k"][mj].astype(int)] = d["response"][mj]
+        out[float(h)] = g
+    return out
+
+
+def alternating(p: Predictor, g: np.ndarray, amplitude: float = 1e-5):
+    """The hang-off's and the tension's answer to an input alternating ±amplitude: the end value's
+    amplitude (m) and the force's peak-to-peak swing (N), linear and steady."""
+    w = predictor_weights(p)
+    e = end_state_response(w, np.pi)[:, 0]
+    f = (line_transfer(g, np.pi)[:, 0] * e).sum()
+    return abs(e[0]) * amplitude, 2.0 * abs(f) * amplitude
+
+
+def one_way_error(p: Predictor, g: np.ndarray, h: float, amplitude=2.5, period=20.0):
+    """Amplitude (N) of the top force's error under heave amplitude·sin(2πt/period), linear."""
+    theta = 2 * np.pi * h / period
+    e = end_state_response(predictor_weights(p), theta)[:, 0] - exact_end_state(theta)[:, 0]
+    return abs((line_transfer(g, theta)[:, 0] * e).sum()) * amplitude
+
+
+def analyse(resp: dict[float, np.ndarray], predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
+    rows = []
+    for p in predictors:
+        w = predictor_weights(p)
+        for h, g in sorted(resp.items()):
+            r = riser_fir(g, w)
+            rho = {b.name: spectral_radius(b, h, r) for b in bodies}
+            rho_gs = {b.name: spectral_radius(b, h, r, "gauss-seidel") for b in bodies}
+            hang, swing = alternating(p, g)
+            rows.append(dict(predictor=p.name, h=h, rho=rho, rho_gs=rho_gs, hang_off=hang, swing=swing,
+                             one_way=one_way_error(p, g, h)))
+    return rows
+
+
+def plot(rows, resp, path: Path, predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    theta = np.linspace(1e-3, np.pi, 400)
+    ax = axes[0]
+    for p in predictors:
+        ax.semilogy(theta / np.pi, np.abs(end_state_response(predictor_weights(p), theta)[0]), label=p.name)
+    ax.set_xlabel("θ = ωh / π")
+    ax.set_ylabel("|E₀(θ)|: end value per unit input")
+    ax.set_title("predictor gain (1 = exact at low θ)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    for ax, b in zip(axes[1:], bodies):
+        for p in predictors:
+            hs = [r["h"] for r in rows if r["predictor"] == p.name]
+            ax.loglog(hs, [r["rho"][b.name] for r in rows if r["predictor"] == p.name], "o-", ms=3, label=p.name)
+        ax.axhline(1.0, color="k", lw=0.8)
+        ax.set_xlabel("communication step h (s)")
+        ax.set_ylabel("spectral radius of the loop (Jacobi)")
+        ax.set_title(f"{b.name} + catenary riser (measured line)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[1].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="riser-tools coupling", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--response", default=str(ROOT / "docs" / "coupling_response.csv"))
+    ap.add_argument("--measure", action="store_true", help="re-measure the line's bump responses first")
+    ap.add_argument("--docs", default=str(ROOT / "docs"))
+    args = ap.parse_args(argv)
+    path = Path(args.response)
+    if args.measure or not path.exists():
+        measure(STEPS, path)
+    resp = read_response(path)
+    rows = analyse(resp)
+    for r in rows:
+        print(f"{r['predictor']:36s} h {r['h']:5.2f}  rho vessel {r['rho'][VESSEL.name]:9.4f} "
+              f"buoy {r['rho'][BUOY.name]:9.4f} (GS {r['rho_gs'][VESSEL.name]:8.4f} {r['rho_gs'][BUOY.name]:8.4f})"
+              f"  ±1e-5: hang-off {r['hang_off']:.2e} m, swing {r['swing'] / 1e3:8.3f} kN"
+              f"  one-way {r['one_way'] / 1e3:7.3f} kN")
+    plot(rows, resp, Path(args.docs) / "figures" / "coupling_stability.png")
+    return 0
+
+
+if __name__ == "__main__":
+    main()
