@@ -7,54 +7,66 @@
 //! kink or a wobble of the path at the communication step's period launches
 //! axial waves that ring in the tension.
 //!
-//! Per axis, the step's end state is predicted from the latest five pieces of
-//! information the master gave, the polynomial P of degree ≤ 4 (τ = s − t)
+//! Per axis, the step's end state is predicted from the latest six pieces of
+//! information the master gave: the samples are written as a polynomial Q of
+//! degree ≤ 4 (τ = s − t) plus an alternating nuisance a (−1)^k,
 //!
-//!   P(0) = u(t),  then P'(0), P''(0) if given, then the past communication
-//!   points t_k < t, newest first: P(t_k − t) = u(t_k)  (or P'(t_k − t) =
-//!   v(t_k) when the velocity input is connected),                         (7.1)
+//!   u(t_k) = Q(t_k − t) + a (−1)^k   (k = 0 the current point, then the past
+//!   ones newest first), with Q'(0), Q''(0) = the input derivatives if given, (7.1), (7.3)
 //!
-//! and the path over the step is the quintic Hermite interpolant from the
-//! hang-off's current position, velocity and acceleration (p, p', p'') at
-//! τ = 0 to (P, P', P'') at τ = h:
+//! and the path follows Q alone: a sequence that alternates from one
+//! communication point to the next (a vessel model's round-off, the chatter of
+//! a coupling loop) moves the hang-off not at all, where the interpolating
+//! quartic of issue 12 multiplied it by up to 31 (docs/theory.md §7.4). The
+//! path over the step is the quintic Hermite interpolant from the hang-off's
+//! current position, velocity and acceleration (p, p', p'') at τ = 0 to
+//! (Q, Q', Q'') at τ = h:
 //!
 //!   x(τ) = p H0(σ) + h p' H1(σ) + h² p'' H2(σ)
-//!        + P(h) H0(1−σ) − h P'(h) H1(1−σ) + h² P''(h) H2(1−σ),   σ = τ/h,  (7.2)
+//!        + Q(h) H0(1−σ) − h Q'(h) H1(1−σ) + h² Q''(h) H2(1−σ),   σ = τ/h,  (7.2)
 //!
 //! with H0 = 1 − 10σ³ + 15σ⁴ − 6σ⁵, H1 = σ − 6σ³ + 8σ⁴ − 3σ⁵,
 //! H2 = ½σ² − 3/2 σ³ + 3/2 σ⁴ − ½σ⁵ (value, slope, curvature 1 at σ = 0 in
 //! turn, all zero at σ = 1). The path is C2 at every communication point, and
 //! since the end states of successive steps are samples of one smooth curve
-//! (P(h) differs from u(t + h) by a smooth O(h⁵) error), the path has no
+//! (Q(h) differs from u(t + h) by a smooth O(h⁵) error), the path has no
 //! wobble at the communication step's period beyond that order.
 //!
-//! Sources, per axis, in order of precedence for P'(0) and P''(0):
-//! 1. input derivatives (`fmi2SetRealInputDerivatives`, orders 1 and 2) set
-//!    for this step;
-//! 2. the velocity input, once it has been non-zero (a velocity input left
-//!    at 0 means "follow the displacement"); then the past conditions are the
-//!    past velocities (while connected);
-//! 3. the displacement history alone.
+//! Which inputs drive an axis (`coupling_inputs`, [`Coupling`]): the
+//! displacement (its samples are the u above); or the velocity alone, whose
+//! samples are integrated into the displacement at each communication point
+//! (the integral of the cubic through the last four velocities over the last
+//! interval, fourth order, any step sizes: the position is part of the
+//! history, so of the saved state); with both, the displacement drives the
+//! path and the velocity gives the line its start velocity. `auto` decides per
+//! axis from which of the two inputs the master has set.
 //!
-//! Error: from the displacement history with five points known,
-//! P(h) − u(t + h) = O(h⁵) (the error of a quartic extrapolation), its slope
-//! O(h⁴) and curvature O(h³), so the hang-off is within O(h⁵) of the input at
-//! every communication point; the unit tests below measure it. Fewer points
-//! (the first four steps) give lower degrees. The price of the high degree is
-//! that a jump in the input (not a physical motion) overshoots for four steps.
+//! Error: from the displacement history with six points known,
+//! Q(h) − u(t + h) = O(h⁵), its slope O(h⁴) and curvature O(h³), so the
+//! hang-off is within O(h⁵) of the input at every communication point; the
+//! unit tests below measure it. Fewer points (the first five steps) give
+//! lower degrees.
 
 use crate::math::V3;
 use crate::model::HangOff;
 use nalgebra::{SMatrix, SVector};
 
-/// Pieces of information that predict a step's end (the degree of (7.1) + 1).
-const CONDITIONS: usize = 5;
+/// Coefficients of the predicting polynomial (degree ≤ 4).
+const POLY: usize = 5;
+
+/// Pieces of information that predict a step's end: the polynomial's
+/// coefficients and the alternating nuisance (7.3).
+const CONDITIONS: usize = POLY + 1;
 
 /// Past communication points kept (one piece each beyond the current one).
 const PAST: usize = CONDITIONS - 1;
 
+/// Velocity samples the position of `velocity` coupling is integrated from
+/// (the interpolant of degree ≤ 3 over the last interval: fourth order).
+const QUADRATURE: usize = 4;
+
 /// Numbers per past sample in [`InputHistory::to_values`].
-const SAMPLE_VALUES: usize = 8;
+const SAMPLE_VALUES: usize = 7;
 
 /// Numbers in [`InputHistory::to_values`].
 pub const HISTORY_VALUES: usize = PAST * SAMPLE_VALUES + 11;
@@ -64,12 +76,59 @@ pub const HISTORY_VALUES: usize = PAST * SAMPLE_VALUES + 11;
 pub struct Sample {
     /// Time, s.
     pub t: f64,
-    /// Displacement inputs, m.
+    /// Displacement, m: the input, or the integral of the velocity inputs
+    /// for an axis coupled by velocity.
     pub u: [f64; 3],
     /// Velocity inputs, m/s.
     pub v: [f64; 3],
-    /// Per axis: the velocity input was connected at that point.
-    pub connected: [bool; 3],
+}
+
+/// Which inputs drive the hang-off (the `coupling_inputs` parameter).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Coupling {
+    /// Per axis, from which inputs the master has set (never their values).
+    #[default]
+    Auto,
+    /// The displacement inputs (the velocity ones are ignored).
+    Displacement,
+    /// The velocity inputs alone, integrated (the displacement ones are ignored).
+    Velocity,
+    /// Both: the displacement drives the path, the velocity starts the line moving.
+    Both,
+}
+
+impl Coupling {
+    /// The parameter's values, in this order.
+    pub const NAMES: [&'static str; 4] = ["auto", "displacement", "velocity", "both"];
+
+    /// From the parameter's value.
+    pub fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "auto" => Coupling::Auto,
+            "displacement" => Coupling::Displacement,
+            "velocity" => Coupling::Velocity,
+            "both" => Coupling::Both,
+            _ => return None,
+        })
+    }
+
+    /// The parameter's value.
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    /// The mode of an axis whose displacement (`d`) and velocity (`v`)
+    /// inputs have or have not been set: never `Auto`.
+    pub fn resolve(self, d: bool, v: bool) -> Coupling {
+        match self {
+            Coupling::Auto => match (d, v) {
+                (false, true) => Coupling::Velocity,
+                (true, true) => Coupling::Both,
+                _ => Coupling::Displacement,
+            },
+            other => other,
+        }
+    }
 }
 
 /// Where an axis' rates came from (for the log and the tests).
@@ -77,7 +136,7 @@ pub struct Sample {
 pub enum RateSource {
     /// `fmi2SetRealInputDerivatives`.
     Derivatives,
-    /// The velocity input.
+    /// The velocity inputs (integrated: `velocity` coupling).
     Velocity,
     /// The displacement history.
     History,
@@ -114,10 +173,13 @@ pub struct Path {
     h: f64,
     /// Per axis (heave, surge, sway): the start (p, h p', h² p'').
     start: [[f64; 3]; 3],
-    /// Per axis: the predicted end (P(h), h P'(h), h² P''(h)).
+    /// Per axis: the predicted end (Q(h), h Q'(h), h² Q''(h)).
     end: [[f64; 3]; 3],
-    /// Per axis: where P'(0) came from.
+    /// Per axis: where the rates came from.
     pub sources: [RateSource; 3],
+    /// Per axis: the displacement at t this path was planned from (the
+    /// input, or the velocity's integral); it joins the history.
+    pub u: [f64; 3],
 }
 
 /// heave → z, surge → x, sway → y: the component of V3 for each input axis.
@@ -175,12 +237,15 @@ pub struct Derivatives {
     pub second: [Option<f64>; 3],
 }
 
-/// One condition of (7.1): the `order`-th derivative of P at τ equals `value`.
+/// One condition of (7.1): the `order`-th derivative of Q at τ, plus the
+/// nuisance's `alternation` times a, equals `value`.
 #[derive(Debug, Clone, Copy)]
 struct Condition {
     tau: f64,
     order: usize,
     value: f64,
+    /// (−1)^k for the k-th displacement sample, 0 for a derivative.
+    alternation: f64,
 }
 
 /// The input history that plans each step's path: everything needed to
@@ -190,8 +255,11 @@ pub struct InputHistory {
     /// The last communication points, newest first; `count` are valid.
     past: [Sample; PAST],
     count: usize,
-    /// Per axis: the velocity input has been non-zero (it is connected).
-    velocity_connected: [bool; 3],
+    /// Per axis: the master has set the displacement input (since
+    /// instantiation or reset).
+    displacement_set: [bool; 3],
+    /// Per axis: the master has set the velocity input.
+    velocity_set: [bool; 3],
     /// Derivatives set since the last step.
     pub pending: Derivatives,
     /// The last path's acceleration at its end (the next one's start), m/s².
@@ -204,16 +272,60 @@ impl InputHistory {
         Self::default()
     }
 
-    /// Notes a velocity input's value: a non-zero value connects it.
-    pub fn note_velocity(&mut self, axis: usize, value: f64) {
-        if value != 0.0 {
-            self.velocity_connected[axis] = true;
+    /// Notes that the master set input `index` (heave, surge, sway, then
+    /// their velocities): `auto` decides from this, never from the values.
+    pub fn note_set(&mut self, index: usize) {
+        match index {
+            0..3 => self.displacement_set[index] = true,
+            3..6 => self.velocity_set[index - 3] = true,
+            _ => {}
         }
     }
 
-    /// The conditions (7.1) of axis `i` at time t, newest first, and the
-    /// source of the slope.
-    fn conditions(&self, i: usize, t: f64, u: f64, vin: f64) -> ([Option<Condition>; CONDITIONS], RateSource) {
+    /// The mode of each axis under `coupling` (never `Auto`).
+    pub fn modes(&self, coupling: Coupling) -> [Coupling; 3] {
+        std::array::from_fn(|i| coupling.resolve(self.displacement_set[i], self.velocity_set[i]))
+    }
+
+    /// The displacement of axis `i` at time t: the input, or for velocity
+    /// coupling the last one plus the integral of the interpolant of the
+    /// velocities (`vin` at t and the last ones) over the last interval.
+    fn displacement(&self, i: usize, mode: Coupling, t: f64, u: f64, vin: f64, start: f64) -> f64 {
+        if mode != Coupling::Velocity {
+            return u;
+        }
+        if self.count == 0 {
+            // the first point: where the hang-off is (its initial position)
+            return start;
+        }
+        let t0 = self.past[0].t;
+        let n = (self.count + 1).min(QUADRATURE);
+        // the interpolant in s = (τ − τ0)/(t − t0) through (0 at t0, ..., 1 at t)
+        let span = t - t0;
+        let mut a = SMatrix::<f64, QUADRATURE, QUADRATURE>::identity();
+        let mut b = SVector::<f64, QUADRATURE>::zeros();
+        for row in 0..n {
+            let (tk, vk) = if row == 0 { (t, vin) } else { (self.past[row - 1].t, self.past[row - 1].v[i]) };
+            let s = (tk - t0) / span;
+            for j in 0..QUADRATURE {
+                a[(row, j)] = if j < n { s.powi(j as i32) } else { 0.0 };
+            }
+            b[row] = vk;
+        }
+        let coef = a.lu().solve(&b).unwrap_or_else(|| {
+            // distinct times make it regular; the trapezoid otherwise
+            let mut c = SVector::zeros();
+            c[0] = self.past[0].v[i];
+            c[1] = vin - self.past[0].v[i];
+            c
+        });
+        let integral: f64 = (0..n).map(|j| coef[j] / (j + 1) as f64).sum();
+        self.past[0].u[i] + span * integral
+    }
+
+    /// The conditions (7.1) of axis `i` at time t from the displacement `u`
+    /// at t, newest first, and the source of the rates.
+    fn conditions(&self, i: usize, mode: Coupling, t: f64, u: f64) -> ([Option<Condition>; CONDITIONS], RateSource) {
         let mut out = [None; CONDITIONS];
         let mut n = 0;
         let mut push = |c: Condition| {
@@ -222,81 +334,100 @@ impl InputHistory {
                 n += 1;
             }
         };
-        push(Condition { tau: 0.0, order: 0, value: u });
-        let source = if self.pending.first[i].is_some() {
-            RateSource::Derivatives
-        } else if self.velocity_connected[i] {
-            RateSource::Velocity
-        } else {
-            RateSource::History
+        push(Condition { tau: 0.0, order: 0, value: u, alternation: 1.0 });
+        let with_derivatives = mode != Coupling::Velocity;
+        let first = self.pending.first[i].filter(|_| with_derivatives);
+        let source = match (first, mode) {
+            (Some(_), _) => RateSource::Derivatives,
+            (None, Coupling::Velocity) => RateSource::Velocity,
+            _ => RateSource::History,
         };
-        match source {
-            RateSource::Derivatives => push(Condition { tau: 0.0, order: 1, value: self.pending.first[i].unwrap() }),
-            RateSource::Velocity => push(Condition { tau: 0.0, order: 1, value: vin }),
-            RateSource::History => {}
+        if let Some(d) = first {
+            push(Condition { tau: 0.0, order: 1, value: d, alternation: 0.0 });
         }
-        if let Some(a) = self.pending.second[i] {
-            push(Condition { tau: 0.0, order: 2, value: a });
+        if let Some(a) = self.pending.second[i].filter(|_| with_derivatives) {
+            push(Condition { tau: 0.0, order: 2, value: a, alternation: 0.0 });
         }
-        for s in &self.past[..self.count] {
-            match source {
-                RateSource::Velocity if s.connected[i] => push(Condition { tau: s.t - t, order: 1, value: s.v[i] }),
-                // the velocities are contiguous: stop at the first point without one
-                RateSource::Velocity => break,
-                _ => push(Condition { tau: s.t - t, order: 0, value: s.u[i] }),
-            }
+        for (k, s) in self.past[..self.count].iter().enumerate() {
+            let sign = if k % 2 == 0 { -1.0 } else { 1.0 };
+            push(Condition { tau: s.t - t, order: 0, value: s.u[i], alternation: sign });
         }
         (out, source)
     }
 
-    /// Solves (7.1) for P in σ = τ/h and returns (P, h P', h² P'') at σ = 1:
-    /// the predicted end of the step. Missing conditions lower the degree.
+    /// Solves (7.1), (7.3) for Q in σ = τ/h and returns (Q, h Q', h² Q'') at
+    /// σ = 1: the predicted end of the step. With n conditions, Q has degree
+    /// n − 2 and the nuisance takes the last unknown once two samples
+    /// alternate; fewer conditions lower the degree.
     fn predict(conditions: &[Option<Condition>; CONDITIONS], h: f64) -> [f64; 3] {
-        let mut a = SMatrix::<f64, CONDITIONS, CONDITIONS>::zeros();
-        let mut b = SVector::<f64, CONDITIONS>::zeros();
-        for (row, c) in conditions.iter().enumerate() {
-            match c {
-                Some(c) => {
-                    // d^order/dσ^order of σ^j, at σ = τ/h; the value scaled by h^order
-                    let sigma = c.tau / h;
-                    for j in c.order..CONDITIONS {
-                        let falling: f64 = (0..c.order).map(|k| (j - k) as f64).product();
-                        a[(row, j)] = falling * sigma.powi((j - c.order) as i32);
-                    }
-                    b[row] = c.value * h.powi(c.order as i32);
+        let n = conditions.iter().flatten().count();
+        let samples = conditions.iter().flatten().filter(|c| c.order == 0).count();
+        // unknowns: Q's coefficients 0..=degree, then a (the last column) when alternating
+        let solve = |alternating: bool| {
+            let used = if alternating { n } else { n.min(POLY) };
+            let degree = if alternating { used - 2 } else { used - 1 };
+            let mut a = SMatrix::<f64, CONDITIONS, CONDITIONS>::zeros();
+            let mut b = SVector::<f64, CONDITIONS>::zeros();
+            for (row, c) in conditions.iter().flatten().take(used).enumerate() {
+                // d^order/dσ^order of σ^j, at σ = τ/h; the value scaled by h^order
+                let sigma = c.tau / h;
+                for j in c.order..=degree {
+                    let falling: f64 = (0..c.order).map(|k| (j - k) as f64).product();
+                    a[(row, j)] = falling * sigma.powi((j - c.order) as i32);
                 }
-                // fewer conditions: the highest coefficients are zero
-                None => a[(row, row)] = 1.0,
+                if alternating {
+                    a[(row, CONDITIONS - 1)] = c.alternation;
+                }
+                b[row] = c.value * h.powi(c.order as i32);
             }
-        }
-        // distinct points and consecutive orders at τ = 0: A is regular
-        let coef = a.lu().solve(&b).unwrap_or_else(|| {
+            // the rows of missing conditions pin the unused unknowns to zero
+            let end = if alternating { CONDITIONS - 1 } else { CONDITIONS };
+            for (row, j) in (used..CONDITIONS).zip(degree + 1..end) {
+                a[(row, j)] = 1.0;
+            }
+            a.lu().solve(&b)
+        };
+        // distinct points make it regular (a quartic cannot alternate in sign
+        // at six points); the plain interpolant if round-off says otherwise
+        let coef = (if samples >= 2 { solve(true) } else { None }).or_else(|| solve(false)).unwrap_or_else(|| {
             let mut c = SVector::zeros();
             c[0] = conditions[0].map_or(0.0, |c| c.value);
             c
         });
-        let value = coef.sum();
-        let slope: f64 = (1..CONDITIONS).map(|j| j as f64 * coef[j]).sum();
-        let curvature: f64 = (2..CONDITIONS).map(|j| (j * (j - 1)) as f64 * coef[j]).sum();
+        let value: f64 = (0..POLY).map(|j| coef[j]).sum();
+        let slope: f64 = (1..POLY).map(|j| j as f64 * coef[j]).sum();
+        let curvature: f64 = (2..POLY).map(|j| (j * (j - 1)) as f64 * coef[j]).sum();
         [value, slope, curvature]
     }
 
     /// The velocity the hang-off starts with at t0 (the line is at rest
     /// unless the master gives a velocity there).
-    pub fn start_velocity(&self, vin: &[f64; 3]) -> [f64; 3] {
-        std::array::from_fn(|i| match self.pending.first[i] {
-            Some(v) => v,
-            None if self.velocity_connected[i] => vin[i],
-            None => 0.0,
+    pub fn start_velocity(&self, coupling: Coupling, vin: &[f64; 3]) -> [f64; 3] {
+        let modes = self.modes(coupling);
+        std::array::from_fn(|i| match (self.pending.first[i], modes[i]) {
+            (_, Coupling::Velocity | Coupling::Both) => vin[i],
+            (Some(v), _) => v,
+            _ => 0.0,
         })
+    }
+
+    /// The displacement the hang-off starts from at t0: the inputs, but
+    /// for an axis driven by its velocity alone (its initial position, 0).
+    pub fn start_displacement(&self, coupling: Coupling, u: &[f64; 3]) -> [f64; 3] {
+        let modes = self.modes(coupling);
+        std::array::from_fn(|i| if modes[i] == Coupling::Velocity { 0.0 } else { u[i] })
     }
 
     /// Plans the path over [t, t + h] from the hang-off's current motion
     /// `from` towards the prediction (7.1) from the inputs set for t.
-    pub fn plan(&self, t: f64, h: f64, u: &[f64; 3], vin: &[f64; 3], from: &HangOff) -> Path {
+    pub fn plan(&self, coupling: Coupling, t: f64, h: f64, u: &[f64; 3], vin: &[f64; 3], from: &HangOff) -> Path {
+        let modes = self.modes(coupling);
         let mut sources = [RateSource::History; 3];
+        let mut used = [0.0; 3];
         let end = std::array::from_fn(|i| {
-            let (conditions, source) = self.conditions(i, t, u[i], vin[i]);
+            let x = self.displacement(i, modes[i], t, u[i], vin[i], from.displacement[COMPONENT[i]]);
+            used[i] = x;
+            let (conditions, source) = self.conditions(i, modes[i], t, x);
             sources[i] = source;
             Self::predict(&conditions, h)
         });
@@ -304,15 +435,15 @@ impl InputHistory {
             let c = COMPONENT[i];
             [from.displacement[c], h * from.velocity[c], h * h * self.end_acceleration[i]]
         });
-        Path { t, h, start, end, sources }
+        Path { t, h, start, end, sources, u: used }
     }
 
     /// Records the communication point t after a successful step along
     /// `path` from it: its inputs join the history and the pending
     /// derivatives are used up.
-    pub fn commit(&mut self, t: f64, u: &[f64; 3], vin: &[f64; 3], path: &Path) {
+    pub fn commit(&mut self, t: f64, vin: &[f64; 3], path: &Path) {
         self.past.copy_within(0..PAST - 1, 1);
-        self.past[0] = Sample { t, u: *u, v: *vin, connected: self.velocity_connected };
+        self.past[0] = Sample { t, u: path.u, v: *vin };
         self.count = (self.count + 1).min(PAST);
         self.pending = Derivatives::default();
         self.end_acceleration = path.end_acceleration();
@@ -326,15 +457,15 @@ impl InputHistory {
             out[o] = s.t;
             out[o + 1..o + 4].copy_from_slice(&s.u);
             out[o + 4..o + 7].copy_from_slice(&s.v);
-            out[o + 7] = (0..3).map(|i| (s.connected[i] as u32) << i).sum::<u32>() as f64;
         }
         let o = PAST * SAMPLE_VALUES;
         out[o] = self.count as f64;
         let mut flags = 0u32;
         for i in 0..3 {
-            flags |= (self.velocity_connected[i] as u32) << i;
+            flags |= (self.displacement_set[i] as u32) << i;
             flags |= (self.pending.first[i].is_some() as u32) << (3 + i);
             flags |= (self.pending.second[i].is_some() as u32) << (6 + i);
+            flags |= (self.velocity_set[i] as u32) << (9 + i);
             out[o + 2 + i] = self.pending.first[i].unwrap_or(0.0);
             out[o + 5 + i] = self.pending.second[i].unwrap_or(0.0);
             out[o + 8 + i] = self.end_acceleration[i];
@@ -355,13 +486,13 @@ impl InputHistory {
         for k in 0..PAST {
             let o = SAMPLE_VALUES * k;
             let three = |j: usize| [x[o + j], x[o + j + 1], x[o + j + 2]];
-            let mask = small_int(x[o + 7], 8.0)?;
-            h.past[k] = Sample { t: x[o], u: three(1), v: three(4), connected: bits(mask) };
+            h.past[k] = Sample { t: x[o], u: three(1), v: three(4) };
         }
         let o = PAST * SAMPLE_VALUES;
         h.count = small_int(x[o], (PAST + 1) as f64)? as usize;
-        let flags = small_int(x[o + 1], 512.0)?;
-        h.velocity_connected = bits(flags);
+        let flags = small_int(x[o + 1], 4096.0)?;
+        h.displacement_set = bits(flags);
+        h.velocity_set = bits(flags >> 9);
         for i in 0..3 {
             h.pending.first[i] = (flags >> (3 + i) & 1 == 1).then_some(x[o + 2 + i]);
             h.pending.second[i] = (flags >> (6 + i) & 1 == 1).then_some(x[o + 5 + i]);
@@ -379,20 +510,30 @@ mod tests {
         HangOff { displacement: V3::new(0.0, 0.0, z), velocity: V3::new(0.0, 0.0, vz) }
     }
 
-    /// Drives the history with heave u(t) (and its velocity input `v`, when
-    /// given) at communication points `times`, returning the hang-off at each
-    /// point and the paths.
-    fn drive(times: &[f64], u: impl Fn(f64) -> f64, v: Option<&dyn Fn(f64) -> f64>) -> (Vec<HangOff>, Vec<Path>) {
+    /// Drives the history with heave u(t) (when given) and its velocity
+    /// input `v` (when given) at communication points `times` under `auto`,
+    /// returning the hang-off at each point and the paths.
+    fn drive(
+        times: &[f64],
+        u: Option<&dyn Fn(f64) -> f64>,
+        v: Option<&dyn Fn(f64) -> f64>,
+    ) -> (Vec<HangOff>, Vec<Path>) {
         let mut hist = InputHistory::new();
+        let pos = |t: f64| u.map_or(0.0, |u| u(t));
         let vel = |t: f64| v.map_or(0.0, |v| v(t));
-        let mut at = hang_off(u(times[0]), vel(times[0]));
+        let mut at = hang_off(pos(times[0]), vel(times[0]));
         let (mut points, mut paths) = (vec![at], vec![]);
         for w in times.windows(2) {
             let (t, h) = (w[0], w[1] - w[0]);
-            let (inp, vin) = ([u(t), 0.0, 0.0], [vel(t), 0.0, 0.0]);
-            hist.note_velocity(0, vin[0]);
-            let path = hist.plan(t, h, &inp, &vin, &at);
-            hist.commit(t, &inp, &vin, &path);
+            let (inp, vin) = ([pos(t), 0.0, 0.0], [vel(t), 0.0, 0.0]);
+            if u.is_some() {
+                hist.note_set(0);
+            }
+            if v.is_some() {
+                hist.note_set(3);
+            }
+            let path = hist.plan(Coupling::Auto, t, h, &inp, &vin, &at);
+            hist.commit(t, &vin, &path);
             at = path.at(t + h);
             points.push(at);
             paths.push(path);
@@ -402,8 +543,8 @@ mod tests {
 
     #[test]
     fn the_path_is_c2_at_communication_points_and_starts_where_the_hang_off_is() {
-        let times: Vec<f64> = [0.0, 0.2, 0.5, 0.6, 1.0, 1.3, 1.4, 1.45, 1.9].to_vec();
-        let (_, paths) = drive(&times, |t| 2.5 * (0.7 * t).sin() + 0.3 * t * t, None);
+        let times: Vec<f64> = [0.0, 0.2, 0.5, 0.6, 1.0, 1.3, 1.4, 1.45, 1.9, 2.0, 2.3].to_vec();
+        let (_, paths) = drive(&times, Some(&|t: f64| 2.5 * (0.7 * t).sin() + 0.3 * t * t), None);
         for k in 0..paths.len() - 1 {
             let t = times[k + 1];
             let (a, b) = (paths[k].at(t), paths[k + 1].at(t));
@@ -421,21 +562,44 @@ mod tests {
     }
 
     #[test]
-    fn a_quartic_input_is_followed_exactly_once_five_points_are_known() {
+    fn a_quartic_input_is_followed_exactly_once_six_points_are_known() {
         let u = |t: f64| 1.0 - 0.4 * t + 0.9 * t * t - 0.3 * t.powi(3) + 0.05 * t.powi(4);
         let du = |t: f64| -0.4 + 1.8 * t - 0.9 * t * t + 0.2 * t.powi(3);
+        let times = [0.0, 0.3, 0.5, 0.9, 1.0, 1.6, 1.7, 2.5, 2.6, 3.1];
+        let (points, _) = drive(&times, Some(&u), None);
+        for k in 6..times.len() {
+            assert!((points[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
+            assert!((points[k].velocity.z - du(times[k])).abs() < 1e-10, "{k}");
+        }
+        // an alternating sequence on top changes nothing once six points are known
+        let alt = |t: f64| u(t) + 1e-3 * if times.iter().position(|&x| x == t).unwrap_or(0) % 2 == 0 { 1.0 } else { -1.0 };
+        let (noisy, _) = drive(&times, Some(&alt), None);
+        for k in 7..times.len() {
+            assert!((noisy[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
+        }
+    }
+
+    #[test]
+    fn velocity_alone_is_integrated_to_fourth_order_at_any_step_sizes() {
+        // a cubic velocity is integrated exactly over an interval once four velocities are known
+        let v = |t: f64| 0.3 - 0.5 * t + 0.2 * t * t - 0.04 * t.powi(3);
+        let x = |t: f64| 0.3 * t - 0.25 * t * t + 0.2 / 3.0 * t.powi(3) - 0.01 * t.powi(4);
         let times = [0.0, 0.3, 0.5, 0.9, 1.0, 1.6, 1.7, 2.5];
-        let (points, _) = drive(&times, u, None);
-        for k in 5..times.len() {
-            assert!((points[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
-            assert!((points[k].velocity.z - du(times[k])).abs() < 1e-10, "{k}");
+        let (_, paths) = drive(&times, None, Some(&v));
+        assert!(paths.iter().all(|p| p.sources[0] == RateSource::Velocity));
+        for k in 4..paths.len() {
+            let (dx, exact) = (paths[k].u[0] - paths[k - 1].u[0], x(times[k]) - x(times[k - 1]));
+            assert!((dx - exact).abs() < 1e-13, "{k}: {dx} {exact}");
         }
-        // from the velocity inputs: the value now and the last four velocities
-        let (points, _) = drive(&times, u, Some(&du));
-        for k in 4..times.len() {
-            assert!((points[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
-            assert!((points[k].velocity.z - du(times[k])).abs() < 1e-10, "{k}");
-        }
+        // and a smooth motion's position to fourth order in the step
+        let err = |h: f64| {
+            let w = 2.0 * std::f64::consts::PI / 20.0;
+            let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
+            let (_, paths) = drive(&times, None, Some(&|t: f64| 2.5 * w * (w * t).cos()));
+            (1..paths.len()).map(|k| (paths[k].u[0] - 2.5 * (w * times[k]).sin()).abs()).fold(0.0, f64::max)
+        };
+        let order = (err(0.8) / err(0.4)).log2();
+        assert!(order > 2.8, "order {order}");
     }
 
     #[test]
@@ -444,39 +608,72 @@ mod tests {
         let err = |h: f64| {
             let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
             let u = |t: f64| 2.5 * (2.0 * std::f64::consts::PI * t / 20.0).sin();
-            let (points, _) = drive(&times, u, None);
+            let (points, _) = drive(&times, Some(&u), None);
             (10..times.len()).map(|k| (points[k].displacement.z - u(times[k])).abs()).fold(0.0, f64::max)
         };
         let (e1, e2) = (err(0.8), err(0.4));
         let order = (e1 / e2).log2();
         assert!((order - 5.0).abs() < 0.3, "{e1} {e2} order {order}");
-        // closed form: the error of the quartic extrapolation is the fifth
-        // backward difference, 2.5 (2 sin(θ/2))⁵ at most, θ = ωh
-        let closed = |h: f64| 2.5 * (2.0 * (std::f64::consts::PI * h / 20.0).sin()).powi(5);
+        // closed form (docs/theory.md §7.4): the error of (7.3) on uniform
+        // steps is (1 − w)⁵ (1 + 31w/32) in the shift w = e^{−iθ}, θ = ωh
+        let closed = |h: f64| {
+            let th = 2.0 * std::f64::consts::PI * h / 20.0;
+            let r = ((1.0 + 31.0 / 32.0 * th.cos()).powi(2) + (31.0 / 32.0 * th.sin()).powi(2)).sqrt();
+            2.5 * (2.0 * (th / 2.0).sin()).powi(5) * r
+        };
         assert!((e2 / closed(0.4) - 1.0).abs() < 0.01, "{e2} {}", closed(0.4));
     }
 
     #[test]
-    fn derivatives_and_velocity_inputs_take_precedence_over_the_history() {
+    fn an_alternating_input_moves_the_hang_off_by_its_first_sample_at_most() {
+        // ±1e-5 m from t = 0: the first point (no history) moves the hang-off
+        // to +1e-5, the average of two points takes it back, and from two
+        // points on every prediction removes the alternation (docs/theory.md §7.4)
+        for h in [0.05, 0.2, 0.5] {
+            let times: Vec<f64> = (0..=200).map(|k| k as f64 * h).collect();
+            let alt = |t: f64| if ((t / h).round() as i64) % 2 == 0 { 1e-5 } else { -1e-5 };
+            let (points, paths) = drive(&times, Some(&alt), None);
+            let largest = points.iter().map(|p| p.displacement.z.abs()).fold(0.0, f64::max);
+            assert!(largest <= 1e-5 * (1.0 + 1e-12), "{h}: {largest}");
+            for p in &points[3..] {
+                assert!(p.displacement.z.abs() < 1e-18, "{h}: {p:?}");
+            }
+            // and between the points too
+            let inside = paths.iter().map(|p| p.at(p.t + 0.5 * p.h).displacement.z.abs()).fold(0.0, f64::max);
+            assert!(inside <= 1e-5, "{h}: {inside}");
+        }
+    }
+
+    #[test]
+    fn derivatives_take_precedence_over_the_history_and_the_mode_follows_what_is_set() {
         let mut hist = InputHistory::new();
+        hist.note_set(0);
         let at = hang_off(0.0, 0.0);
-        let path = hist.plan(0.0, 0.1, &[0.0; 3], &[0.0; 3], &at);
-        hist.commit(0.0, &[0.0; 3], &[0.0; 3], &path);
-        // a derivative and the history: P(0) = 0.2, P'(0) = 1.5, P''(0) = −2, P(−0.1) = 0
+        let path = hist.plan(Coupling::Auto, 0.0, 0.1, &[0.0; 3], &[0.0; 3], &at);
+        hist.commit(0.0, &[0.0; 3], &path);
+        // a derivative and the history: Q(0) + a = 0.2, Q'(0) = 1.5, Q''(0) = −2, Q(−0.1) − a = 0
         hist.pending.first[0] = Some(1.5);
         hist.pending.second[0] = Some(-2.0);
         let h = 0.1;
-        let path = hist.plan(0.1, h, &[0.2, 0.0, 0.0], &[0.0; 3], &at);
+        let path = hist.plan(Coupling::Auto, 0.1, h, &[0.2, 0.0, 0.0], &[0.0; 3], &at);
         assert_eq!(path.sources[0], RateSource::Derivatives);
         assert_eq!(path.sources[1], RateSource::History);
-        // the cubic through those conditions, at τ = h
-        let c3 = (0.0 - (0.2 - 1.5 * 0.1 - 1.0 * 0.01)) / -0.001;
+        // Q = c0 + 1.5τ − τ²: c0 + a = 0.2, c0 − 0.15 − 0.01 − a = 0
+        let c0 = 0.5 * (0.2 + 0.16);
         let end = path.at(0.2).displacement.z;
-        assert!((end - (0.2 + 1.5 * h - h * h + c3 * h * h * h)).abs() < 1e-12, "{end}");
-        hist.note_velocity(1, 0.7);
-        let path = hist.plan(0.1, h, &[0.2, 0.0, 0.0], &[0.0, 0.7, 0.0], &at);
+        assert!((end - (c0 + 1.5 * h - h * h)).abs() < 1e-12, "{end}");
+        // the velocity of sway set, its displacement not: sway is driven by velocity
+        hist.note_set(5);
+        assert_eq!(hist.modes(Coupling::Auto), [Coupling::Displacement, Coupling::Displacement, Coupling::Velocity]);
+        hist.note_set(2);
+        assert_eq!(hist.modes(Coupling::Auto)[2], Coupling::Both);
+        assert_eq!(hist.modes(Coupling::Velocity), [Coupling::Velocity; 3]);
+        let path = hist.plan(Coupling::Velocity, 0.1, h, &[0.2, 0.0, 0.0], &[0.0, 0.7, 0.0], &at);
         assert_eq!(path.sources[1], RateSource::Velocity);
-        hist.commit(0.1, &[0.2, 0.0, 0.0], &[0.0, 0.7, 0.0], &path);
+        // velocity coupling: the displacement input is ignored, the derivatives too
+        assert_eq!(path.u[0], 0.0);
+        assert_eq!(path.sources[0], RateSource::Velocity);
+        hist.commit(0.1, &[0.0, 0.7, 0.0], &path);
         assert_eq!(hist.pending, Derivatives::default());
     }
 
@@ -484,21 +681,22 @@ mod tests {
     fn the_history_survives_its_numbers() {
         let mut hist = InputHistory::new();
         let at = hang_off(0.0, 0.0);
-        for k in 0..6 {
+        for k in 0..7 {
             let t = 0.25 * k as f64;
             let u = [0.1 * t, 0.2 + t, 0.3 - t * t];
+            hist.note_set(0);
             if k == 3 {
-                hist.note_velocity(2, -1.0);
+                hist.note_set(5);
             }
-            let path = hist.plan(t, 0.25, &u, &[0.0, 0.0, -1.0], &at);
-            hist.commit(t, &u, &[0.0, 0.0, -1.0], &path);
+            let path = hist.plan(Coupling::Auto, t, 0.25, &u, &[0.0, 0.0, -1.0], &at);
+            hist.commit(t, &[0.0, 0.0, -1.0], &path);
         }
         hist.pending.first[1] = Some(3.0);
         hist.pending.second[2] = Some(-4.0);
         let back = InputHistory::from_values(&hist.to_values()).unwrap();
         assert_eq!(back, hist);
         let mut bad = hist.to_values();
-        bad[7] = 0.5;
+        bad[PAST * SAMPLE_VALUES] = 0.5;
         assert!(InputHistory::from_values(&bad).is_none());
         assert!(InputHistory::from_values(&bad[..20]).is_none());
     }

@@ -2,7 +2,7 @@
 //! Co-Simulation state machine (one table, checked in one place), the run,
 //! saved states. Nothing here is `unsafe`.
 
-use super::input_path::{HISTORY_VALUES, InputHistory};
+use super::input_path::{Coupling, HISTORY_VALUES, InputHistory};
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
@@ -123,6 +123,9 @@ pub struct Saved {
 /// (6), the input history, the mode, the parameters' hash (2).
 const SAVED_EXTRA: usize = 6 + HISTORY_VALUES + 3;
 
+/// The parameter that chooses which inputs drive the hang-off.
+const COUPLING: &str = "coupling_inputs";
+
 /// Input order: heave, surge, sway, heave_velocity, surge_velocity, sway_velocity.
 const INPUT_NAMES: [&str; 6] = ["heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_velocity"];
 
@@ -139,6 +142,8 @@ pub struct Instance {
     /// The inputs of past communication points and the derivatives set for
     /// the next step: they plan the hang-off's path (`input_path`).
     history: InputHistory,
+    /// The coupling modes of the axes last logged (the log says which is in use).
+    logged_modes: Option<[Coupling; 3]>,
     sim: Option<Simulation>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
@@ -211,6 +216,7 @@ impl Instance {
             params: Vec::new(),
             inputs: [0.0; 6],
             history: InputHistory::new(),
+            logged_modes: None,
             sim: None,
             step_start: None,
             scene: None,
@@ -230,6 +236,7 @@ impl Instance {
             .collect();
         self.inputs = [0.0; 6];
         self.history = InputHistory::new();
+        self.logged_modes = None;
         self.sim = None;
         self.step_start = None;
         self.scene = None;
@@ -332,7 +339,7 @@ impl Instance {
         for (i, p) in self.params.iter().enumerate() {
             if let Some((v, true)) = p {
                 let n = VARIABLES[i].name;
-                if n == "scene" {
+                if n == "scene" || n == COUPLING {
                     continue;
                 }
                 sets.push(format!("{n}={}", v.to_text()));
@@ -375,7 +382,9 @@ impl Instance {
         };
         sim.state.time = self.start_time;
         let (u, vin) = self.split_inputs();
-        let v0 = self.history.start_velocity(&vin);
+        let coupling = self.coupling();
+        let v0 = self.history.start_velocity(coupling, &vin);
+        let u = self.history.start_displacement(coupling, &u);
         // input order heave, surge, sway → z, x, y
         let m = HangOff { displacement: V3::new(u[1], u[2], u[0]), velocity: V3::new(v0[1], v0[2], v0[0]) };
         if m.displacement.norm() > 0.0 {
@@ -422,6 +431,37 @@ impl Instance {
         Status::Ok
     }
 
+    /// The `coupling_inputs` parameter (validated when set).
+    fn coupling(&self) -> Coupling {
+        match super::vars::vr_of(COUPLING).and_then(|vr| self.params[vr as usize].as_ref()) {
+            Some((Value::String(s), _)) => Coupling::parse(s).unwrap_or_default(),
+            _ => Coupling::Auto,
+        }
+    }
+
+    /// Logs which inputs drive each axis when that is new (the first step,
+    /// or the master starts setting another input): never a silent mix.
+    fn log_modes(&mut self, coupling: Coupling) {
+        let modes = self.history.modes(coupling);
+        if self.logged_modes == Some(modes) {
+            return;
+        }
+        self.logged_modes = Some(modes);
+        let from = |m: Coupling| match m {
+            Coupling::Velocity => "the velocity input alone (integrated)",
+            Coupling::Both => "the displacement input (the velocity input starts the line moving)",
+            _ => "the displacement input",
+        };
+        let msg = format!(
+            "coupling_inputs = {}: heave from {}, surge from {}, sway from {}",
+            coupling.name(),
+            from(modes[0]),
+            from(modes[1]),
+            from(modes[2])
+        );
+        self.log(Status::Ok, Category::Events, &msg);
+    }
+
     /// The displacement inputs (heave, surge, sway) and the velocity inputs.
     fn split_inputs(&self) -> ([f64; 3], [f64; 3]) {
         let i = &self.inputs;
@@ -443,7 +483,9 @@ impl Instance {
         // the inputs are the master's values at `now`: the hang-off moves from
         // where it is along a C1 path towards their extrapolation (input_path)
         let (u, vin) = self.split_inputs();
-        let path = self.history.plan(now, h, &u, &vin, &sim.state.hang_off);
+        let coupling = self.coupling();
+        let path = self.history.plan(coupling, now, h, &u, &vin, &sim.state.hang_off);
+        self.log_modes(coupling);
         let motion = |s: f64| path.at(s);
         let t_end = now + h;
         if t_end <= now {
@@ -496,7 +538,7 @@ impl Instance {
         self.outputs = Some(outputs);
         match result {
             Ok(()) => {
-                self.history.commit(now, &u, &vin, &path);
+                self.history.commit(now, &vin, &path);
                 self.last_successful_time = t_end;
                 self.last_status = Status::Ok;
                 Status::Ok
@@ -607,7 +649,7 @@ impl Instance {
     fn param_value(&mut self, vr: u32, v: &'static Variable) -> Result<Value, Status> {
         match &self.params[vr as usize] {
             Some((value, true)) => return Ok(value.clone()),
-            Some((value, false)) if v.name == "scene" => return Ok(value.clone()),
+            Some((value, false)) if v.name == "scene" || v.name == COUPLING => return Ok(value.clone()),
             None => return Err(self.fail(&format!("value reference {vr} has no value"))),
             _ => {}
         }
@@ -722,9 +764,7 @@ impl Instance {
                     return self.fail(&format!("{} = {m}", v.name));
                 }
                 self.inputs[i] = x;
-                if i >= 3 {
-                    self.history.note_velocity(i - 3, x);
-                }
+                self.history.note_set(i);
                 if self.mode != StepComplete {
                     // the start depends on the inputs: rebuild at exit
                     self.sim = None;
@@ -804,7 +844,15 @@ impl Instance {
         // the value's own range now (scene/ranges.rs, as `--set` checks it);
         // the scene as a whole (the anchor within reach, ...) is checked at
         // fmi2ExitInitializationMode, with every parameter set
-        if v.name != "scene" {
+        if v.name == COUPLING {
+            let text = value.to_text();
+            if Coupling::parse(&text).is_none() {
+                return self.fail(&format!(
+                    "{COUPLING} = '{text}': not one of {} (which inputs drive the hang-off)",
+                    Coupling::NAMES.join(", ")
+                ));
+            }
+        } else if v.name != "scene" {
             let text = value.to_text();
             let mut probe = Scene::builtin("catenary").expect("built-in scene");
             if let Err(e) = probe.set(v.name, &text) {

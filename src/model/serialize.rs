@@ -12,7 +12,7 @@ use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 4;
+const VERSION: u32 = 5;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
