@@ -360,6 +360,9 @@ impl InputHistory {
     /// n − 2 and the nuisance takes the last unknown once two samples
     /// alternate; fewer conditions lower the degree.
     fn predict(conditions: &[Option<Condition>; CONDITIONS], h: f64) -> [f64; 3] {
+        if let Some(end) = Self::uniform(conditions, h) {
+            return end;
+        }
         let n = conditions.iter().flatten().count();
         let samples = conditions.iter().flatten().filter(|c| c.order == 0).count();
         // unknowns: Q's coefficients 0..=degree, then a (the last column) when alternating
@@ -398,6 +401,27 @@ impl InputHistory {
         let slope: f64 = (1..POLY).map(|j| j as f64 * coef[j]).sum();
         let curvature: f64 = (2..POLY).map(|j| (j * (j - 1)) as f64 * coef[j]).sum();
         [value, slope, curvature]
+    }
+
+    /// (7.3) on six samples at uniform steps h (the fixed-step masters'
+    /// case), from its exact weights (§7.4): the same numbers as the solve
+    /// up to its round-off, which grows with the system's condition (≈ 1e5)
+    /// where these sums are exact to a few ulps of the samples. None if the
+    /// conditions are not six samples at τ = 0, −h, ..., −5h (to 1e-9 h).
+    fn uniform(conditions: &[Option<Condition>; CONDITIONS], h: f64) -> Option<[f64; 3]> {
+        const VALUE: [f64; CONDITIONS] = [129.0 / 32.0, -165.0 / 32.0, 5.0 / 16.0, 75.0 / 16.0, -123.0 / 32.0, 31.0 / 32.0];
+        const SLOPE: [f64; CONDITIONS] = [14.0 / 3.0, -109.0 / 12.0, 2.0, 22.0 / 3.0, -20.0 / 3.0, 7.0 / 4.0];
+        const CURVATURE: [f64; CONDITIONS] = [23.0 / 6.0, -37.0 / 4.0, 11.0 / 3.0, 43.0 / 6.0, -7.5, 25.0 / 12.0];
+        let mut u = [0.0; CONDITIONS];
+        for (k, c) in conditions.iter().enumerate() {
+            let c = (*c)?;
+            if c.order != 0 || (c.tau / h + k as f64).abs() > 1e-9 {
+                return None;
+            }
+            u[k] = c.value;
+        }
+        let dot = |w: &[f64; CONDITIONS]| w.iter().zip(&u).map(|(w, u)| w * u).sum::<f64>();
+        Some([dot(&VALUE), dot(&SLOPE), dot(&CURVATURE)])
     }
 
     /// The velocity the hang-off starts with at t0 (the line is at rest
