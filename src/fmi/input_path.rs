@@ -58,8 +58,43 @@ const POLY: usize = 5;
 /// coefficients and the alternating nuisance (7.3).
 const CONDITIONS: usize = POLY + 1;
 
-/// Past communication points kept (one piece each beyond the current one).
-const PAST: usize = CONDITIONS - 1;
+/// Samples of the widest least-squares design ([`DESIGNS`]).
+const TAPS: usize = 8;
+
+/// Unknowns of a least-squares design: at most five coefficients and two nuisances.
+const UNKNOWNS: usize = 7;
+
+/// Past communication points kept (one sample each beyond the current one).
+const PAST: usize = TAPS - 1;
+
+/// A design of (7.3) on displacement samples: the polynomial part of
+/// `poly` coefficients (degree `poly` − 1) of the last `taps` samples
+/// written, in the least-squares sense, as that polynomial plus the
+/// alternating nuisances (−1)^k and τ_k (−1)^k (`alt` of them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Design {
+    pub poly: usize,
+    pub alt: usize,
+    pub taps: usize,
+}
+
+/// The design of each communication step, by its size (docs/theory.md §7.4):
+/// below 0.075 s a quadratic over 8 points with both nuisances (where the
+/// line answers a wobble at the step's period most: its axial waves), up to
+/// 0.25 s a cubic over 8, above a quartic over 6 with the alternation alone
+/// (where the step's period is far above the axial waves' and the accuracy of
+/// slow motions is what matters). Each is the one of least tension noise whose
+/// one-way error stays below 0.1 % on the catenary.
+pub const DESIGNS: [(f64, Design); 3] = [
+    (0.075, Design { poly: 3, alt: 2, taps: 8 }),
+    (0.25, Design { poly: 4, alt: 2, taps: 8 }),
+    (f64::INFINITY, Design { poly: 5, alt: 1, taps: 6 }),
+];
+
+/// The design of a step of h s.
+pub fn design(h: f64) -> Design {
+    DESIGNS.iter().find(|(below, _)| h < *below).map_or(DESIGNS[2].1, |d| d.1)
+}
 
 /// Velocity samples the position of `velocity` coupling is integrated from
 /// (the interpolant of degree ≤ 3 over the last interval: fourth order).
@@ -355,14 +390,61 @@ impl InputHistory {
         (out, source)
     }
 
+    /// (7.3) in the least-squares sense on the displacement samples of axis
+    /// `i` (`u` at t, then the past ones) with the design of the step h
+    /// ([`design`]): (Q, h Q', h² Q'') at τ = h. With n < taps samples known
+    /// (the first steps) the design shrinks: min(alt, n − 1) nuisances and
+    /// min(poly, n − nuisances) coefficients.
+    fn fit(&self, i: usize, t: f64, h: f64, u: f64) -> [f64; 3] {
+        // the design of the mean step over the coming one and the last ones
+        // (the step itself on a fixed-step master): steps that change from
+        // one to the next do not switch the design back and forth
+        let back = self.count.min(TAPS - 2);
+        let mean = if back == 0 { h } else { (t + h - self.past[back - 1].t) / (back + 1) as f64 };
+        let d = design(mean);
+        let n = (self.count + 1).min(d.taps);
+        let alt = d.alt.min(n - 1);
+        let poly = d.poly.min(n - alt);
+        // abscissa ξ = σ / s ∈ [−1, 0] on uniform steps (σ = τ/h): a well-scaled system
+        let scale = ((n - 1) as f64).max(1.0);
+        let mut a = SMatrix::<f64, TAPS, UNKNOWNS>::zeros();
+        let mut b = SVector::<f64, TAPS>::zeros();
+        for k in 0..n {
+            let (tau, value) = if k == 0 { (0.0, u) } else { (self.past[k - 1].t - t, self.past[k - 1].u[i]) };
+            let xi = tau / h / scale;
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            for j in 0..poly {
+                a[(k, j)] = xi.powi(j as i32);
+            }
+            for m in 0..alt {
+                a[(k, POLY + m)] = sign * xi.powi(m as i32);
+            }
+            b[k] = value;
+        }
+        // the minimum-norm least-squares solution: unused unknowns are zero
+        let coef = a.svd(true, true).solve(&b, 1e-12).map_or_else(
+            |_| {
+                let mut c = SVector::<f64, UNKNOWNS>::zeros();
+                c[0] = u;
+                c
+            },
+            |c| c,
+        );
+        let (mut value, mut slope, mut curvature) = (0.0, 0.0, 0.0);
+        for j in 0..poly {
+            let cj = coef[j] / scale.powi(j as i32);
+            value += cj;
+            slope += j as f64 * cj;
+            curvature += (j * j.saturating_sub(1)) as f64 * cj;
+        }
+        [value, slope, curvature]
+    }
+
     /// Solves (7.1), (7.3) for Q in σ = τ/h and returns (Q, h Q', h² Q'') at
     /// σ = 1: the predicted end of the step. With n conditions, Q has degree
     /// n − 2 and the nuisance takes the last unknown once two samples
     /// alternate; fewer conditions lower the degree.
     fn predict(conditions: &[Option<Condition>; CONDITIONS], h: f64) -> [f64; 3] {
-        if let Some(end) = Self::uniform(conditions, h) {
-            return end;
-        }
         let n = conditions.iter().flatten().count();
         let samples = conditions.iter().flatten().filter(|c| c.order == 0).count();
         // unknowns: Q's coefficients 0..=degree, then a (the last column) when alternating
@@ -403,27 +485,6 @@ impl InputHistory {
         [value, slope, curvature]
     }
 
-    /// (7.3) on six samples at uniform steps h (the fixed-step masters'
-    /// case), from its exact weights (§7.4): the same numbers as the solve
-    /// up to its round-off, which grows with the system's condition (≈ 1e5)
-    /// where these sums are exact to a few ulps of the samples. None if the
-    /// conditions are not six samples at τ = 0, −h, ..., −5h (to 1e-9 h).
-    fn uniform(conditions: &[Option<Condition>; CONDITIONS], h: f64) -> Option<[f64; 3]> {
-        const VALUE: [f64; CONDITIONS] = [129.0 / 32.0, -165.0 / 32.0, 5.0 / 16.0, 75.0 / 16.0, -123.0 / 32.0, 31.0 / 32.0];
-        const SLOPE: [f64; CONDITIONS] = [14.0 / 3.0, -109.0 / 12.0, 2.0, 22.0 / 3.0, -20.0 / 3.0, 7.0 / 4.0];
-        const CURVATURE: [f64; CONDITIONS] = [23.0 / 6.0, -37.0 / 4.0, 11.0 / 3.0, 43.0 / 6.0, -7.5, 25.0 / 12.0];
-        let mut u = [0.0; CONDITIONS];
-        for (k, c) in conditions.iter().enumerate() {
-            let c = (*c)?;
-            if c.order != 0 || (c.tau / h + k as f64).abs() > 1e-9 {
-                return None;
-            }
-            u[k] = c.value;
-        }
-        let dot = |w: &[f64; CONDITIONS]| w.iter().zip(&u).map(|(w, u)| w * u).sum::<f64>();
-        Some([dot(&VALUE), dot(&SLOPE), dot(&CURVATURE)])
-    }
-
     /// The velocity the hang-off starts with at t0 (the line is at rest
     /// unless the master gives a velocity there).
     pub fn start_velocity(&self, coupling: Coupling, vin: &[f64; 3]) -> [f64; 3] {
@@ -453,7 +514,11 @@ impl InputHistory {
             used[i] = x;
             let (conditions, source) = self.conditions(i, modes[i], t, x);
             sources[i] = source;
-            Self::predict(&conditions, h)
+            if source == RateSource::Derivatives || conditions.iter().flatten().any(|c| c.order > 0) {
+                Self::predict(&conditions, h)
+            } else {
+                self.fit(i, t, h, x)
+            }
         });
         let start = std::array::from_fn(|i| {
             let c = COMPONENT[i];
@@ -586,20 +651,35 @@ mod tests {
     }
 
     #[test]
-    fn a_quartic_input_is_followed_exactly_once_six_points_are_known() {
-        let u = |t: f64| 1.0 - 0.4 * t + 0.9 * t * t - 0.3 * t.powi(3) + 0.05 * t.powi(4);
-        let du = |t: f64| -0.4 + 1.8 * t - 0.9 * t * t + 0.2 * t.powi(3);
-        let times = [0.0, 0.3, 0.5, 0.9, 1.0, 1.6, 1.7, 2.5, 2.6, 3.1];
-        let (points, _) = drive(&times, Some(&u), None);
-        for k in 6..times.len() {
-            assert!((points[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
-            assert!((points[k].velocity.z - du(times[k])).abs() < 1e-10, "{k}");
-        }
-        // an alternating sequence on top changes nothing once six points are known
-        let alt = |t: f64| u(t) + 1e-3 * if times.iter().position(|&x| x == t).unwrap_or(0) % 2 == 0 { 1.0 } else { -1.0 };
-        let (noisy, _) = drive(&times, Some(&alt), None);
-        for k in 7..times.len() {
-            assert!((noisy[k].displacement.z - u(times[k])).abs() < 1e-11, "{k}");
+    fn each_design_follows_its_polynomials_and_ignores_alternation_once_its_points_are_known() {
+        // per design, steps drawn within its range of sizes: a polynomial of its degree, and the
+        // same plus an alternating sequence, are followed exactly once `taps` points are known
+        let mut below = 0.01;
+        for (above, d) in DESIGNS {
+            let top = above.min(1.0);
+            let times: Vec<f64> = (0..14)
+                .scan(0.0, |t, k| {
+                    let x = *t;
+                    *t += below + (top - below) * (0.5 + 0.45 * (1.7 * k as f64).sin());
+                    Some(x)
+                })
+                .collect();
+            assert!(times.windows(2).all(|w| design(w[1] - w[0]) == d));
+            let coef = [1.0, -0.4, 0.9, -0.3, 0.05];
+            let u = |t: f64| (0..d.poly).map(|j| coef[j] * t.powi(j as i32)).sum::<f64>();
+            let du = |t: f64| (1..d.poly).map(|j| j as f64 * coef[j] * t.powi(j as i32 - 1)).sum::<f64>();
+            let (points, _) = drive(&times, Some(&u), None);
+            for k in d.taps..times.len() {
+                assert!((points[k].displacement.z - u(times[k])).abs() < 1e-10, "{d:?} {k}");
+                assert!((points[k].velocity.z - du(times[k])).abs() < 1e-9, "{d:?} {k}");
+            }
+            let index = |t: f64| times.iter().position(|&x| x == t).unwrap_or(0);
+            let alt = |t: f64| u(t) + 1e-3 * if index(t) % 2 == 0 { 1.0 } else { -1.0 };
+            let (noisy, _) = drive(&times, Some(&alt), None);
+            for k in d.taps + 1..times.len() {
+                assert!((noisy[k].displacement.z - u(times[k])).abs() < 1e-10, "{d:?} {k}");
+            }
+            below = above;
         }
     }
 

@@ -73,19 +73,36 @@ class Predictor:
     name: str
     n_poly: int
     n_alt: int = 0
+    n_taps: int = 0
 
     @property
     def taps(self):
-        return self.n_poly + self.n_alt
+        return max(self.n_taps, self.n_poly + self.n_alt)
 
 
 TODAY = Predictor("quartic interpolation (before)", 5)
+
+# the designs of src/fmi/input_path.rs (DESIGNS): (step below which it is used, design)
+DESIGNS = [(0.075, Predictor("quadratic, 8 points, both nuisances", 3, 2, 8)),
+           (0.25, Predictor("cubic, 8 points, both nuisances", 4, 2, 8)),
+           (np.inf, Predictor("quartic, 6 points, alternation", 5, 1, 6))]
+AFTER = Predictor("least squares per step (after)", 0)
+
+
+def design(h: float) -> Predictor:
+    """The design input_path.rs uses for a step of h s."""
+    return next(p for below, p in DESIGNS if h < below)
+
+
+def resolve(p: Predictor, h: float) -> Predictor:
+    return design(h) if p is AFTER else p
 CANDIDATES = [
     TODAY,
+    AFTER,
     Predictor("cubic interpolation", 4),
     Predictor("quadratic interpolation", 3),
     Predictor("linear extrapolation", 2),
-    Predictor("quartic, alternation removed (1)", 5, 1),
+    Predictor("quartic, alternation removed", 5, 1),
     Predictor("quartic, alternation removed (2)", 5, 2),
     Predictor("cubic, alternation removed (2)", 4, 2),
 ]
@@ -97,13 +114,29 @@ def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
     n = p.taps
     s = -np.arange(n, dtype=float) if taus is None else np.asarray(taus, dtype=float)
     cols = [s ** j for j in range(p.n_poly)] + [s ** i * (-1.0) ** np.arange(n) for i in range(p.n_alt)]
-    a = np.array(cols).T  # a @ coef = samples
-    inv = np.linalg.inv(a)[: p.n_poly]  # polynomial coefficients from the samples
+    a = np.array(cols).T  # a @ coef = samples (least squares when there are more samples)
+    inv = np.linalg.pinv(a)[: p.n_poly]  # polynomial coefficients from the samples
     j = np.arange(p.n_poly)
     value = np.ones(p.n_poly)
     slope = j.astype(float)
     curv = (j * (j - 1)).astype(float)
     return np.array([value @ inv, slope @ inv, curv @ inv])
+
+
+def predicted_end_values(samples, h: float) -> np.ndarray:
+    """The end values input_path.rs predicts at uniform steps h for the displacement sequence
+    `samples` (oldest first), the start included: with n < taps samples known, the design keeps
+    min(alt, n − 1) nuisances and min(poly, n − nuisances) coefficients. The hang-off is at entry k
+    at the end of step k."""
+    d = design(h)
+    samples = np.asarray(samples, dtype=float)
+    out = np.zeros(len(samples))
+    for k in range(len(samples)):
+        n = min(k + 1, d.taps)
+        alt = min(d.n_alt, n - 1)
+        w = predictor_weights(Predictor("", min(d.n_poly, n - alt), alt, n))
+        out[k] = w[0] @ samples[k::-1][:n]
+    return out
 
 
 def end_state_response(w: np.ndarray, theta) -> np.ndarray:
@@ -219,6 +252,17 @@ def alternating(p: Predictor, g: np.ndarray, amplitude: float = 1e-5):
     return abs(e[0]) * amplitude, 2.0 * abs(f) * amplitude
 
 
+def onset_swing(p: Predictor, g: np.ndarray, amplitude: float = 1e-5, steps: int = 400):
+    """Peak-to-peak force (N) when an alternating ±amplitude starts on a still input (the steady
+    part and the onset transient), linear, with the full predictor (no start-up)."""
+    w = predictor_weights(p)
+    x = np.array([0.0] * w.shape[1] + [amplitude * (-1.0) ** k for k in range(steps)])
+    e = np.array([[w[j] @ x[n::-1][: w.shape[1]] if n >= w.shape[1] - 1 else 0.0 for n in range(len(x))]
+                  for j in range(3)])
+    f = sum(np.convolve(g[j], e[j])[: len(x)] for j in range(3))
+    return float(np.ptp(f))
+
+
 def one_way_error(p: Predictor, g: np.ndarray, h: float, amplitude=2.5, period=20.0):
     """Amplitude (N) of the top force's error under heave amplitude·sin(2πt/period), linear."""
     theta = 2 * np.pi * h / period
@@ -228,14 +272,15 @@ def one_way_error(p: Predictor, g: np.ndarray, h: float, amplitude=2.5, period=2
 
 def analyse(resp: dict[float, np.ndarray], predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
     rows = []
-    for p in predictors:
-        w = predictor_weights(p)
+    for p0 in predictors:
         for h, g in sorted(resp.items()):
+            p = resolve(p0, h)
+            w = predictor_weights(p)
             r = riser_fir(g, w)
             rho = {b.name: spectral_radius(b, h, r) for b in bodies}
             rho_gs = {b.name: spectral_radius(b, h, r, "gauss-seidel") for b in bodies}
             hang, swing = alternating(p, g)
-            rows.append(dict(predictor=p.name, h=h, rho=rho, rho_gs=rho_gs, hang_off=hang, swing=swing,
+            rows.append(dict(predictor=p0.name, h=h, onset=onset_swing(p, g), rho=rho, rho_gs=rho_gs, hang_off=hang, swing=swing,
                              one_way=one_way_error(p, g, h)))
     return rows
 
@@ -248,7 +293,7 @@ def plot(rows, resp, path: Path, predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     theta = np.linspace(1e-3, np.pi, 400)
     ax = axes[0]
-    for p in predictors:
+    for p in [q for q in predictors if q is not AFTER] + [q for _, q in DESIGNS]:
         ax.semilogy(theta / np.pi, np.abs(end_state_response(predictor_weights(p), theta)[0]), label=p.name)
     ax.set_xlabel("θ = ωh / π")
     ax.set_ylabel("|E₀(θ)|: end value per unit input")
