@@ -78,7 +78,8 @@ pub struct Design {
     pub taps: usize,
 }
 
-/// The design of each communication step, by its size (docs/theory.md §7.4):
+/// The design of each communication step on uniform steps, by its size
+/// (docs/theory.md §7.4; where the steps change, the last one):
 /// below 0.075 s a quadratic over 8 points with both nuisances (where the
 /// line answers a wobble at the step's period most: its axial waves), up to
 /// 0.25 s a cubic over 8, above a quartic over 6 with the alternation alone
@@ -396,12 +397,17 @@ impl InputHistory {
     /// (the first steps) the design shrinks: min(alt, n − 1) nuisances and
     /// min(poly, n − nuisances) coefficients.
     fn fit(&self, i: usize, t: f64, h: f64, u: f64) -> [f64; 3] {
-        // the design of the mean step over the coming one and the last ones
-        // (the step itself on a fixed-step master): steps that change from
-        // one to the next do not switch the design back and forth
-        let back = self.count.min(TAPS - 2);
-        let mean = if back == 0 { h } else { (t + h - self.past[back - 1].t) / (back + 1) as f64 };
-        let d = design(mean);
+        // the smoothing designs on uniform steps (a fixed-step master); where
+        // the steps change, the quartic through six points with the
+        // alternation removed, whose error stays O(h⁵) at any spacing (a
+        // smoothing design's larger error, smooth at uniform steps, would
+        // change from step to step with the spacing and wobble the path)
+        let back = self.count.min(TAPS - 1);
+        let uniform = (0..back).all(|k| {
+            let newer = if k == 0 { t } else { self.past[k - 1].t };
+            ((newer - self.past[k].t) / h - 1.0).abs() < 1e-6
+        });
+        let d = if uniform { design(h) } else { DESIGNS[2].1 };
         let n = (self.count + 1).min(d.taps);
         let alt = d.alt.min(n - 1);
         let poly = d.poly.min(n - alt);

@@ -1,0 +1,131 @@
+"""Two-way coupling of riser's FMU to a floating body, driven the way libcosim's fixed-step
+algorithm drives two FMUs (Jacobi): at each communication point t_n both units get the other's
+outputs of t_n, then both step to t_{n+1}. The body is not a second FMU but its heave ODE
+integrated in this master, the riser's force held over the step as a body FMU would see it:
+
+    (M + A) x'' + C x' + K x = F_wave sin(2π t / T_wave) + (top_force_z(t_n) − top_force_z(0))
+
+(RK4 with 20 substeps per communication step; the wave force evaluated continuously). The riser
+gets `heave` = x(t_n) and `heave_velocity` = x'(t_n) (both set: `auto` couples the displacement,
+the velocity starts the line). With `feedback=False` the body moves on the wave alone and riser
+follows it one way; `motion=(t, x, v)` replays a recorded motion instead (the reference of a
+two-way run: one-way with the two-way run's motion).
+
+Why not libcosim with a body FMU: pythonfmu (the way to write one in Python) is not installed
+here; libcosim's fixed-step algorithm is exactly this Jacobi exchange (tests/python/
+test_cosim_inputs.py shows libcosim and fmpy drive riser identically), so the master loop is
+libcosim's algorithm with the body's FMU replaced by its ODE.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .coupling_analysis import BUOY, VESSEL, Body
+
+
+@dataclass(frozen=True)
+class Wave:
+    force: float  # N, amplitude of the heave excitation
+    period: float  # s
+    ramp: float = 20.0  # s, ½(1 − cos(πt/ramp)) growth
+
+    def at(self, t):
+        r = 0.5 * (1.0 - np.cos(np.pi * min(t, self.ramp) / self.ramp))
+        return self.force * r * np.sin(2 * np.pi * t / self.period)
+
+
+# heave amplitudes about 0.25 m (vessel, as in issue 29) and 0.4 m (buoy) at 10 s
+VESSEL_WAVE = Wave(force=1.1e6, period=10.0)
+BUOY_WAVE = Wave(force=2.0e4, period=10.0)
+
+
+def _rk4(body: Body, s, t, h, wave: Wave, force: float, substeps: int = 20):
+    m = body.mass + body.added_mass
+
+    def f(t, s):
+        return np.array([s[1], (wave.at(t) + force - body.damping * s[1] - body.stiffness * s[0]) / m])
+
+    dt = h / substeps
+    for k in range(substeps):
+        tk = t + k * dt
+        k1 = f(tk, s)
+        k2 = f(tk + dt / 2, s + dt / 2 * k1)
+        k3 = f(tk + dt / 2, s + dt / 2 * k2)
+        k4 = f(tk + dt, s + dt * k3)
+        s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return s
+
+
+def two_way(fmu_path: str, body: Body, wave: Wave, h: float, duration: float, feedback: bool = True,
+            motion=None, start_values: dict | None = None, noise: float = 0.0):
+    """Runs the loop; returns dict of arrays t, heave, heave_velocity, top_tension, top_force_z
+    (at the communication points, t = 0 included). `noise` adds ±noise alternating to the heave
+    the riser gets (a body model's round-off)."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+
+    md = read_model_description(fmu_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unzipped = extract(fmu_path)
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="riser")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for k, v in (start_values or {"time_step": min(0.05, h)}).items():
+        s.setReal([vr[k]], [v])
+    s.setReal([vr["heave"], vr["heave_velocity"]], [0.0, 0.0])
+    s.exitInitializationMode()
+    f0 = s.getReal([vr["top_force_z"]])[0]
+    n = int(round(duration / h))
+    out = {k: np.zeros(n + 1) for k in ["t", "heave", "heave_velocity", "top_tension", "top_force_z"]}
+    state = np.zeros(2)
+    tension, fz = s.getReal([vr["top_tension"], vr["top_force_z"]])
+    try:
+        for k in range(n + 1):
+            t = k * h
+            if motion is not None:
+                state = np.array([np.interp(t, motion[0], motion[1]), np.interp(t, motion[0], motion[2])])
+            out["t"][k], out["heave"][k], out["heave_velocity"][k] = t, state[0], state[1]
+            out["top_tension"][k], out["top_force_z"][k] = tension, fz
+            if k == n:
+                break
+            # Jacobi: both units get the outputs of t_n, then both step
+            x = state[0] + (noise * (-1.0) ** k if k > 0 else 0.0)
+            s.setReal([vr["heave"], vr["heave_velocity"]], [float(x), float(state[1])])
+            if motion is None:
+                force = (fz - f0) if feedback else 0.0
+                state = _rk4(body, state, t, h, wave, force)
+            s.doStep(t, h)
+            tension, fz = s.getReal([vr["top_tension"], vr["top_force_z"]])
+    finally:
+        s.terminate()
+        s.freeInstance()
+    return out
+
+
+def window(res, start: float):
+    m = res["t"] >= start - 1e-9
+    x = res["top_tension"][m]
+    return np.array([x.min(), x.max(), x.mean()])
+
+
+def main(argv=None):
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="riser-tools coupling-loop", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--fmu", default="fmu/riser.fmu")
+    ap.add_argument("--duration", type=float, default=100.0)
+    ap.add_argument("--steps", default="0.05,0.1,0.2,0.5")
+    args = ap.parse_args(argv)
+    for body, wave in [(VESSEL, VESSEL_WAVE), (BUOY, BUOY_WAVE)]:
+        for h in [float(x) for x in args.steps.split(",")]:
+            two = two_way(args.fmu, body, wave, h, args.duration)
+            one = two_way(args.fmu, body, wave, h, args.duration,
+                          motion=(two["t"], two["heave"], two["heave_velocity"]))
+            a, b = window(two, 40.0), window(one, 40.0)
+            print(f"{body.name} h {h}: two-way {a / 1e3} kN, one-way with its motion {b / 1e3} kN, "
+                  f"heave {np.ptp(two['heave'][two['t'] >= 40]) / 2:.3f} m", flush=True)
+    return 0
