@@ -1,5 +1,5 @@
 //! The line's response at the hang-off to the C2 bumps the FMU's input path is
-//! made of (docs/theory.md §7.4): for each communication step h, the change of
+//! made of (docs/theory.md §7.3): for each communication step h, the change of
 //! `top_force_z` at the communication points t_c + k h when the hang-off's
 //! path carries one quintic Hermite bump of value, slope or curvature at t_c
 //! (heave only), per unit of the bump (N/m). The coupling analysis of
@@ -89,6 +89,7 @@ fn main() {
         // the static stiffness S_zz at the start, for the lumped model
         let sim = Simulation::from_scene(&sc).expect("statics");
         let s = sim.hang_off_stiffness().expect("stiffness");
-        eprintln!("h = {h}: S_zz = {:.6e} N/m", s[(2, 2)]);
+        // kind −1: the static stiffness S_zz (the change of the support's force per metre)
+        println!("{h},-1,0,0,{:.9e}", s[(2, 2)]);
     }
 }

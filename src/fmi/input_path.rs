@@ -7,17 +7,20 @@
 //! kink or a wobble of the path at the communication step's period launches
 //! axial waves that ring in the tension.
 //!
-//! Per axis, the step's end state is predicted from the latest six pieces of
-//! information the master gave: the samples are written as a polynomial Q of
-//! degree ≤ 4 (τ = s − t) plus an alternating nuisance a (−1)^k,
+//! Per axis, the step's end state is predicted from the last samples the
+//! master gave (k = 0 the current point, then the past ones newest first),
+//! written as a polynomial Q (τ = s − t) plus an alternating nuisance,
 //!
-//!   u(t_k) = Q(t_k − t) + a (−1)^k   (k = 0 the current point, then the past
-//!   ones newest first), with Q'(0), Q''(0) = the input derivatives if given, (7.1), (7.3)
+//!   u(t_k) = Q(t_k − t) + (a0 + a1 (t_k − t)/h) (−1)^k,               (7.1)
 //!
+//! in the least-squares sense, with the design of [`DESIGNS`]: a quadratic or
+//! cubic over 8 points with both nuisances on uniform steps below 0.25 s, the
+//! quartic through 6 points with a0 alone above or where the steps change
+//! (Q'(0), Q''(0) = the input derivatives when the master gives them),
 //! and the path follows Q alone: a sequence that alternates from one
 //! communication point to the next (a vessel model's round-off, the chatter of
 //! a coupling loop) moves the hang-off not at all, where the interpolating
-//! quartic of issue 12 multiplied it by up to 31 (docs/theory.md §7.4). The
+//! quartic of issue 12 multiplied it by up to 31 (docs/theory.md §7.3). The
 //! path over the step is the quintic Hermite interpolant from the hang-off's
 //! current position, velocity and acceleration (p, p', p'') at τ = 0 to
 //! (Q, Q', Q'') at τ = h:
@@ -28,9 +31,9 @@
 //! with H0 = 1 − 10σ³ + 15σ⁴ − 6σ⁵, H1 = σ − 6σ³ + 8σ⁴ − 3σ⁵,
 //! H2 = ½σ² − 3/2 σ³ + 3/2 σ⁴ − ½σ⁵ (value, slope, curvature 1 at σ = 0 in
 //! turn, all zero at σ = 1). The path is C2 at every communication point, and
-//! since the end states of successive steps are samples of one smooth curve
-//! (Q(h) differs from u(t + h) by a smooth O(h⁵) error), the path has no
-//! wobble at the communication step's period beyond that order.
+//! since on uniform steps the end states of successive steps are samples of
+//! one smooth curve (Q(h) differs from u(t + h) by the smooth error of a fixed
+//! filter), the path has no wobble at the communication step's period.
 //!
 //! Which inputs drive an axis (`coupling_inputs`, [`Coupling`]): the
 //! displacement (its samples are the u above); or the velocity alone, whose
@@ -41,11 +44,9 @@
 //! path and the velocity gives the line its start velocity. `auto` decides per
 //! axis from which of the two inputs the master has set.
 //!
-//! Error: from the displacement history with six points known,
-//! Q(h) − u(t + h) = O(h⁵), its slope O(h⁴) and curvature O(h³), so the
-//! hang-off is within O(h⁵) of the input at every communication point; the
-//! unit tests below measure it. Fewer points (the first five steps) give
-//! lower degrees.
+//! Error: Q(h) − u(t + h) = O(h^(d+1)) for Q of degree d (the quartic:
+//! O(h⁵), its slope O(h⁴) and curvature O(h³)); the unit tests below measure
+//! it. Fewer points (the first steps) give smaller designs.
 
 use crate::math::V3;
 use crate::model::HangOff;
@@ -55,7 +56,7 @@ use nalgebra::{SMatrix, SVector};
 const POLY: usize = 5;
 
 /// Pieces of information that predict a step's end: the polynomial's
-/// coefficients and the alternating nuisance (7.3).
+/// coefficients and the alternating nuisance (7.1).
 const CONDITIONS: usize = POLY + 1;
 
 /// Samples of the widest least-squares design ([`DESIGNS`]).
@@ -67,7 +68,7 @@ const UNKNOWNS: usize = 7;
 /// Past communication points kept (one sample each beyond the current one).
 const PAST: usize = TAPS - 1;
 
-/// A design of (7.3) on displacement samples: the polynomial part of
+/// A design of (7.1) on displacement samples: the polynomial part of
 /// `poly` coefficients (degree `poly` − 1) of the last `taps` samples
 /// written, in the least-squares sense, as that polynomial plus the
 /// alternating nuisances (−1)^k and τ_k (−1)^k (`alt` of them).
@@ -79,7 +80,7 @@ pub struct Design {
 }
 
 /// The design of each communication step on uniform steps, by its size
-/// (docs/theory.md §7.4; where the steps change, the last one):
+/// (docs/theory.md §7.3; where the steps change, the last one):
 /// below 0.075 s a quadratic over 8 points with both nuisances (where the
 /// line answers a wobble at the step's period most: its axial waves), up to
 /// 0.25 s a cubic over 8, above a quartic over 6 with the alternation alone
@@ -391,7 +392,7 @@ impl InputHistory {
         (out, source)
     }
 
-    /// (7.3) in the least-squares sense on the displacement samples of axis
+    /// (7.1) in the least-squares sense on the displacement samples of axis
     /// `i` (`u` at t, then the past ones) with the design of the step h
     /// ([`design`]): (Q, h Q', h² Q'') at τ = h. With n < taps samples known
     /// (the first steps) the design shrinks: min(alt, n − 1) nuisances and
@@ -446,7 +447,7 @@ impl InputHistory {
         [value, slope, curvature]
     }
 
-    /// Solves (7.1), (7.3) for Q in σ = τ/h and returns (Q, h Q', h² Q'') at
+    /// Solves (7.1) for Q in σ = τ/h and returns (Q, h Q', h² Q'') at
     /// σ = 1: the predicted end of the step. With n conditions, Q has degree
     /// n − 2 and the nuisance takes the last unknown once two samples
     /// alternate; fewer conditions lower the degree.
@@ -724,7 +725,7 @@ mod tests {
         let (e1, e2) = (err(0.8), err(0.4));
         let order = (e1 / e2).log2();
         assert!((order - 5.0).abs() < 0.3, "{e1} {e2} order {order}");
-        // closed form (docs/theory.md §7.4): the error of (7.3) on uniform
+        // closed form (docs/theory.md §7.3): the error of (7.1) on uniform
         // steps is (1 − w)⁵ (1 + 31w/32) in the shift w = e^{−iθ}, θ = ωh
         let closed = |h: f64| {
             let th = 2.0 * std::f64::consts::PI * h / 20.0;
@@ -738,7 +739,7 @@ mod tests {
     fn an_alternating_input_moves_the_hang_off_by_its_first_sample_at_most() {
         // ±1e-5 m from t = 0: the first point (no history) moves the hang-off
         // to +1e-5, the average of two points takes it back, and from two
-        // points on every prediction removes the alternation (docs/theory.md §7.4)
+        // points on every prediction removes the alternation (docs/theory.md §7.3)
         for h in [0.05, 0.2, 0.5] {
             let times: Vec<f64> = (0..=200).map(|k| k as f64 * h).collect();
             let alt = |t: f64| if ((t / h).round() as i64) % 2 == 0 { 1e-5 } else { -1e-5 };

@@ -1,4 +1,4 @@
-"""The input path in a coupling loop (issue 29, docs/theory.md §7.4): an alternating input (a
+"""The input path in a coupling loop (issue 29, docs/theory.md §7.3): an alternating input (a
 vessel model's round-off, a loop's chatter) does not move the hang-off; the velocity inputs alone
 drive it (`coupling_inputs`), integrated in the FMU's state; the log says which inputs are in use.
 References: the analysis' bound for the hang-off, the displacement-driven run for the velocity."""
@@ -60,7 +60,7 @@ def test_an_alternating_input_moves_the_hang_off_as_the_analysis_says_and_the_te
     # hang-off's end points are the analysis' prediction (7.3) of that sequence (riser_tools,
     # numpy: the transient of the first six points, then nothing), and the tension moves by less
     # than 1 kN (the interpolating quartic of issue 12 moved the hang-off ±0.31 mm and swung the
-    # tension 79 kN at 0.05 s; docs/theory.md §7.4)
+    # tension 79 kN at 0.05 s; docs/theory.md §7.3)
     from riser_tools.coupling_analysis import predicted_end_values
     times = np.arange(0.0, 30.0 + 1e-9, h)
     sequence = np.array([0.0 if k == 0 else 1e-5 * (-1.0) ** k for k in range(len(times) - 1)])
@@ -100,7 +100,7 @@ def displacement_only(fmu_path, h):
 @pytest.mark.parametrize("h", [0.05, 0.1, 0.2, 0.5])
 def test_the_velocity_alone_gives_the_displacement_driven_tension_within_0_1_percent(fmu_path, h):
     # heave never set, heave_velocity the closed-form rate of the same motion: `auto` integrates it
-    # (fourth order, docs/theory.md §7.4); the top tension window (min, max, mean over [40, 100] s)
+    # (fourth order, docs/theory.md §7.2); the top tension window (min, max, mean over [40, 100] s)
     # against the displacement-driven run at the same step
     got = velocity_only(fmu_path, h)
     ref = displacement_only(fmu_path, h)

@@ -26,6 +26,8 @@ COMMANDS = {
     "noise": ("riser_tools.studies.noise", "tension noise and numerical dissipation (make noise)"),
     "stability": ("riser_tools.studies.stability", "the stability matrix (make stability)"),
     "cosim": ("riser_tools.studies.cosim", "co-simulation fidelity against the communication step"),
+    "coupling": ("riser_tools.coupling_analysis", "the input path in a vessel–riser loop: stability, noise (docs/coupling.md)"),
+    "coupling-loop": ("riser_tools.coupling_loop", "two-way runs of riser with a vessel and a buoy (Jacobi master loop)"),
     "rho": ("riser_tools.studies.rho", "choosing rho_infinity"),
     "physics-switches": ("riser_tools.studies.physics_switches", "the cost of each physics switch"),
     "moordyn": ("riser_tools.studies.moordyn_compare", "MoorDyn on the catenary scene (make moordyn)"),
