@@ -60,10 +60,10 @@ const POLY: usize = 5;
 const CONDITIONS: usize = POLY + 1;
 
 /// Samples of the widest least-squares design ([`DESIGNS`]).
-const TAPS: usize = 8;
+const TAPS: usize = 16;
 
-/// Unknowns of a least-squares design: at most five coefficients and two nuisances.
-const UNKNOWNS: usize = 7;
+/// Unknowns of a least-squares design: at most five coefficients and three nuisances.
+const UNKNOWNS: usize = 8;
 
 /// Past communication points kept (one sample each beyond the current one).
 const PAST: usize = TAPS - 1;
@@ -71,7 +71,7 @@ const PAST: usize = TAPS - 1;
 /// A design of (7.1) on displacement samples: the polynomial part of
 /// `poly` coefficients (degree `poly` − 1) of the last `taps` samples
 /// written, in the least-squares sense, as that polynomial plus the
-/// alternating nuisances (−1)^k and τ_k (−1)^k (`alt` of them).
+/// alternating nuisances (−1)^k, τ_k (−1)^k, τ_k² (−1)^k (`alt` of them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Design {
     pub poly: usize,
@@ -80,16 +80,15 @@ pub struct Design {
 }
 
 /// The design of each communication step on uniform steps, by its size
-/// (docs/theory.md §7.3; where the steps change, the last one):
-/// below 0.075 s a quadratic over 8 points with both nuisances (where the
-/// line answers a wobble at the step's period most: its axial waves), up to
-/// 0.25 s a cubic over 8, above a quartic over 6 with the alternation alone
-/// (where the step's period is far above the axial waves' and the accuracy of
-/// slow motions is what matters). Each is the one of least tension noise whose
-/// one-way error stays below 0.1 % on the catenary.
+/// (docs/theory.md §7.3; where the steps change, the last one). All fit a
+/// quartic, whose error (O(h⁵)) stays too small for the line's axial
+/// resonances to feed on at any step; the shorter the step, the more points
+/// and nuisances smooth what alternates, where the line answers the step's
+/// period most (its axial waves): 16 points and three nuisances below
+/// 0.075 s, 12 and two up to 0.21 s, the exactly determined 6 and one above.
 pub const DESIGNS: [(f64, Design); 3] = [
-    (0.075, Design { poly: 3, alt: 2, taps: 8 }),
-    (0.25, Design { poly: 4, alt: 2, taps: 8 }),
+    (0.075, Design { poly: 5, alt: 3, taps: 16 }),
+    (0.21, Design { poly: 5, alt: 2, taps: 12 }),
     (f64::INFINITY, Design { poly: 5, alt: 1, taps: 6 }),
 ];
 
@@ -396,7 +395,7 @@ impl InputHistory {
     /// `i` (`u` at t, then the past ones) with the design of the step h
     /// ([`design`]): (Q, h Q', h² Q'') at τ = h. With n < taps samples known
     /// (the first steps) the design shrinks: min(alt, n − 1) nuisances and
-    /// min(poly, n − nuisances) coefficients.
+    /// min(poly, max(1, (n − nuisances)/2)) coefficients.
     fn fit(&self, i: usize, t: f64, h: f64, u: f64) -> [f64; 3] {
         // the smoothing designs on uniform steps (a fixed-step master); where
         // the steps change, the quartic through six points with the
@@ -411,7 +410,10 @@ impl InputHistory {
         let d = if uniform { design(h) } else { DESIGNS[2].1 };
         let n = (self.count + 1).min(d.taps);
         let alt = d.alt.min(n - 1);
-        let poly = d.poly.min(n - alt);
+        // the first steps: half the remaining samples' freedom for the
+        // polynomial, the rest to smooth (an alternation that starts with the
+        // run is not yet a pattern a small fit can separate)
+        let poly = if n < d.taps { d.poly.min(((n - alt) / 2).max(1)) } else { d.poly };
         // abscissa ξ = σ / s ∈ [−1, 0] on uniform steps (σ = τ/h): a well-scaled system
         let scale = ((n - 1) as f64).max(1.0);
         let mut a = SMatrix::<f64, TAPS, UNKNOWNS>::zeros();
@@ -664,7 +666,7 @@ mod tests {
         let mut below = 0.01;
         for (above, d) in DESIGNS {
             let top = above.min(1.0);
-            let times: Vec<f64> = (0..14)
+            let times: Vec<f64> = (0..24)
                 .scan(0.0, |t, k| {
                     let x = *t;
                     *t += below + (top - below) * (0.5 + 0.45 * (1.7 * k as f64).sin());

@@ -83,8 +83,8 @@ class Predictor:
 TODAY = Predictor("quartic interpolation (before)", 5)
 
 # the designs of src/fmi/input_path.rs (DESIGNS): (step below which it is used, design)
-DESIGNS = [(0.075, Predictor("quadratic, 8 points, both nuisances", 3, 2, 8)),
-           (0.25, Predictor("cubic, 8 points, both nuisances", 4, 2, 8)),
+DESIGNS = [(0.075, Predictor("quartic, 16 points, three nuisances", 5, 3, 16)),
+           (0.21, Predictor("quartic, 12 points, two nuisances", 5, 2, 12)),
            (np.inf, Predictor("quartic, 6 points, alternation", 5, 1, 6))]
 AFTER = Predictor("least squares per step (after)", 0)
 
@@ -102,7 +102,8 @@ CANDIDATES = [
     Predictor("cubic interpolation", 4),
     Predictor("linear extrapolation", 2),
     Predictor("quartic, alternation removed", 5, 1),
-    Predictor("quadratic, 8 points, both nuisances", 3, 2, 8),
+    Predictor("quadratic, 8 points, two nuisances", 3, 2, 8),
+    Predictor("cubic, 8 points, two nuisances", 4, 2, 8),
 ]
 
 
@@ -124,7 +125,7 @@ def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
 def predicted_end_values(samples, h: float) -> np.ndarray:
     """The end values input_path.rs predicts at uniform steps h for the displacement sequence
     `samples` (oldest first), the start included: with n < taps samples known, the design keeps
-    min(alt, n − 1) nuisances and min(poly, n − nuisances) coefficients. The hang-off is at entry k
+    min(alt, n − 1) nuisances and min(poly, max(1, (n − nuisances) // 2)) coefficients. The hang-off is at entry k
     at the end of step k."""
     d = design(h)
     samples = np.asarray(samples, dtype=float)
@@ -132,7 +133,8 @@ def predicted_end_values(samples, h: float) -> np.ndarray:
     for k in range(len(samples)):
         n = min(k + 1, d.taps)
         alt = min(d.n_alt, n - 1)
-        w = predictor_weights(Predictor("", min(d.n_poly, n - alt), alt, n))
+        poly = d.n_poly if n == d.taps else min(d.n_poly, max(1, (n - alt) // 2))
+        w = predictor_weights(Predictor("", poly, alt, n))
         out[k] = w[0] @ samples[k::-1][:n]
     return out
 
