@@ -555,6 +555,7 @@ impl Instance {
             "algorithmic_dissipation" => o.algorithmic_dissipation,
             "touchdown_s" => o.touchdown_s,
             "work_seabed" => o.work_seabed,
+            "hang_off_angle" => o.hang_off_angle,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

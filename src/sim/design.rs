@@ -20,7 +20,7 @@ pub const STRAIN_LIMIT: f64 = 0.01;
 /// The longest element, in bending lengths √(EI/T) at the touchdown, before
 /// riser warns: the curvature peak there spreads over about two bending
 /// lengths; on steel_catenary (λ = 17 m) the largest curvature is within
-/// 0.5 % of the converged value at h = 1.2 λ and 3.4 % off at h = 2.3 λ
+/// 0.42 % of the converged value at h = 1.2 λ and 3.5 % off at h = 2.3 λ
 /// (docs/theory.md §12.3).
 pub const MESH_PER_BENDING_LENGTH: f64 = 2.0;
 
@@ -163,8 +163,7 @@ impl Design {
         hang_off_tangent: V3,
         touchdown: Option<(f64, f64)>,
     ) -> DesignNumbers {
-        let t = hang_off_tangent.normalize();
-        let hang_off_angle = (-t.z).clamp(-1.0, 1.0).acos().to_degrees();
+        let hang_off_angle = crate::model::outputs::hang_off_angle(hang_off_tangent);
         let argmax = |f: &dyn Fn(&LinePoint) -> f64| {
             points.iter().map(|p| (f(p), p.s)).fold((f64::NEG_INFINITY, 0.0), |m, v| if v.0 > m.0 { v } else { m })
         };

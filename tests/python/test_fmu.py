@@ -224,3 +224,15 @@ def test_a_step_newton_cannot_take_is_discarded_with_the_last_good_time(fmu_path
     assert np.all(np.isfinite(s.getReal([vr["top_tension"], vr["total_energy"], vr["shape[10].z"]])))
     s.terminate()
     s.freeInstance()
+
+
+def test_hang_off_angle_output_is_the_statics_design_number(fmu_path, riser_bin):
+    """Issue 31: `hang_off_angle` (deg) at the static state equals `riser statics`'s,
+    rod and cable."""
+    for model in ("rod", "cable"):
+        st = json.loads(subprocess.run([riser_bin, "statics", "steel_catenary", "--set", f"model={model}", "--json"],
+                                       check=True, capture_output=True, text=True).stdout)
+        res = simulate_fmu(fmu_path, stop_time=0.5, output_interval=0.5, output=["hang_off_angle"],
+                           start_values={"scene": "steel_catenary", "model": model})
+        assert abs(res["hang_off_angle"][0] - st["hang_off_angle"]) < 1e-9, (model, res["hang_off_angle"][0])
+        assert 15.0 < st["hang_off_angle"] < 25.0
