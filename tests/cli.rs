@@ -395,3 +395,62 @@ fn messages_speak_the_users_terms() {
     assert!(v.as_array().unwrap().iter().any(|r| r["name"] == "length" && r["value"] == "400"));
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// Issue 31: the stress range of a run. A vertical steel line stretched
+/// between its ends, heaved 1 cm / 10 s (quasi-static: its axial period is
+/// 0.08 s): at the top Gauss point the outer-fibre stress range is the top
+/// tension's range over the wall area (12.1), within 1e-3 (the inertia and
+/// weight of the 0.35 m above it); the JSON's `stress_range` is the largest
+/// row of stress_range.csv.
+#[test]
+fn the_stress_range_of_a_stretched_line_is_its_tension_range_over_the_wall() {
+    let (ea, ei, d) = (3.38e9, 2.71e7, 0.2731);
+    let dir = std::env::temp_dir().join(format!("riser-stress-{}", std::process::id()));
+    let v = json(&riser(&[
+        "run",
+        "catenary",
+        "--set",
+        &format!("axial_stiffness={ea}"),
+        "--set",
+        &format!("bending_stiffness={ei}"),
+        "--set",
+        &format!("outer_diameter={d}"),
+        "--set",
+        "anchor_x=0",
+        "--set",
+        "anchor_z=-100.05",
+        "--set",
+        "n_elements=20",
+        "--heave",
+        "0.01,10",
+        "--duration",
+        "40",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let area = std::f64::consts::PI * (d * d - (16.0 * ei / ea - d * d)) / 4.0;
+    let series = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let t0 = v["steady"]["window"][0].as_f64().unwrap();
+    let top: Vec<f64> = series
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(2).map(|x| x.parse::<f64>().unwrap()).collect::<Vec<_>>())
+        .filter(|r| r[0] >= t0 - 1e-9)
+        .map(|r| r[1])
+        .collect();
+    let range = (top.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - top.iter().cloned().fold(f64::INFINITY, f64::min))
+        / area;
+    let rows: Vec<Vec<f64>> = std::fs::read_to_string(dir.join("stress_range.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    println!("top Gauss point: {:.6e} Pa, top tension range / A {range:.6e} Pa", rows[0][3]);
+    assert!((rows[0][3] - range).abs() <= 1e-3 * range);
+    let largest = rows.iter().map(|r| r[3]).fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(v["steady"]["stress_range"].as_f64(), Some(largest));
+    std::fs::remove_dir_all(dir).ok();
+}

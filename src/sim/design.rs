@@ -305,6 +305,20 @@ impl StressRange {
         }
     }
 
+    /// Per point: (S m, smallest σ, largest σ over its fibres, the largest
+    /// range of one fibre), Pa: the rows of `stress_range.csv`.
+    pub fn rows(&self) -> Vec<[f64; 4]> {
+        self.points
+            .iter()
+            .map(|(s, f)| {
+                let lo = f.iter().map(|x| x.0).fold(f64::INFINITY, f64::min);
+                let hi = f.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
+                let range = f.iter().map(|(a, b)| b - a).fold(f64::NEG_INFINITY, f64::max);
+                [*s, lo, hi, range]
+            })
+            .collect()
+    }
+
     /// The largest range max − min of one fibre at one point, Pa, and its
     /// arc length, m; None when nothing was added or the line has no stresses.
     pub fn largest(&self) -> Option<(f64, f64)> {

@@ -634,6 +634,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let simulated = st.time;
     if let Some(dir) = &out {
         write_run_csv(dir, &series, &shapes).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+        let stress_csv = dir.join("stress_range.csv");
+        match stress_range {
+            Some(_) => write_stress_csv(&stress_csv, &stress.rows())
+                .map_err(|e| format!("cannot write {}: {e}", stress_csv.display()))?,
+            // not last run's table of another scene
+            None => _ = std::fs::remove_file(&stress_csv),
+        }
         let td: Vec<f64> = series.iter().map(|o| o.touchdown_s).collect();
         let bed = scene.seabed.as_ref().map(|b| b.height_at(scene.anchor.x, scene.anchor.y));
         let path = dir.join("touchdown.svg");
@@ -701,6 +708,14 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             if period > 0.0 { start } else { String::new() }
         );
         outln!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
+        let d = &static_design;
+        let touchdown = d.touchdown_s.map(|s| format!(", touchdown at S = {s:.1} m")).unwrap_or_default();
+        outln!(
+            "  static state: hang-off angle {:.2} deg{touchdown}, min bend radius {:.2} m at S = {:.1} m",
+            d.hang_off_angle,
+            d.min_bend_radius,
+            d.max_curvature_s
+        );
         outln!("  steady window {w0} to {w1} s:");
         outln!(
             "    top tension min/mean/max {:.3} / {:.3} / {:.3} kN",
@@ -733,14 +748,26 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             outln!("  {} warning(s) (on stderr)", warnings.len());
         }
         if let Some(dir) = &out {
+            let stress = if stress_range.is_some() { ", stress_range.csv" } else { "" };
             let plot = if dir.join("touchdown.svg").exists() { " and touchdown.svg" } else { "" };
-            outln!("  wrote {}/timeseries.csv, shapes.csv{plot}", dir.display());
+            outln!("  wrote {}/timeseries.csv, shapes.csv{stress}{plot}", dir.display());
         }
     }
     match failure {
         Some(msg) => Err(format!("run stopped at t = {simulated:.6} s: {msg}")),
         None => Ok(()),
     }
+}
+
+/// stress_range.csv: per point of the line, the outer-fibre stress's extremes
+/// over its 8 fibres and the largest range of one fibre over the steady window.
+fn write_stress_csv(path: &Path, rows: &[[f64; 4]]) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(f, "S,stress_min,stress_max,stress_range")?;
+    for r in rows {
+        writeln!(f, "{},{},{},{}", r[0], r[1], r[2], r[3])?;
+    }
+    f.flush()
 }
 
 fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 6]>)]) -> std::io::Result<()> {
