@@ -27,6 +27,7 @@ macro_rules! out {
 }
 
 mod modes;
+mod svg;
 mod touchdown;
 
 /// Writes to stdout; a reader that has gone away (broken pipe) is not an
