@@ -265,6 +265,12 @@ fn default_run_is_ramped_over_one_period_and_reports_its_steady_window() {
     assert!(w[0] <= w[1] && w[1] <= w[2]);
     assert!(whole["min"].as_f64().unwrap() <= w[0] && w[2] <= whole["max"].as_f64().unwrap());
     assert!(steady["min_tension"].as_f64().unwrap() >= default["min_tension"].as_f64().unwrap());
+    // the envelope along the line and the hang-off angle, inside what the whole run saw
+    let max_t = steady["max_tension"].as_f64().unwrap();
+    assert!(steady["min_tension"].as_f64().unwrap() < max_t && max_t >= w[2] - 1e-6 * w[2], "{steady}");
+    let angle: Vec<f64> = steady["hang_off_angle"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert!(angle[0] <= angle[1] && angle[1] <= angle[2] && angle[0] > 0.0, "{angle:?}");
+    assert!(steady["touchdown_s"].is_null() && steady["max_curvature"].as_f64().unwrap() > 0.0);
     // a flexible pipe has no stresses; nothing is implausible here
     assert!(steady["stress_range"].is_null());
     assert_eq!(steady["warnings"], serde_json::json!([]));
@@ -325,14 +331,18 @@ fn statics_json_has_the_design_numbers_and_no_warning_for_plausible_scenes() {
 /// the JSON's `warnings`.
 #[test]
 fn implausible_models_warn() {
-    let cases: [(&[&str], &[&str]); 3] = [
+    let cases: [(&[&str], &[&str]); 5] = [
         // the anchor beyond the line's reach: a straight, stretched line
         (
             &["statics", "catenary", "--set", "anchor_x=75"],
             &["beyond the line's unstretched length", "axial strain reaches"],
         ),
         // 40 m elements against a 17 m bending length at the touchdown
-        (&["statics", "steel_catenary", "--set", "n_elements=10"], &["bending length", "n_elements >= 24"]),
+        (&["statics", "steel_catenary", "--set", "n_elements=10"], &["bending length", "n_elements = 47"]),
+        // 16.7 m: fewer than two per bending length
+        (&["statics", "steel_catenary", "--set", "n_elements=24"], &["bending length", "n_elements = 47"]),
+        // a taut line's lowest point is its anchor, no touchdown: no mesh warning, but the reach
+        (&["statics", "steel_catenary", "--set", "anchor_x=355"], &["beyond the line's unstretched length"]),
         // the abrupt start of a large heave puts the lazy wave in compression
         (
             &[
@@ -357,6 +367,9 @@ fn implausible_models_warn() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         for e in expected {
             assert!(stderr.contains(e), "{args:?}: '{e}' not in {stderr}");
+        }
+        if args.contains(&"anchor_x=355") {
+            assert!(!stderr.contains("bending length"), "{args:?}: {stderr}");
         }
         let v = json(&riser(&[args, &["--json"]].concat()));
         let list = if args[0] == "run" { &v["steady"]["warnings"] } else { &v["warnings"] };
@@ -386,6 +399,12 @@ fn messages_speak_the_users_terms() {
     }
     let err = String::from_utf8_lossy(&riser(&["run", "catenary", "--duration", "-5"]).stderr).to_string();
     assert!(err.contains("--duration must be a positive number of seconds, got -5"), "{err}");
+    let out = riser(&["run", "catenary", "--heave", "2.5,20", "--duration", "100", "--window", "120,200"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(!out.status.success() && err.contains("--window 120,200 must lie within the run, 0 to 100 s"), "{err}");
+    // a negative amplitude is a number, not a flag
+    let v = json(&riser(&[&SMALL_RUN[..6], &["--heave", "-2.5,20", "--duration", "1", "--json"]].concat()));
+    assert_eq!(v["completed"], true);
     // riser params: the default scene's value of each parameter
     let v = json(&riser(&["params", "--json"]));
     let row = |n: &str| v.as_array().unwrap().iter().find(|r| r["name"] == n).unwrap().clone();

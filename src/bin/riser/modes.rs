@@ -2,10 +2,10 @@
 //! static state — the text table, the JSON object, and with `--out` the CSV
 //! files and a plot of the lowest modes (modes.svg, written by hand).
 
+use crate::svg::{Frame, escape};
 use riser::math::V3;
 use riser::scene::{Model, Scene};
 use riser::sim::modes::{ModalReport, SceneMode, plane_normal, scene_modes};
-use crate::svg::{Frame, escape};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
