@@ -146,7 +146,14 @@ enum Command {
 fn params(scene: &str, json: bool) -> Result<(), String> {
     use riser::scene::ranges;
     let sc = load(scene, &[] as &[String]).map_err(|e| e.to_string())?;
-    let value = |name: &str| sc.parameter(name).unwrap_or_else(|| "-".to_string());
+    // a number to 10 significant digits (a derived default such as m D²/8 prints its round-off otherwise)
+    let value = |name: &str| match sc.parameter(name) {
+        Some(text) => match text.parse::<f64>() {
+            Ok(v) if v.is_finite() && v != 0.0 => ranges::number(format!("{v:.9e}").parse().unwrap_or(v)),
+            _ => text,
+        },
+        None => "-".to_string(),
+    };
     let rows: Vec<serde_json::Value> = PARAMETER_NAMES
         .iter()
         .map(|(name, unit)| match ranges::of_parameter(name) {
