@@ -197,6 +197,15 @@ fn main() {
         w.write_event(Event::Empty(bu)).unwrap();
         w.write_event(Event::End(BytesEnd::new("Unit"))).unwrap();
     }
+    // an angle: SI's rad, shown in degrees
+    let mut u = BytesStart::new("Unit");
+    u.push_attribute(("name", "deg"));
+    w.write_event(Event::Start(u)).unwrap();
+    let mut bu = BytesStart::new("BaseUnit");
+    bu.push_attribute(("rad", "1"));
+    bu.push_attribute(("factor", "0.017453292519943295"));
+    w.write_event(Event::Empty(bu)).unwrap();
+    w.write_event(Event::End(BytesEnd::new("Unit"))).unwrap();
     w.write_event(Event::End(BytesEnd::new("UnitDefinitions"))).unwrap();
 
     w.write_event(Event::Start(BytesStart::new("LogCategories"))).unwrap();

@@ -70,13 +70,16 @@ pub struct Outputs {
     /// Arc length from the hang-off to the first seabed contact, m (the
     /// line's length when it touches nowhere).
     pub touchdown_s: f64,
+    /// Angle of the line's tangent at the hang-off from the downward
+    /// vertical, deg (docs/theory.md §12.1).
+    pub hang_off_angle: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 16] = [
+    pub const NAMES: [&'static str; 17] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -93,10 +96,11 @@ impl Outputs {
         "algorithmic_dissipation",
         "touchdown_s",
         "work_seabed",
+        "hang_off_angle",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 16] {
+    pub fn values(&self) -> [f64; 17] {
         [
             self.top_tension,
             self.top_force.x,
@@ -114,6 +118,7 @@ impl Outputs {
             self.algorithmic_dissipation,
             self.touchdown_s,
             self.work_seabed,
+            self.hang_off_angle,
         ]
     }
 
@@ -152,6 +157,7 @@ impl Outputs {
         min_tension: f64,
         energy: [f64; 3],
         touchdown_s: f64,
+        hang_off_tangent: V3,
         shape: [V3; SHAPE_POINTS],
     ) -> Self {
         let [kinetic, strain, potential] = energy;
@@ -173,7 +179,25 @@ impl Outputs {
             algorithmic_dissipation: s.algorithmic,
             work_seabed: s.work_seabed,
             touchdown_s,
+            hang_off_angle: hang_off_angle(hang_off_tangent),
             shape,
         }
+    }
+}
+
+/// The angle of `tangent` (pointing down the line) from the downward
+/// vertical, deg (§12.1).
+pub fn hang_off_angle(tangent: V3) -> f64 {
+    (-tangent.z / tangent.norm()).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// The tangent of a line of nodes `x` at its first node, second order: the
+/// one-sided difference (−3x₀ + 4x₁ − x₂)/2 (the first chord alone is the
+/// tangent half a segment down; §12.1).
+pub fn first_node_tangent(x: &[V3]) -> V3 {
+    match x.len() {
+        0 | 1 => V3::z() * -1.0,
+        2 => x[1] - x[0],
+        _ => 4.0 * x[1] - 3.0 * x[0] - x[2],
     }
 }

@@ -163,8 +163,7 @@ impl Engine {
         let x = &state.config.x;
         match self {
             Engine::Rod(_) => state.config.xp[0].normalize(),
-            Engine::Cable(_) if x.len() > 2 => (4.0 * x[1] - 3.0 * x[0] - x[2]).normalize(),
-            Engine::Cable(_) => (x[1] - x[0]).normalize(),
+            Engine::Cable(_) => crate::model::outputs::first_node_tangent(x).normalize(),
         }
     }
 

@@ -476,6 +476,7 @@ impl CableModel {
             Some(bed) => seabed::touchdown(bed.first(), x, |a| c.s_node(a), c.length),
             None => c.length,
         };
-        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)
+        let tangent = crate::model::outputs::first_node_tangent(x);
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, tangent, shape)
     }
 }

@@ -124,6 +124,6 @@ impl RodModel {
             Some(bed) => seabed::touchdown(bed.first(), &cfg.x, |a| rod.s_node(a), rod.length),
             None => rod.length,
         };
-        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, shape)
+        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, cfg.xp[0], shape)
     }
 }
