@@ -17,8 +17,16 @@ use riser::sim::Simulation;
 fn hermite(s: f64) -> [[f64; 3]; 2] {
     let (s2, s3, s4, s5) = (s * s, s * s * s, s.powi(4), s.powi(5));
     [
-        [1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5, s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5, 0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5],
-        [-30.0 * s2 + 60.0 * s3 - 30.0 * s4, 1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4, s - 4.5 * s2 + 6.0 * s3 - 2.5 * s4],
+        [
+            1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5,
+            s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5,
+            0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5,
+        ],
+        [
+            -30.0 * s2 + 60.0 * s3 - 30.0 * s4,
+            1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4,
+            s - 4.5 * s2 + 6.0 * s3 - 2.5 * s4,
+        ],
     ]
 }
 
@@ -30,7 +38,8 @@ fn bump(j: usize, a: f64, tc: f64, h: f64, t: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     // right of the centre: H_j(σ), σ = x; left: the mirror H_j(1 − σ) with the odd one negated
-    let (b, sign_v, sign_d) = if x >= 0.0 { (hermite(x), 1.0, 1.0) } else { (hermite(-x), if j == 1 { -1.0 } else { 1.0 }, -1.0) };
+    let (b, sign_v, sign_d) =
+        if x >= 0.0 { (hermite(x), 1.0, 1.0) } else { (hermite(-x), if j == 1 { -1.0 } else { 1.0 }, -1.0) };
     (a * sign_v * b[0][j], a * sign_v * sign_d * b[1][j] / h)
 }
 
@@ -46,7 +55,8 @@ fn main() {
     let mut sets = vec!["static_current=true".to_string()];
     sets.extend(args[5..].iter().filter(|a| a.contains('=')).cloned());
     let scene = scene.with_overrides(&sets).expect("overrides");
-    let (tc, memory, a): (f64, f64, f64) = (args[2].parse().unwrap(), args[3].parse().unwrap(), args[4].parse().unwrap());
+    let (tc, memory, a): (f64, f64, f64) =
+        (args[2].parse().unwrap(), args[3].parse().unwrap(), args[4].parse().unwrap());
     println!("h,kind,k,t,response");
     for hs in args[5..].iter().filter(|a| !a.contains('=')) {
         let h: f64 = hs.parse().unwrap();
@@ -79,7 +89,13 @@ fn main() {
             out
         };
         let base = run(None);
-        eprintln!("baseline top_force_z: first {:.6e} last {:.6e} min {:.6e} max {:.6e}", base[0], base[base.len() - 1], base.iter().cloned().fold(f64::INFINITY, f64::min), base.iter().cloned().fold(f64::NEG_INFINITY, f64::max));
+        eprintln!(
+            "baseline top_force_z: first {:.6e} last {:.6e} min {:.6e} max {:.6e}",
+            base[0],
+            base[base.len() - 1],
+            base.iter().cloned().fold(f64::INFINITY, f64::min),
+            base.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        );
         for j in 0..3 {
             let r = run(Some(j));
             for (k, (x, b)) in r.iter().zip(&base).enumerate() {

@@ -322,6 +322,7 @@ def plot(rows, resp, path: Path, predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
     ax = axes[0]
     for p in [q for q in predictors if q is not AFTER] + [q for _, q in DESIGNS]:
         ax.semilogy(theta / np.pi, np.abs(end_state_response(predictor_weights(p), theta)[0]), label=p.name)
+    ax.set_ylim(1e-2, 100.0)
     ax.set_xlabel("θ = ωh / π")
     ax.set_ylabel("|E₀(θ)|: end value per unit input")
     ax.set_title("predictor gain (1 = exact at low θ)")
