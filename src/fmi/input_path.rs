@@ -431,14 +431,11 @@ impl InputHistory {
             b[k] = value;
         }
         // the minimum-norm least-squares solution: unused unknowns are zero
-        let coef = a.svd(true, true).solve(&b, 1e-12).map_or_else(
-            |_| {
-                let mut c = SVector::<f64, UNKNOWNS>::zeros();
-                c[0] = u;
-                c
-            },
-            |c| c,
-        );
+        let coef = a.svd(true, true).solve(&b, 1e-12).unwrap_or_else(|_| {
+            let mut c = SVector::<f64, UNKNOWNS>::zeros();
+            c[0] = u;
+            c
+        });
         let (mut value, mut slope, mut curvature) = (0.0, 0.0, 0.0);
         for j in 0..poly {
             let cj = coef[j] / scale.powi(j as i32);
