@@ -125,16 +125,15 @@ def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
 def predicted_end_values(samples, h: float) -> np.ndarray:
     """The end values input_path.rs predicts at uniform steps h for the displacement sequence
     `samples` (oldest first), the start included: with n < taps samples known, the design keeps
-    min(alt, n − 1) nuisances and min(poly, max(1, (n − nuisances) // 2)) coefficients. The hang-off is at entry k
+    min(alt, n − 4) nuisances and min(poly, n − nuisances) coefficients. The hang-off is at entry k
     at the end of step k."""
     d = design(h)
     samples = np.asarray(samples, dtype=float)
     out = np.zeros(len(samples))
     for k in range(len(samples)):
         n = min(k + 1, d.taps)
-        alt = min(d.n_alt, n - 1)
-        poly = d.n_poly if n == d.taps else min(d.n_poly, max(1, (n - alt) // 2))
-        w = predictor_weights(Predictor("", poly, alt, n))
+        alt = min(d.n_alt, max(0, n - 4))
+        w = predictor_weights(Predictor("", min(d.n_poly, n - alt), alt, n))
         out[k] = w[0] @ samples[k::-1][:n]
     return out
 
