@@ -127,6 +127,58 @@ def reference(fmu_path: str, two: dict, h_ref: float = 0.01, duration: float | N
                    start_values={"time_step": h_ref})
 
 
+def build_vessel_fmu(dest) -> str:
+    """osp/vessel/Vessel.py built into an FMU with pythonfmu (requirements.txt) in `dest`."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    src = Path(__file__).resolve().parents[4] / "osp" / "vessel" / "Vessel.py"
+    subprocess.run([sys.executable, "-m", "pythonfmu", "build", "-f", str(src), "-d", str(dest)], check=True,
+                   capture_output=True)
+    return str(Path(dest) / "Vessel.fmu")
+
+
+def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
+    """libcosim's ECCO algorithm (Sadjina & Pedersen 2020) on riser and the vessel FMU with the
+    power bond (riser: top_force_z out, heave_velocity in; vessel: heave_velocity out, force in),
+    nothing else connected: riser couples by velocity (`auto`). Returns the columns t, top_tension,
+    hang-off z (shape[0].z), work_top, vessel heave, heave_velocity, work, work_magnitude after
+    every step ECCO takes."""
+    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.WARNING)
+    algo = CosimAlgorithm.create_ecco_algorithm(EccoParams(**params))
+    ex = CosimExecution.from_algorithm(algo)
+    r = ex.add_local_slave(CosimLocalSlave(fmu_path=riser_fmu, instance_name="riser"))
+    v = ex.add_local_slave(CosimLocalSlave(fmu_path=vessel_fmu, instance_name="vessel"))
+    rr = {x.name.decode(): x.reference for x in ex.slave_variables(r)}
+    vr = {x.name.decode(): x.reference for x in ex.slave_variables(v)}
+    ex.connect_real_variables(v, vr["heave_velocity"], r, rr["heave_velocity"])
+    ex.connect_real_variables(r, rr["top_force_z"], v, vr["force"])
+    if algo.add_power_bond(r, rr["top_force_z"], rr["heave_velocity"], v, vr["heave_velocity"], vr["force"]) != 0:
+        raise RuntimeError("libcosim refused the power bond")
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(observer=obs)
+    rows = []
+    while True:
+        if not ex.step():
+            raise RuntimeError(f"ECCO stopped at t = {ex.status().current_time / 1e9} s")
+        t = ex.status().current_time / 1e9
+        rows.append([t] + list(obs.last_real_values(r, [rr["top_tension"], rr["shape[0].z"], rr["work_top"]]))
+                    + list(obs.last_real_values(v, [vr["heave"], vr["heave_velocity"], vr["work"],
+                                                    vr["work_magnitude"]])))
+        if t >= duration - 1e-9:
+            break
+    a = np.array(rows)
+    names = ["t", "top_tension", "z", "work_top", "heave", "heave_velocity", "work", "work_magnitude"]
+    return {n: a[:, i] for i, n in enumerate(names)}
+
+
 def window(res, start: float):
     m = res["t"] >= start - 1e-9
     x = res["top_tension"][m]

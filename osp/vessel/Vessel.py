@@ -1,0 +1,64 @@
+"""A floating body's heave as an FMI 2.0 Co-Simulation FMU (pythonfmu), to couple riser to in
+libcosim: (M + A) x'' + C x' + K x = F_wave r(t) sin(2πt/T) + (force − force(0)), the riser's
+force at the start taken as balanced by the body's buoyancy; r(t) = ½(1 − cos(πt/ramp)) grows the
+wave. Out: heave, heave_velocity (and the work of the riser's force on the body, its held value
+times the body's displacement over each step, and the sum of its magnitudes). In: force (riser's
+top_force_z). RK4 at steps of at most 5 ms inside each communication step.
+
+Build: `pythonfmu build -f osp/vessel/Vessel.py` (riser_tools.coupling_loop.build_vessel_fmu).
+Defaults: the 2000 t vessel of docs/theory.md §7.3 (M + A = 3000 t, K = 5.03 MN/m, 5 % damping,
+a 10 s wave of 1.1 MN)."""
+import math
+
+from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real
+
+
+class Vessel(Fmi2Slave):
+    author = "riser"
+    description = "heave of a floating body fed a riser's top force"
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self.mass = 3.0e6
+        self.damping = 3.883e5
+        self.stiffness = 5.0276e6
+        self.wave_force = 1.1e6
+        self.wave_period = 10.0
+        self.ramp = 20.0
+        self.force = 0.0
+        self.heave = 0.0
+        self.heave_velocity = 0.0
+        self.work = 0.0
+        self.work_magnitude = 0.0
+        self._force0 = None
+        for name in ["mass", "damping", "stiffness", "wave_force", "wave_period", "ramp"]:
+            self.register_variable(Real(name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.tunable))
+        self.register_variable(Real("force", causality=Fmi2Causality.input))
+        for name in ["heave", "heave_velocity", "work", "work_magnitude"]:
+            self.register_variable(Real(name, causality=Fmi2Causality.output))
+
+    def _rates(self, t, x, v, force):
+        r = 0.5 * (1.0 - math.cos(math.pi * min(t, self.ramp) / self.ramp))
+        f = self.wave_force * r * math.sin(2 * math.pi * t / self.wave_period) + force
+        return v, (f - self.damping * v - self.stiffness * x) / self.mass
+
+    def do_step(self, t, dt):
+        if self._force0 is None:
+            self._force0 = self.force
+        force = self.force - self._force0
+        n = max(1, int(math.ceil(dt / 0.005)))
+        h = dt / n
+        x, v = self.heave, self.heave_velocity
+        for k in range(n):
+            tk = t + k * h
+            a1, b1 = self._rates(tk, x, v, force)
+            a2, b2 = self._rates(tk + h / 2, x + h / 2 * a1, v + h / 2 * b1, force)
+            a3, b3 = self._rates(tk + h / 2, x + h / 2 * a2, v + h / 2 * b2, force)
+            a4, b4 = self._rates(tk + h, x + h * a3, v + h * b3, force)
+            x += h / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+            v += h / 6 * (b1 + 2 * b2 + 2 * b3 + b4)
+        # the riser's whole force (held over the step) on the body's displacement
+        self.work += self.force * (x - self.heave)
+        self.work_magnitude += abs(self.force * (x - self.heave))
+        self.heave, self.heave_velocity = x, v
+        return True
