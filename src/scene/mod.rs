@@ -336,6 +336,35 @@ pub struct Scene {
     pub seabed: Option<SeabedSpec>,
     #[serde(default)]
     pub analysis: Analysis,
+    /// The hang-off's end condition (`[hang_off]`; default pinned).
+    #[serde(default, skip_serializing_if = "HangOffSpec::is_default")]
+    pub hang_off: HangOffSpec,
+}
+
+/// How the line's end is held at the hang-off (docs/theory.md §15).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HangOffEnd {
+    /// Position follows the vessel; free to rotate and twist (no moment).
+    #[default]
+    Pinned,
+    /// Position follows the vessel; the end's orientation held at its
+    /// static one (a stiff connection, the rod only).
+    Clamped,
+}
+
+/// `[hang_off]`: the end condition at the hang-off.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HangOffSpec {
+    #[serde(default)]
+    pub end: HangOffEnd,
+}
+
+impl HangOffSpec {
+    fn is_default(&self) -> bool {
+        *self == HangOffSpec::default()
+    }
 }
 
 /// Why a scene could not be used.

@@ -4,8 +4,9 @@
 use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 33] = [
+pub const PARAMETER_NAMES: [(&str, &str); 34] = [
     ("model", "rod | cable"),
+    ("hang_off_end", "pinned | clamped"),
     ("n_elements", "-"),
     ("time_step", "s"),
     ("newton_tolerance", "-"),
@@ -125,6 +126,18 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
                 }
             }
         }
+        "hang_off_end" => {
+            s.hang_off.end = match value {
+                "pinned" => super::HangOffEnd::Pinned,
+                "clamped" => super::HangOffEnd::Clamped,
+                _ => {
+                    return Err(SceneError::Override {
+                        name: name.into(),
+                        message: format!("'{value}' is not an end condition: pinned or clamped"),
+                    });
+                }
+            }
+        }
         "n_elements" => {
             let n = value.parse::<usize>().map_err(|_| SceneError::Override {
                 name: name.into(),
@@ -217,6 +230,13 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
             Model::Rod => "rod".into(),
             Model::Cable => "cable".into(),
         }),
+        "hang_off_end" => Some(
+            match s.hang_off.end {
+                super::HangOffEnd::Pinned => "pinned",
+                super::HangOffEnd::Clamped => "clamped",
+            }
+            .into(),
+        ),
         "n_elements" => Some(s.analysis.n_elements.to_string()),
         "time_step" => num(s.analysis.time_step),
         "newton_tolerance" => num(s.analysis.newton_tolerance),
