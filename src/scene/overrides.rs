@@ -1,10 +1,10 @@
 //! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
-use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
+use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges, waves};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 33] = [
+pub const PARAMETER_NAMES: [(&str, &str); 47] = [
     ("model", "rod | cable"),
     ("n_elements", "-"),
     ("time_step", "s"),
@@ -38,6 +38,20 @@ pub const PARAMETER_NAMES: [(&str, &str); 33] = [
     ("seabed_stiffness", "Pa/m"),
     ("seabed_damping", "Pa s/m"),
     ("seabed_friction", "-"),
+    ("wave_kind", "none | airy | jonswap | pierson_moskowitz | table"),
+    ("wave_height", "m"),
+    ("wave_period", "s"),
+    ("wave_direction", "deg from +x"),
+    ("wave_phase", "deg"),
+    ("wave_hs", "m"),
+    ("wave_tp", "s"),
+    ("wave_gamma", "-"),
+    ("wave_components", "-"),
+    ("wave_seed", "-"),
+    ("wave_file", "path"),
+    ("wave_stretching", "wheeler | vertical | none"),
+    ("wave_ramp", "s"),
+    ("water_depth", "m"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -48,14 +62,14 @@ fn seabed(s: &mut Scene) -> &mut SeabedSpec {
 }
 
 /// The value of a numeric parameter, checked against its range (ranges.rs).
-fn number(name: &str, value: &str) -> Result<f64, SceneError> {
+pub(super) fn number(name: &str, value: &str) -> Result<f64, SceneError> {
     let v = value
         .parse::<f64>()
         .map_err(|_| SceneError::Override { name: name.to_string(), message: format!("'{value}' is not a number") })?;
     in_range(name, v)
 }
 
-fn in_range(name: &str, v: f64) -> Result<f64, SceneError> {
+pub(super) fn in_range(name: &str, v: f64) -> Result<f64, SceneError> {
     match ranges::of_parameter(name).map(|r| r.check(v)) {
         Some(Err(message)) => Err(SceneError::Override { name: name.to_string(), message }),
         _ => Ok(v),
@@ -111,6 +125,9 @@ fn current_end(s: &mut Scene, name: &str, v: f64, top: bool) -> Result<(), Scene
 }
 
 pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneError> {
+    if let Some(r) = waves::set(s, name, value) {
+        return r;
+    }
     let num = || number(name, value);
     match name {
         "model" => {
@@ -199,6 +216,9 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
 /// unknown name, or where the scene has no single value: a current table's
 /// ends, several buoyancy sections).
 pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
+    if let Some(v) = waves::get(s, name) {
+        return Some(v);
+    }
     let num = |v: f64| Some(format!("{v}"));
     let c = &s.current;
     let end = |top: bool| match c.profile {
