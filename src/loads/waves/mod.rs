@@ -178,6 +178,11 @@ impl Sea {
         Sea { components, terms, settings, deep_cutoff }
     }
 
+    /// Starts the ramp at `start` s (a run's start time).
+    pub fn set_ramp_start(&mut self, start: f64) {
+        self.settings.ramp.start = start;
+    }
+
     /// The components as given.
     pub fn components(&self) -> &[Component] {
         &self.components
