@@ -20,18 +20,18 @@ impl std::fmt::Display for FieldError {
 /// Largest axial strain the anchor distance may demand of the line.
 pub const MAX_REACH_STRAIN: f64 = 0.05;
 
-pub(super) struct Checker(pub(super) Vec<FieldError>);
+struct Checker(Vec<FieldError>);
 
 impl Checker {
-    pub(super) fn err(&mut self, field: &str, message: String) {
+    fn err(&mut self, field: &str, message: String) {
         self.0.push(FieldError { field: field.to_string(), message });
     }
     /// The value against its field's range (ranges.rs); true if it is in it.
-    pub(super) fn range(&mut self, field: &str, v: f64) -> bool {
+    fn range(&mut self, field: &str, v: f64) -> bool {
         self.range_as(field, field, v)
     }
     /// The value against the range of another field (a section's keys have `[line]`'s ranges).
-    pub(super) fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
+    fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
         let r = ranges::of_field(like).expect("every checked field has a range");
         match r.check(v) {
             Ok(()) => true,
@@ -189,7 +189,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.newton_tolerance", an.newton_tolerance);
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
-    super::waves::check(&mut c, s);
+    c.0.extend(super::waves::check(s));
     c.0
 }
 

@@ -6,8 +6,7 @@
 //! The sea itself (dispersion, spectra, kinematics) is built from this in
 //! `loads::waves`.
 
-use super::validate::Checker;
-use super::{FieldError, NO_SEABED_Z, Scene, SceneError, SeabedSpec, ranges};
+use super::{FieldError, NO_SEABED_Z, Scene, SeabedSpec, ranges};
 use serde::{Deserialize, Serialize};
 
 /// Which sea.
@@ -37,7 +36,7 @@ impl WaveKind {
         }
     }
 
-    fn parse(text: &str) -> Option<Self> {
+    pub fn parse(text: &str) -> Option<Self> {
         [WaveKind::None, WaveKind::Airy, WaveKind::Jonswap, WaveKind::PiersonMoskowitz, WaveKind::Table]
             .into_iter()
             .find(|k| k.name() == text)
@@ -67,7 +66,7 @@ impl StretchingSpec {
         }
     }
 
-    fn parse(text: &str) -> Option<Self> {
+    pub fn parse(text: &str) -> Option<Self> {
         [StretchingSpec::Wheeler, StretchingSpec::Vertical, StretchingSpec::None].into_iter().find(|k| k.name() == text)
     }
 }
@@ -351,8 +350,39 @@ pub fn read_table(w: &WavesSpec) -> Result<Vec<TableRow>, FieldError> {
     parse_table(&text).map_err(|m| err(format!("{path}: {m}")))
 }
 
-/// The checks of a `[waves]` block (scene/validate.rs calls this).
-pub(super) fn check(c: &mut Checker, s: &Scene) {
+/// The problems found so far, each naming its field.
+struct Checker(Vec<FieldError>);
+
+impl Checker {
+    fn err(&mut self, field: &str, message: String) {
+        self.0.push(FieldError { field: field.to_string(), message });
+    }
+
+    /// `v` against the range of `like` (ranges.rs), named `field`; true if inside.
+    fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
+        let r = ranges::of_field(like).expect("every checked field has a range");
+        match r.check(v) {
+            Ok(()) => true,
+            Err(m) => {
+                self.err(field, m);
+                false
+            }
+        }
+    }
+
+    fn range(&mut self, field: &str, v: f64) -> bool {
+        self.range_as(field, field, v)
+    }
+}
+
+/// The checks of a `[waves]` block (scene/validate.rs adds them to its list).
+pub(super) fn check(s: &Scene) -> Vec<FieldError> {
+    let mut c = Checker(Vec::new());
+    check_into(&mut c, s);
+    c.0
+}
+
+fn check_into(c: &mut Checker, s: &Scene) {
     let Some(w) = &s.waves else { return };
     let numbers = [
         ("height", w.height),
@@ -551,99 +581,6 @@ impl Scene {
         {
             w.file = Some(dir.join(p).to_string_lossy().into_owned());
         }
-    }
-}
-
-fn waves(s: &mut Scene) -> &mut WavesSpec {
-    s.waves.get_or_insert_with(WavesSpec::none)
-}
-
-/// Sets a wave parameter (None: `name` is not one).
-pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Option<Result<(), SceneError>> {
-    let bad = |message: String| Err(SceneError::Override { name: name.to_string(), message });
-    let num = || super::overrides::number(name, value);
-    let whole = || -> Result<u64, SceneError> {
-        let n = value.parse::<u64>().map_err(|_| SceneError::Override {
-            name: name.to_string(),
-            message: format!("'{value}' is not a whole number >= 0"),
-        })?;
-        super::overrides::in_range(name, n as f64)?;
-        Ok(n)
-    };
-    let r = (|| {
-        match name {
-            "wave_kind" => match WaveKind::parse(value) {
-                Some(WaveKind::None) => s.waves = None,
-                Some(k) => waves(s).kind = k,
-                None => {
-                    return bad(format!(
-                        "'{value}' is not a kind of waves: none, airy, jonswap, pierson_moskowitz or table"
-                    ));
-                }
-            },
-            "wave_height" => waves(s).height = Some(num()?),
-            "wave_period" => waves(s).period = Some(num()?),
-            "wave_direction" => waves(s).direction = Some(num()?),
-            "wave_phase" => waves(s).phase = Some(num()?),
-            "wave_hs" => waves(s).hs = Some(num()?),
-            "wave_tp" => waves(s).tp = Some(num()?),
-            "wave_gamma" => waves(s).gamma = Some(num()?),
-            "wave_components" => waves(s).components = Some(whole()? as usize),
-            "wave_seed" => waves(s).seed = Some(whole()?),
-            "wave_file" => waves(s).file = if value.is_empty() { None } else { Some(value.to_string()) },
-            "wave_stretching" => match StretchingSpec::parse(value) {
-                Some(k) => waves(s).stretching = Some(k),
-                None => return bad(format!("'{value}' is not a stretching: wheeler, vertical or none")),
-            },
-            "wave_ramp" => waves(s).ramp = Some(num()?),
-            "water_depth" => {
-                let d = num()?;
-                waves(s).depth = if d == 0.0 { None } else { Some(d) };
-            }
-            _ => return Ok(false),
-        }
-        Ok(true)
-    })();
-    match r {
-        Ok(false) => None,
-        Ok(true) => Some(Ok(())),
-        Err(e) => Some(Err(e)),
-    }
-}
-
-/// A wave parameter's value in the scene as `--set` would write it (the
-/// FMU's start value where the scene has none; None: not a wave parameter).
-pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
-    let w = s.waves.clone().unwrap_or_else(WavesSpec::none);
-    let num = |v: f64| Some(format!("{v}"));
-    match name {
-        "wave_kind" => Some(w.kind.name().to_string()),
-        "wave_height" => num(w.height.unwrap_or(0.0)),
-        "wave_period" => num(w.period.unwrap_or(START_PERIOD)),
-        "wave_direction" => num(w.direction.unwrap_or(0.0)),
-        "wave_phase" => num(w.phase.unwrap_or(0.0)),
-        "wave_hs" => num(w.hs.unwrap_or(0.0)),
-        "wave_tp" => num(w.tp.unwrap_or(START_PERIOD)),
-        "wave_gamma" => {
-            num(if w.kind == WaveKind::Jonswap { w.gamma_or_default() } else { w.gamma.unwrap_or(START_GAMMA) })
-        }
-        "wave_components" => Some(w.components_or_default().to_string()),
-        "wave_seed" => Some(w.seed.unwrap_or(0).to_string()),
-        "wave_file" => Some(w.file.clone().unwrap_or_default()),
-        "wave_stretching" => Some(w.stretching.unwrap_or_default().name().to_string()),
-        "wave_ramp" => num(w.ramp.unwrap_or(match w.kind {
-            WaveKind::Airy => w.period.unwrap_or(START_PERIOD),
-            WaveKind::Jonswap | WaveKind::PiersonMoskowitz => w.tp.unwrap_or(START_PERIOD),
-            WaveKind::Table => read_table(&w)
-                .ok()
-                .and_then(|rows| {
-                    rows.iter().max_by(|a, b| a.amplitude.total_cmp(&b.amplitude)).map(|r| 1.0 / r.frequency)
-                })
-                .unwrap_or(START_PERIOD),
-            WaveKind::None => START_PERIOD,
-        })),
-        "water_depth" => num(w.depth.unwrap_or(0.0)),
-        _ => None,
     }
 }
 
