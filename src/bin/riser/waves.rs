@@ -379,7 +379,7 @@ fn svg(
         (&rec.ramped[..n_shown], "#d62728", "ramped (as the line feels it)"),
     ];
     let y_abs = series.iter().flat_map(|(v, _, _)| v.iter()).fold(0.0f64, |m, v| m.max(v.abs())).max(1e-3);
-    let lines: Vec<(Vec<(f64, f64)>, &str, &str)> =
+    let lines: Vec<Curve> =
         series.iter().map(|(v, c, l)| (rec.t.iter().zip(v.iter()).map(|(t, e)| (*t, *e)).collect(), *c, *l)).collect();
     panel(
         &mut s,
@@ -398,7 +398,7 @@ fn svg(
     let f_lo = rows.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
     let f_hi = rows.iter().map(|r| r.0).fold(0.0, f64::max);
     let (f_lo, f_hi) = if f_hi > f_lo { (0.0, f_hi * 1.05) } else { (0.0, 2.0 * f_lo.max(1e-3)) };
-    let mut curves: Vec<(Vec<(f64, f64)>, &str, &str)> = Vec::new();
+    let mut curves: Vec<Curve> = Vec::new();
     if let Some(t) = target {
         let f: Vec<f64> = (1..=400).map(|i| f_hi * i as f64 / 400.0).collect();
         curves.push((f.iter().copied().zip(t.densities(&f)).collect(), "#000000", "target spectrum S(f)"));
@@ -429,6 +429,9 @@ fn svg(
     s
 }
 
+/// A curve of a panel: its points, colour and legend.
+type Curve<'a> = (Vec<(f64, f64)>, &'a str, &'a str);
+
 /// One panel with polylines (and points: the components, as circles).
 #[allow(clippy::too_many_arguments)]
 fn panel(
@@ -441,7 +444,7 @@ fn panel(
     (ya, yb): (f64, f64),
     xlabel: &str,
     ylabel: &str,
-    lines: &[(Vec<(f64, f64)>, &str, &str)],
+    lines: &[Curve],
     points: &[(f64, f64)],
 ) {
     let y1 = y0 + h;
