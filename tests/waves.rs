@@ -481,3 +481,22 @@ fn a_dynamic_run_with_waves_is_refused_until_the_force_is_built_and_riser_waves_
     assert!(!out.status.success());
     assert_mentions(&String::from_utf8_lossy(&out.stderr), &["has no waves"]);
 }
+
+#[test]
+fn implausible_waves_warn() {
+    // a 20 m, 8 s wave in deep water: L = g T²/2π = 99.9 m, Miche's limit 0.142 L = 14.19 m
+    let s = scene_with("catenary", "kind = \"airy\"\nheight = 20.0\nperiod = 8.0").unwrap();
+    let w = riser::loads::waves::warnings(&s);
+    assert!(
+        w.iter().any(|m| m.contains("waves.height") && m.contains("breaking limit") && m.contains("14.19")),
+        "{w:?}"
+    );
+    assert!(
+        riser::loads::waves::warnings(&scene_with("catenary", "kind = \"airy\"\nheight = 10.0\nperiod = 8.0").unwrap())
+            .is_empty()
+    );
+    // keys another kind takes are named as ignored
+    let s = scene_with("catenary", "kind = \"airy\"\nheight = 2.0\nperiod = 8.0\nhs = 3.0\nseed = 4").unwrap();
+    let w = s.wave_warnings();
+    assert!(w.len() == 1 && w[0].contains("waves.hs, waves.seed ignored") && w[0].contains("'airy'"), "{w:?}");
+}
