@@ -83,9 +83,20 @@ struct Record {
     dt: f64,
 }
 
-fn record(sea: &Sea, duration: f64) -> Record {
+/// The most samples an elevation record holds.
+const MAX_SAMPLES: f64 = 2e6;
+/// The most (DFT lines × samples) the record's spectrum may cost.
+const MAX_DFT_WORK: f64 = 4e9;
+
+/// The sampling step of the record: a tenth of the shortest component's
+/// period, within [0.01, 0.5] s.
+fn sample_step(sea: &Sea) -> f64 {
     let f_max = sea.components().iter().map(|c| c.frequency).fold(0.0, f64::max);
-    let dt = (0.1 / f_max).clamp(0.01, 0.5);
+    (0.1 / f_max).clamp(0.01, 0.5)
+}
+
+fn record(sea: &Sea, duration: f64) -> Record {
+    let dt = sample_step(sea);
     let n = (duration / dt).round() as usize;
     let [x0, y0] = sea.settings().origin;
     let t: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
@@ -110,6 +121,10 @@ fn record_spectrum(r: &Record, bands: &[(f64, f64)]) -> Vec<f64> {
     let hi = bands.iter().map(|b| b.1).fold(0.0, f64::max);
     let k0 = ((lo * span).ceil() as usize).max(1);
     let k1 = ((hi * span).floor() as usize).min(n / 2);
+    if (k1.saturating_sub(k0) + 1) as f64 * n as f64 > MAX_DFT_WORK {
+        // too long a record over too wide a band for a direct DFT: left out
+        return vec![f64::NAN; bands.len()];
+    }
     let mut power = Vec::with_capacity(k1.saturating_sub(k0) + 1);
     for k in k0..=k1 {
         let w = -2.0 * std::f64::consts::PI * k as f64 / n as f64;
@@ -154,8 +169,12 @@ pub fn waves(args: WavesArgs) -> Result<(), String> {
         WaveKind::Airy => 20.0 * w.period.unwrap_or(10.0),
         _ => 10_800.0,
     });
-    if !(duration.is_finite() && duration > 0.0 && duration <= 1e6) {
-        return Err(format!("--duration must be positive and at most 1e6 s, got {duration}"));
+    let longest = MAX_SAMPLES * sample_step(&sea);
+    if !(duration.is_finite() && duration > 0.0 && duration <= longest) {
+        return Err(format!(
+            "--duration must be positive and at most {longest} s ({MAX_SAMPLES:e} samples of {} s), got {duration}",
+            sample_step(&sea)
+        ));
     }
     let written = match &out {
         Some(dir) => write_outputs(dir, &scene, &w, &sea, duration)
@@ -318,8 +337,17 @@ fn write_outputs(dir: &Path, scene: &Scene, w: &WavesSpec, sea: &Sea, duration: 
         let (a, b) = bands[i];
         let s_target = target.map_or(f64::NAN, |t| t.density(c.frequency));
         let s_comp = 0.5 * c.amplitude * c.amplitude / (b - a);
-        let t_text = if s_target.is_nan() { String::new() } else { num(s_target) };
-        writeln!(f, "{},{},{},{t_text},{},{}", num(c.frequency), num(a), num(b), num(s_comp), num(measured[i]))?;
+        let text = |v: f64| if v.is_nan() { String::new() } else { num(v) };
+        writeln!(
+            f,
+            "{},{},{},{},{},{}",
+            num(c.frequency),
+            num(a),
+            num(b),
+            text(s_target),
+            num(s_comp),
+            text(measured[i])
+        )?;
         rows.push((c.frequency, s_target, s_comp, measured[i]));
     }
     f.flush()?;
