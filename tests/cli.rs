@@ -265,6 +265,12 @@ fn default_run_is_ramped_over_one_period_and_reports_its_steady_window() {
     assert!(w[0] <= w[1] && w[1] <= w[2]);
     assert!(whole["min"].as_f64().unwrap() <= w[0] && w[2] <= whole["max"].as_f64().unwrap());
     assert!(steady["min_tension"].as_f64().unwrap() >= default["min_tension"].as_f64().unwrap());
+    // the envelope along the line and the hang-off angle, inside what the whole run saw
+    let max_t = steady["max_tension"].as_f64().unwrap();
+    assert!(steady["min_tension"].as_f64().unwrap() < max_t && max_t >= w[2] - 1e-6 * w[2], "{steady}");
+    let angle: Vec<f64> = steady["hang_off_angle"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert!(angle[0] <= angle[1] && angle[1] <= angle[2] && angle[0] > 0.0, "{angle:?}");
+    assert!(steady["touchdown_s"].is_null() && steady["max_curvature"].as_f64().unwrap() > 0.0);
     // a flexible pipe has no stresses; nothing is implausible here
     assert!(steady["stress_range"].is_null());
     assert_eq!(steady["warnings"], serde_json::json!([]));
@@ -325,14 +331,18 @@ fn statics_json_has_the_design_numbers_and_no_warning_for_plausible_scenes() {
 /// the JSON's `warnings`.
 #[test]
 fn implausible_models_warn() {
-    let cases: [(&[&str], &[&str]); 3] = [
+    let cases: [(&[&str], &[&str]); 5] = [
         // the anchor beyond the line's reach: a straight, stretched line
         (
             &["statics", "catenary", "--set", "anchor_x=75"],
             &["beyond the line's unstretched length", "axial strain reaches"],
         ),
         // 40 m elements against a 17 m bending length at the touchdown
-        (&["statics", "steel_catenary", "--set", "n_elements=10"], &["bending length", "n_elements >= 24"]),
+        (&["statics", "steel_catenary", "--set", "n_elements=10"], &["bending length", "n_elements = 47"]),
+        // 16.7 m: fewer than two per bending length
+        (&["statics", "steel_catenary", "--set", "n_elements=24"], &["bending length", "n_elements = 47"]),
+        // a taut line's lowest point is its anchor, no touchdown: no mesh warning, but the reach
+        (&["statics", "steel_catenary", "--set", "anchor_x=355"], &["beyond the line's unstretched length"]),
         // the abrupt start of a large heave puts the lazy wave in compression
         (
             &[
@@ -357,6 +367,9 @@ fn implausible_models_warn() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         for e in expected {
             assert!(stderr.contains(e), "{args:?}: '{e}' not in {stderr}");
+        }
+        if args.contains(&"anchor_x=355") {
+            assert!(!stderr.contains("bending length"), "{args:?}: {stderr}");
         }
         let v = json(&riser(&[args, &["--json"]].concat()));
         let list = if args[0] == "run" { &v["steady"]["warnings"] } else { &v["warnings"] };
@@ -386,6 +399,12 @@ fn messages_speak_the_users_terms() {
     }
     let err = String::from_utf8_lossy(&riser(&["run", "catenary", "--duration", "-5"]).stderr).to_string();
     assert!(err.contains("--duration must be a positive number of seconds, got -5"), "{err}");
+    let out = riser(&["run", "catenary", "--heave", "2.5,20", "--duration", "100", "--window", "120,200"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(!out.status.success() && err.contains("--window 120,200 must lie within the run, 0 to 100 s"), "{err}");
+    // a negative amplitude is a number, not a flag
+    let v = json(&riser(&[&SMALL_RUN[..6], &["--heave", "-2.5,20", "--duration", "1", "--json"]].concat()));
+    assert_eq!(v["completed"], true);
     // riser params: the default scene's value of each parameter
     let v = json(&riser(&["params", "--json"]));
     let row = |n: &str| v.as_array().unwrap().iter().find(|r| r["name"] == n).unwrap().clone();
@@ -393,5 +412,64 @@ fn messages_speak_the_users_terms() {
     assert_eq!(row("model")["value"], "rod");
     let v = json(&riser(&["params", "steel_catenary", "--json"]));
     assert!(v.as_array().unwrap().iter().any(|r| r["name"] == "length" && r["value"] == "400"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// Issue 31: the stress range of a run. A vertical steel line stretched
+/// between its ends, heaved 1 cm / 10 s (quasi-static: its axial period is
+/// 0.08 s): at the top Gauss point the outer-fibre stress range is the top
+/// tension's range over the wall area (12.1), within 1e-3 (the inertia and
+/// weight of the 0.35 m above it); the JSON's `stress_range` is the largest
+/// row of stress_range.csv.
+#[test]
+fn the_stress_range_of_a_stretched_line_is_its_tension_range_over_the_wall() {
+    let (ea, ei, d) = (3.38e9, 2.71e7, 0.2731);
+    let dir = std::env::temp_dir().join(format!("riser-stress-{}", std::process::id()));
+    let v = json(&riser(&[
+        "run",
+        "catenary",
+        "--set",
+        &format!("axial_stiffness={ea}"),
+        "--set",
+        &format!("bending_stiffness={ei}"),
+        "--set",
+        &format!("outer_diameter={d}"),
+        "--set",
+        "anchor_x=0",
+        "--set",
+        "anchor_z=-100.05",
+        "--set",
+        "n_elements=20",
+        "--heave",
+        "0.01,10",
+        "--duration",
+        "40",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let area = std::f64::consts::PI * (d * d - (16.0 * ei / ea - d * d)) / 4.0;
+    let series = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let t0 = v["steady"]["window"][0].as_f64().unwrap();
+    let top: Vec<f64> = series
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(2).map(|x| x.parse::<f64>().unwrap()).collect::<Vec<_>>())
+        .filter(|r| r[0] >= t0 - 1e-9)
+        .map(|r| r[1])
+        .collect();
+    let range = (top.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - top.iter().cloned().fold(f64::INFINITY, f64::min))
+        / area;
+    let rows: Vec<Vec<f64>> = std::fs::read_to_string(dir.join("stress_range.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    println!("top Gauss point: {:.6e} Pa, top tension range / A {range:.6e} Pa", rows[0][3]);
+    assert!((rows[0][3] - range).abs() <= 1e-3 * range);
+    let largest = rows.iter().map(|r| r[3]).fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(v["steady"]["stress_range"].as_f64(), Some(largest));
     std::fs::remove_dir_all(dir).ok();
 }

@@ -117,6 +117,10 @@ pub struct Saved {
     history: InputHistory,
     mode: Mode,
     params_hash: u64,
+    /// The parameters themselves when saved in this process (fmi2GetFMUstate),
+    /// so that a refused restore names what differs; None when deserialized
+    /// (a serialized state carries their hash only).
+    params: Option<Vec<Option<(Value, bool)>>>,
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
@@ -843,6 +847,28 @@ impl Instance {
         self.last_status
     }
 
+    /// "n_elements (saved 40, now 60), ..." for the parameters whose value
+    /// differs from `saved`'s (a value the master did not set is the scene's).
+    fn parameters_that_differ(&self, saved: &[Option<(Value, bool)>]) -> String {
+        let show = |p: &Option<(Value, bool)>| match p {
+            Some((v, true)) => v.to_text(),
+            Some((v, false)) => format!("{} (not set)", v.to_text()),
+            None => "-".to_string(),
+        };
+        let list: Vec<String> = self
+            .params
+            .iter()
+            .zip(saved)
+            .enumerate()
+            .filter(|(_, (now, then))| now != then)
+            .map(|(vr, (now, then))| {
+                let name = variable(vr as u32).map_or("?", |v| v.name);
+                format!("{name} (saved {}, now {})", show(then), show(now))
+            })
+            .collect();
+        if list.is_empty() { "their number differs".to_string() } else { list.join(", ") }
+    }
+
     fn params_hash(&self) -> u64 {
         fnv1a(format!("{:?}", self.params).as_bytes())
     }
@@ -856,13 +882,18 @@ impl Instance {
             history: self.history,
             mode: self.mode,
             params_hash: self.params_hash(),
+            params: Some(self.params.clone()),
         })
     }
 
     /// fmi2SetFMUstate.
     pub fn restore(&mut self, s: &Saved) -> Status {
         if s.params_hash != self.params_hash() {
-            return self.fail("the FMU state was saved with other parameters");
+            let differ = match &s.params {
+                Some(saved) => self.parameters_that_differ(saved),
+                None => "a serialized state carries their hash only, not which differ".to_string(),
+            };
+            return self.fail(&format!("the FMU state was saved with other parameters: {differ}"));
         }
         let Some(sim) = self.sim.as_mut() else {
             return self.fail("fmi2SetFMUstate before initialisation");
@@ -928,7 +959,7 @@ impl Instance {
                     _ => StepComplete,
                 };
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
-                Ok(Saved { state, inputs, history, mode, params_hash })
+                Ok(Saved { state, inputs, history, mode, params_hash, params: None })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),
@@ -990,6 +1021,27 @@ mod discard_tests {
         assert!(messages.lock().unwrap().iter().any(|m| m.contains("discarded") && m.contains("Newton")));
         // no further step from a failed one
         assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+    }
+
+    #[test]
+    fn a_state_saved_with_other_parameters_is_refused_naming_them() {
+        let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+        let m2 = messages.clone();
+        let started = |cd: Option<f64>, logger: Logger| {
+            let mut i = Instance::new("t", GUID, None, logger, true).unwrap();
+            assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+            if let Some(cd) = cd {
+                assert_eq!(i.set_param(vr_of("cd_normal").unwrap(), Value::Real(cd)), Status::Ok);
+            }
+            i.enter_initialization_mode();
+            assert_eq!(i.exit_initialization_mode(), Status::Ok);
+            i
+        };
+        let saved = started(None, Arc::new(|_, _, _: &str| {})).save().unwrap();
+        let mut other = started(Some(0.5), Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into())));
+        assert_eq!(other.restore(&saved), Status::Error);
+        let log = messages.lock().unwrap().join("\n");
+        assert!(log.contains("saved with other parameters: cd_normal (saved 0.6 (not set), now 0.5)"), "{log}");
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! assemble into and the solvers factorise. Nothing here knows a line.
 
 pub mod band;
+pub mod rigid;
 pub mod shape;
 
 use nalgebra::{Matrix3, Vector3};

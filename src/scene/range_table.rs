@@ -26,7 +26,7 @@ pub const MAX_CURRENT: f64 = 10.0;
 pub const MAX_ELEMENTS: f64 = 2000.0;
 
 const LENGTH_REASON: &str = "from a 1 m jumper to the longest umbilicals and moorings (about 20 km)";
-const COORD_REASON: &str = "20 km either way: deeper than any ocean, within the longest line";
+const COORD_REASON: &str = "20 km either way: the longest line's reach; vertically, deeper than any ocean";
 const CURRENT_REASON: &str = "the strongest tidal streams reach about 5 m/s";
 
 /// Every range. Scene fields without a parameter name (`current.speed`,

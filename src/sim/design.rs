@@ -17,12 +17,13 @@ use crate::scene::{Model, Scene};
 /// lines, not what riser models).
 pub const STRAIN_LIMIT: f64 = 0.01;
 
-/// The longest element, in bending lengths √(EI/T) at the touchdown, before
-/// riser warns: the curvature peak there spreads over about two bending
-/// lengths; on steel_catenary (λ = 17 m) the largest curvature is within
-/// 0.42 % of the converged value at h = 1.2 λ and 3.5 % off at h = 2.3 λ
-/// (docs/theory.md §12.3).
-pub const MESH_PER_BENDING_LENGTH: f64 = 2.0;
+/// Elements per bending length √(EI/T) at the touchdown below which riser
+/// warns. Measured on steel_catenary (λ = 17 m) under heave 2 m / 12 s
+/// against 160 elements (docs/theory.md §12.3): the steady window's smallest
+/// axial force is 12 % low at 0.5 element per λ, 1.1 % at one, 0.2 % at two;
+/// the stress range at the touchdown converges slowly and not monotonically
+/// (−6 %, +11 %, −2.7 %, +1.1 % at 0.5, 1, 2, 4 elements per λ).
+pub const ELEMENTS_PER_BENDING_LENGTH: f64 = 2.0;
 
 /// Fibres around the circumference at which the stress range is tracked
 /// (every 45°, as fatigue post-processors do).
@@ -105,7 +106,7 @@ pub struct Design {
     model: Model,
     length: f64,
     n_el: usize,
-    seabed: bool,
+    seabed: Option<crate::scene::SeabedSpec>,
 }
 
 impl Design {
@@ -113,13 +114,13 @@ impl Design {
         let n_el = scene.analysis.n_elements;
         let d =
             Design::of_properties(sections::element_properties(scene), scene.analysis.model, scene.line.length, n_el);
-        Design { seabed: scene.seabed.is_some(), ..d }
+        Design { seabed: scene.seabed.clone(), ..d }
     }
 
     /// The design numbers of a line of `n_el` elements with these properties.
     pub fn of_properties(props: PerElement<LineProperties>, model: Model, length: f64, n_el: usize) -> Self {
         let tubes = props.map(Tube::of);
-        Design { props, tubes, model, length, n_el, seabed: false }
+        Design { props, tubes, model, length, n_el, seabed: None }
     }
 
     /// The tube of element `e` (None: not a homogeneous tube, or the cable's
@@ -221,20 +222,29 @@ impl Design {
                 d.min_tension_s
             ));
         }
-        // the touchdown, or on a mesh too coarse to see it, the line's lowest point
-        let near_seabed = d.touchdown_s.map_or_else(
-            || points.iter().min_by(|a, b| a.position.z.total_cmp(&b.position.z)),
-            |s_td| points.iter().min_by(|a, b| (a.s - s_td).abs().total_cmp(&(b.s - s_td).abs())),
-        );
-        if let (Model::Rod, true, Some(p)) = (self.model, self.seabed, near_seabed)
+        // the touchdown, or on a mesh too coarse for a node to reach the seabed, the line's lowest
+        // point when it is within a diameter of the seabed; not the anchor's element (a taut line)
+        let last = self.n_el - 1;
+        let near_seabed = self.seabed.as_ref().and_then(|bed| match d.touchdown_s {
+            Some(s_td) => points.iter().min_by(|a, b| (a.s - s_td).abs().total_cmp(&(b.s - s_td).abs())),
+            None => {
+                points.iter().filter(|p| p.element < last).min_by(|a, b| a.position.z.total_cmp(&b.position.z)).filter(
+                    |p| p.position.z - bed.height_at(p.position.x, p.position.y) < self.props.at(p.element).diameter,
+                )
+            }
+        });
+        if let (Model::Rod, Some(p)) = (self.model, near_seabed.filter(|p| p.element < last))
             && p.tension > 0.0
         {
             let h = self.length / self.n_el as f64;
             let lambda = (self.props.at(p.element).bending_stiffness / p.tension).sqrt();
-            if h > MESH_PER_BENDING_LENGTH * lambda {
-                let n = (self.length / lambda).ceil();
+            if h * ELEMENTS_PER_BENDING_LENGTH > lambda {
+                let n = (ELEMENTS_PER_BENDING_LENGTH * self.length / lambda).ceil();
                 let fix = if n <= crate::scene::ranges::MAX_ELEMENTS {
-                    format!("use n_elements >= {n}, one element per bending length (--set n_elements={n})")
+                    format!(
+                        "use at least n_elements = {n} (two elements per bending length), and check the numbers you \
+                         read by doubling it: the stress range at the touchdown converges slowly"
+                    )
                 } else {
                     format!(
                         "no mesh of at most {} elements resolves it: a bending length this short is a boundary layer \
@@ -243,8 +253,9 @@ impl Design {
                     )
                 };
                 w.push(format!(
-                    "elements of {h:.2} m are longer than twice the bending length sqrt(EI/T) = {lambda:.3} m near \
-                     the touchdown (S = {:.1} m): the curvature and bending moment there are not resolved; {fix}",
+                    "elements of {h:.2} m are fewer than two per bending length sqrt(EI/T) = {lambda:.3} m near \
+                     the touchdown (S = {:.1} m): the curvature, bending moment and stress there are not resolved; \
+                     {fix}",
                     p.s
                 ));
             }
@@ -280,6 +291,59 @@ pub fn reach_warning(scene: &Scene) -> Option<String> {
     })
 }
 
+/// The extremes along the line over a window: the largest and smallest axial
+/// force and the largest curvature, each with its arc length (m) and time (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Envelope {
+    /// (N, S, t)
+    pub max_tension: (f64, f64, f64),
+    pub min_tension: (f64, f64, f64),
+    /// (1/m, S, t)
+    pub max_curvature: (f64, f64, f64),
+}
+
+impl Default for Envelope {
+    fn default() -> Self {
+        Envelope {
+            max_tension: (f64::NEG_INFINITY, 0.0, 0.0),
+            min_tension: (f64::INFINITY, 0.0, 0.0),
+            max_curvature: (f64::NEG_INFINITY, 0.0, 0.0),
+        }
+    }
+}
+
+impl Envelope {
+    /// Adds the state at time `t` whose points are `points`.
+    pub fn add(&mut self, t: f64, points: &[LinePoint]) {
+        for p in points {
+            if p.tension > self.max_tension.0 {
+                self.max_tension = (p.tension, p.s, t);
+            }
+            if p.tension < self.min_tension.0 {
+                self.min_tension = (p.tension, p.s, t);
+            }
+            let k = p.curvature_magnitude();
+            if k > self.max_curvature.0 {
+                self.max_curvature = (k, p.s, t);
+            }
+        }
+    }
+
+    /// Adds an end's tension (N) at arc length `s` (m), time `t` (s): the
+    /// points are Gauss points, inside the elements; the largest axial force
+    /// is often at the hang-off itself.
+    pub fn add_end(&mut self, t: f64, tension: f64, s: f64) {
+        if tension > self.max_tension.0 {
+            self.max_tension = (tension, s, t);
+        }
+    }
+
+    /// True once a state was added.
+    pub fn is_set(&self) -> bool {
+        self.max_tension.0.is_finite()
+    }
+}
+
 /// The outer-fibre stress at every point and fibre over a window: its
 /// smallest and largest value, for the stress range (the input of a fatigue
 /// calculation; docs/theory.md §12.2).
@@ -304,6 +368,20 @@ impl StressRange {
                 }
             }
         }
+    }
+
+    /// Per point: (S m, smallest σ, largest σ over its fibres, the largest
+    /// range of one fibre), Pa: the rows of `stress_range.csv`.
+    pub fn rows(&self) -> Vec<[f64; 4]> {
+        self.points
+            .iter()
+            .map(|(s, f)| {
+                let lo = f.iter().map(|x| x.0).fold(f64::INFINITY, f64::min);
+                let hi = f.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
+                let range = f.iter().map(|(a, b)| b - a).fold(f64::NEG_INFINITY, f64::max);
+                [*s, lo, hi, range]
+            })
+            .collect()
     }
 
     /// The largest range max − min of one fibre at one point, Pa, and its

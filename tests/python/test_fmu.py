@@ -236,3 +236,52 @@ def test_hang_off_angle_output_is_the_statics_design_number(fmu_path, riser_bin)
                            start_values={"scene": "steel_catenary", "model": model})
         assert abs(res["hang_off_angle"][0] - st["hang_off_angle"]) < 1e-9, (model, res["hang_off_angle"][0])
         assert 15.0 < st["hang_off_angle"] < 25.0
+
+
+# in a child process with fmpy's own logger (its native logger proxy is process-wide:
+# another module's proxy would take the messages); prints each case's log between markers
+WARNINGS_CHILD = r"""
+import json, sys
+from fmpy import read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+md = read_model_description(fmu_path)
+vars_ = {v.name: v for v in md.modelVariables}
+for strings, reals, integers in cases:
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="warnings")
+    s.instantiate(loggingOn=True)
+    print("@@begin", flush=True)
+    for n, v in strings.items():
+        s.setString([vars_[n].valueReference], [v])
+    for n, v in reals.items():
+        s.setReal([vars_[n].valueReference], [v])
+    for n, v in integers.items():
+        s.setInteger([vars_[n].valueReference], [v])
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    print("@@end", flush=True)
+    s.terminate()
+    s.freeInstance()
+"""
+
+
+def test_implausible_models_warn_in_the_log_at_initialisation(fmu_path, unzipped):
+    """Issue 31: the FMU logs the warnings `riser statics` prints (docs/theory.md §12.3),
+    and none for a plausible model."""
+    cases = [
+        ({}, {}, {}, []),
+        ({"scene": "steel_catenary"}, {}, {}, []),
+        ({}, {"anchor_x": 75.0}, {}, ["beyond the line's unstretched length", "axial strain reaches"]),
+        ({"scene": "steel_catenary"}, {}, {"n_elements": 10}, ["bending length"]),
+    ]
+    p = subprocess.run([sys.executable, "-c", WARNINGS_CHILD, fmu_path, unzipped,
+                        json.dumps([c[:3] for c in cases])], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    logs = [chunk.split("@@end")[0] for chunk in p.stdout.split("@@begin")[1:]]
+    assert len(logs) == len(cases), p.stdout
+    for (strings, reals, integers, expected), log in zip(cases, logs):
+        for e in expected:
+            assert e in log, (strings, reals, integers, log)
+        if not expected:
+            assert "warning" not in log.lower(), (strings, log)

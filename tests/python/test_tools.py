@@ -161,3 +161,19 @@ def test_the_cli_driver_reports_a_failing_run(riser_bin, tmp_path):
                 tmp_path / "ok")
     assert r.summary["completed"] and set(read_columns(tmp_path / "ok" / "timeseries.csv")) >= {"t", "top_tension"}
     assert subprocess.run([riser_bin, "--version"], capture_output=True).returncode == 0
+
+
+def test_a_spec_without_window_takes_each_cases_steady_window(tmp_path, fmu_path):
+    """Issue 31: without `outputs.window` a case's statistics are over its steady window,
+    as `riser run`'s (the ramp plus the longest period of what moves, to the end); an
+    explicit window wins; a run too short for one is reduced whole."""
+    from riser_sweep import load_spec
+    p = tmp_path / "spec.toml"
+    p.write_text(f'fmu = "{fmu_path}"\n[motion]\nheave_amplitude = 2.0\nsurge_amplitude = 1.0\nsurge_period = 12.0\n'
+                 'ramp = 5.0\n[run]\nduration = 60.0\n[grid]\nheave_period = [8.0, 20.0, 60.0]\n')
+    spec = load_spec(p)
+    windows = [spec.job(c)["window"] for c in spec.cases]
+    assert windows == [(17.0, 60.0), (25.0, 60.0), (0.0, 60.0)], windows
+    p.write_text(p.read_text() + "[outputs]\nwindow = [30.0, 60.0]\n")
+    spec = load_spec(p)
+    assert all(spec.job(c)["window"] == (30.0, 60.0) for c in spec.cases)

@@ -29,6 +29,7 @@ macro_rules! out {
 }
 
 mod modes;
+mod svg;
 mod touchdown;
 mod waves;
 
@@ -79,7 +80,7 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
-    /// Dynamic run from the static state with the hang-off heaving U0 sin(2πt/T).
+    /// Dynamic run from the static state with the hang-off moving U0 sin(2πt/T) (heave, surge, sway).
     Run {
         /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
         scene: String,
@@ -87,13 +88,13 @@ enum Command {
         #[arg(long = "set", value_name = "NAME=VALUE")]
         set: Vec<String>,
         /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
         heave: Option<(f64, f64)>,
         /// Surge (along x) amplitude (m) and period (s) of the hang-off; adds to the other motions.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
         surge: Option<(f64, f64)>,
         /// Sway (along y) amplitude (m) and period (s) of the hang-off; adds to the other motions.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair)]
+        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
         sway: Option<(f64, f64)>,
         /// Hold the hang-off still after this time (s).
         #[arg(long, value_name = "T")]
@@ -151,7 +152,14 @@ enum Command {
 fn params(scene: &str, json: bool) -> Result<(), String> {
     use riser::scene::ranges;
     let sc = load(scene, &[] as &[String]).map_err(|e| e.to_string())?;
-    let value = |name: &str| sc.parameter(name).unwrap_or_else(|| "-".to_string());
+    // a number to 10 significant digits (a derived default such as m D²/8 prints its round-off otherwise)
+    let value = |name: &str| match sc.parameter(name) {
+        Some(text) => match text.parse::<f64>() {
+            Ok(v) if v.is_finite() && v != 0.0 => ranges::number(format!("{v:.9e}").parse().unwrap_or(v)),
+            _ => text,
+        },
+        None => "-".to_string(),
+    };
     let rows: Vec<serde_json::Value> = PARAMETER_NAMES
         .iter()
         .map(|(name, unit)| match ranges::of_parameter(name) {
@@ -481,17 +489,8 @@ struct RunArgs {
 /// after the ramp (the start's transients have died out by then with the
 /// default ρ∞ = 0.8: docs/figures/abrupt_vs_smooth.png).
 fn steady_window(asked: Option<(f64, f64)>, ramp: f64, period: f64, duration: f64) -> ((f64, f64), Option<String>) {
-    if let Some((t0, t1)) = asked {
-        let t1 = t1.min(duration);
-        return match t0 < t1 {
-            true => ((t0, t1), None),
-            false => (
-                (0.5 * duration, duration),
-                Some(format!(
-                    "--window {t0},{t1} lies beyond the run's {duration} s: the statistics are of its second half"
-                )),
-            ),
-        };
+    if let Some(w) = asked {
+        return (w, None);
     }
     let t0 = ramp + period;
     if t0 < duration {
@@ -535,6 +534,11 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     {
         return Err(format!("--heave-until must be finite, got {u}"));
     }
+    if let Some((t0, t1)) = window
+        && t1 > duration * (1.0 + 1e-12)
+    {
+        return Err(format!("--window {t0},{t1} must lie within the run, 0 to {duration} s (--duration)"));
+    }
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
@@ -566,6 +570,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let ((w0, w1), short) = steady_window(window, ramp, period, duration);
     warnings.extend(short);
     let mut stress = riser::sim::design::StressRange::default();
+    let mut envelope = riser::sim::design::Envelope::default();
     let track_stress = design.has_stresses();
     let mut shape_times = shape_times;
     if shape_times.is_empty() {
@@ -588,8 +593,18 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         next_shape += 1;
     }
     let in_window = |t: f64| t >= w0 - 1e-9 && t <= w1 + 1e-9;
-    if track_stress && in_window(0.0) {
-        stress.add(&design, &sim.integrator.line_points(&sim.state));
+    let length = scene.line.length;
+    let ends = |e: &mut riser::sim::design::Envelope, o: &Outputs| {
+        e.add_end(o.time, o.top_tension, 0.0);
+        e.add_end(o.time, o.bottom_tension, length);
+    };
+    if in_window(0.0) {
+        let points = sim.integrator.line_points(&sim.state);
+        envelope.add(0.0, &points);
+        ends(&mut envelope, &series[0]);
+        if track_stress {
+            stress.add(&design, &points);
+        }
     }
     let solve_start = std::time::Instant::now();
     let mut progress = Progress::new(!json);
@@ -604,8 +619,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         }
         let o = sim.outputs();
         series.push(o);
-        if track_stress && in_window(o.time) {
-            stress.add(&design, &sim.integrator.line_points(&sim.state));
+        if in_window(o.time) {
+            let points = sim.integrator.line_points(&sim.state);
+            envelope.add(o.time, &points);
+            ends(&mut envelope, &o);
+            if track_stress {
+                stress.add(&design, &points);
+            }
         }
         while next_shape < shape_times.len() && shape_times[next_shape] <= sim.state.time + 0.5 * dt {
             shapes.push((sim.state.time, record_shape(&sim)));
@@ -622,6 +642,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let steady_min_tension = steady.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
     let whole_min_tension = series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
     let stress_range = stress.largest();
+    let angle = min_mean_max(steady.iter().map(|o| o.hang_off_angle));
+    let contact: Vec<f64> = steady.iter().map(|o| o.touchdown_s).filter(|s| *s < length).collect();
+    let td_range = (!contact.is_empty()).then(|| min_mean_max(contact.iter().copied()));
     if steady_min_tension < 0.0 {
         warnings.push(format!(
             "the line goes into compression in the steady window: the smallest axial force is {:.3} kN",
@@ -640,6 +663,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let simulated = st.time;
     if let Some(dir) = &out {
         write_run_csv(dir, &series, &shapes).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+        let stress_csv = dir.join("stress_range.csv");
+        match stress_range {
+            Some(_) => write_stress_csv(&stress_csv, &stress.rows())
+                .map_err(|e| format!("cannot write {}: {e}", stress_csv.display()))?,
+            // not last run's table of another scene
+            None => _ = std::fs::remove_file(&stress_csv),
+        }
         let td: Vec<f64> = series.iter().map(|o| o.touchdown_s).collect();
         let bed = scene.seabed.as_ref().map(|b| b.height_at(scene.anchor.x, scene.anchor.y));
         let path = dir.join("touchdown.svg");
@@ -672,6 +702,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 "min_tension": finite(steady_min_tension),
                 "stress_range": stress_range.map(|r| r.0),
                 "stress_range_s": stress_range.map(|r| r.1),
+                "min_tension_s": envelope.is_set().then_some(envelope.min_tension.1),
+                "max_tension": envelope.is_set().then_some(envelope.max_tension.0),
+                "max_tension_s": envelope.is_set().then_some(envelope.max_tension.1),
+                "max_curvature": envelope.is_set().then_some(envelope.max_curvature.0),
+                "max_curvature_s": envelope.is_set().then_some(envelope.max_curvature.1),
+                "hang_off_angle": angle.map(finite),
+                "touchdown_s": td_range.map(|t| t.map(finite)),
                 "warnings": warnings,
             },
             "statics": statics,
@@ -706,7 +743,21 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
             if period > 0.0 { start } else { String::new() }
         );
+        if !riser::loads::current(&scene).is_none() && !scene.analysis.static_current {
+            outln!(
+                "  the current acts from t = 0; the static state is without it (static_current = false, the \
+                 paper's): the mean tension moves by the current's drag"
+            );
+        }
         outln!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));
+        let d = &static_design;
+        let touchdown = d.touchdown_s.map(|s| format!(", touchdown at S = {s:.1} m")).unwrap_or_default();
+        outln!(
+            "  static state: hang-off angle {:.2} deg{touchdown}, min bend radius {:.2} m at S = {:.1} m",
+            d.hang_off_angle,
+            d.min_bend_radius,
+            d.max_curvature_s
+        );
         outln!("  steady window {w0} to {w1} s:");
         outln!(
             "    top tension min/mean/max {:.3} / {:.3} / {:.3} kN",
@@ -714,7 +765,26 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             kn(steady_tension[1]),
             kn(steady_tension[2])
         );
-        outln!("    min axial force          {:.3} kN (along the line)", kn(steady_min_tension));
+        outln!("    hang-off angle           {:.2} / {:.2} / {:.2} deg", angle[0], angle[1], angle[2]);
+        if envelope.is_set() {
+            let e = &envelope;
+            outln!(
+                "    axial force along the line {:.3} kN (S = {:.1} m) to {:.3} kN (S = {:.1} m)",
+                kn(e.min_tension.0),
+                e.min_tension.1,
+                kn(e.max_tension.0),
+                e.max_tension.1
+            );
+            outln!(
+                "    min bend radius          {:.2} m at S = {:.1} m (t = {:.1} s)",
+                1.0 / e.max_curvature.0,
+                e.max_curvature.1,
+                e.max_curvature.2
+            );
+        }
+        if let Some(td) = td_range {
+            outln!("    touchdown S min/mean/max {:.2} / {:.2} / {:.2} m", td[0], td[1], td[2]);
+        }
         match stress_range {
             Some((r, s)) => outln!("    stress range             {:.3} MPa at S = {s:.1} m (outer fibre)", r / 1e6),
             None => outln!("    stress range             n/a (not a homogeneous tube: a flexible pipe)"),
@@ -739,14 +809,26 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             outln!("  {} warning(s) (on stderr)", warnings.len());
         }
         if let Some(dir) = &out {
+            let stress = if stress_range.is_some() { ", stress_range.csv" } else { "" };
             let plot = if dir.join("touchdown.svg").exists() { " and touchdown.svg" } else { "" };
-            outln!("  wrote {}/timeseries.csv, shapes.csv{plot}", dir.display());
+            outln!("  wrote {}/timeseries.csv, shapes.csv{stress}{plot}", dir.display());
         }
     }
     match failure {
         Some(msg) => Err(format!("run stopped at t = {simulated:.6} s: {msg}")),
         None => Ok(()),
     }
+}
+
+/// stress_range.csv: per point of the line, the outer-fibre stress's extremes
+/// over its 8 fibres and the largest range of one fibre over the steady window.
+fn write_stress_csv(path: &Path, rows: &[[f64; 4]]) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(f, "S,stress_min,stress_max,stress_range")?;
+    for r in rows {
+        writeln!(f, "{},{},{},{}", r[0], r[1], r[2], r[3])?;
+    }
+    f.flush()
 }
 
 fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 6]>)]) -> std::io::Result<()> {

@@ -2,6 +2,7 @@
 //! static state — the text table, the JSON object, and with `--out` the CSV
 //! files and a plot of the lowest modes (modes.svg, written by hand).
 
+use crate::svg::{Frame, escape};
 use riser::math::V3;
 use riser::scene::{Model, Scene};
 use riser::sim::modes::{ModalReport, SceneMode, plane_normal, scene_modes};
@@ -194,30 +195,6 @@ fn components(mode: &SceneMode, n: &V3) -> Components {
     c
 }
 
-/// About `target` round tick values covering [lo, hi] (steps of 1, 2 or 5 × 10^k).
-pub(crate) fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
-    let span = hi - lo;
-    if !(span.is_finite() && span > 0.0) {
-        return vec![lo];
-    }
-    let raw = span / target.max(1) as f64;
-    let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|k| k * mag).find(|s| span / s <= target as f64).unwrap_or(10.0 * mag);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).map(|v| if v.abs() < 1e-12 * step { 0.0 } else { v }).collect()
-}
-
-pub(crate) fn tick_label(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
-
 fn panel_title(m: &SceneMode) -> String {
     if m.period.is_finite() {
         format!("mode {}: T = {:.2} s ({})", m.number, m.period, m.direction.name())
@@ -328,26 +305,7 @@ fn modes_svg(scene: &Scene, rep: &ModalReport) -> String {
             escape(&panel_title(m))
         );
         // grid, ticks and their labels
-        for t in ticks(s_lo, s_hi, 5) {
-            let x = px(t);
-            let _ = writeln!(
-                w,
-                r##"<line x1="{x:.1}" y1="{y0:.1}" x2="{x:.1}" y2="{y1:.1}" stroke="#e0e0e0"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                y1 + 14.0,
-                tick_label(t)
-            );
-        }
-        for t in ticks(lo, hi, 5) {
-            let y = py(t);
-            let stroke = if t == 0.0 { "#909090" } else { "#e0e0e0" };
-            let _ = writeln!(
-                w,
-                r#"<line x1="{x0:.1}" y1="{y:.1}" x2="{x1:.1}" y2="{y:.1}" stroke="{stroke}"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
-                x0 - 4.0,
-                y + 4.0,
-                tick_label(t)
-            );
-        }
+        Frame { x0, x1, y0, y1 }.grid(w, (s_lo, s_hi, 5), (lo, hi, 5));
         let _ = writeln!(
             w,
             r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="none" stroke="black"/>"#,
@@ -384,7 +342,8 @@ fn modes_svg(scene: &Scene, rep: &ModalReport) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{components, num, panel_title, tick_label, ticks};
+    use super::{components, num, panel_title};
+    use crate::svg::{tick_label, ticks};
     use riser::math::V3;
     use riser::model::linearized::Direction;
     use riser::sim::modes::{ModeRow, SceneMode};

@@ -3,7 +3,7 @@
 //! elevation, effective tension and curvature against the arc length S,
 //! over the range the touchdown moved through and 40 m either side.
 
-use crate::modes::{tick_label, ticks};
+use crate::svg::Frame;
 use std::fmt::Write;
 
 /// One recorded shape: its time (s) and rows [S, x, y, z, tension, curvature].
@@ -51,25 +51,7 @@ pub fn svg(shapes: &[Shape], touchdown: &[f64], length: f64, seabed_z: Option<f6
         }
         let px = |s: f64| x0 + (s - s_lo) / (s_hi - s_lo) * (x1 - x0);
         let py = |v: f64| y1 - (v - v_lo) / (v_hi - v_lo) * (y1 - y0);
-        for t in ticks(s_lo, s_hi, 6) {
-            let x = px(t);
-            let _ = writeln!(
-                w,
-                r##"<line x1="{x:.1}" y1="{y0:.1}" x2="{x:.1}" y2="{y1:.1}" stroke="#e0e0e0"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                y1 + 14.0,
-                tick_label(t)
-            );
-        }
-        for t in ticks(v_lo, v_hi, 4) {
-            let y = py(t);
-            let _ = writeln!(
-                w,
-                r##"<line x1="{x0:.1}" y1="{y:.1}" x2="{x1:.1}" y2="{y:.1}" stroke="#e0e0e0"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-                x0 - 4.0,
-                y + 4.0,
-                tick_label(t)
-            );
-        }
+        Frame { x0, x1, y0, y1 }.grid(&mut w, (s_lo, s_hi, 6), (v_lo, v_hi, 4));
         if *col == 3 {
             let y = py(seabed_z);
             let _ = writeln!(

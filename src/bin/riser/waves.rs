@@ -4,7 +4,7 @@
 //! by hand as modes.svg), plus the components as a table another tool (or
 //! `kind = "table"`) reads.
 
-use crate::modes::{tick_label, ticks};
+use crate::svg::{Frame, escape};
 use riser::loads::waves::spectra::Spectrum;
 use riser::loads::waves::{Sea, sea_of};
 use riser::scene::Scene;
@@ -393,7 +393,7 @@ fn svg(
         s,
         r#"<text x="{:.1}" y="18" text-anchor="middle" font-size="13">Waves of scene '{}' ({}): Hs = 4 sqrt(m0) = {:.3} m, Tp = {:.3} s, {} components</text>"#,
         width / 2.0,
-        scene.name.replace('&', "&amp;").replace('<', "&lt;"),
+        escape(&scene.name),
         w.kind.name(),
         sea.hs(),
         sea.peak_period(),
@@ -478,25 +478,7 @@ fn panel(
     let y1 = y0 + h;
     let px = |x: f64| x0 + (x - xa) / (xb - xa) * (x1 - x0);
     let py = |y: f64| y1 - (y - ya) / (yb - ya) * (y1 - y0);
-    for t in ticks(xa, xb, 8) {
-        let x = px(t);
-        let _ = writeln!(
-            w,
-            r##"<line x1="{x:.1}" y1="{y0:.1}" x2="{x:.1}" y2="{y1:.1}" stroke="#e0e0e0"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            y1 + 14.0,
-            tick_label(t)
-        );
-    }
-    for t in ticks(ya, yb, 5) {
-        let y = py(t);
-        let _ = writeln!(
-            w,
-            r##"<line x1="{x0:.1}" y1="{y:.1}" x2="{x1:.1}" y2="{y:.1}" stroke="#e0e0e0"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            x0 - 4.0,
-            y + 4.0,
-            tick_label(t)
-        );
-    }
+    Frame { x0, x1, y0, y1 }.grid(w, (xa, xb, 8), (ya, yb, 5));
     let _ = writeln!(
         w,
         r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{h:.1}" fill="none" stroke="black"/>"#,

@@ -140,16 +140,16 @@ fn add_centreline_blocks(sys: &mut BandedSystem, dofs: &[usize; 4], ke: &[[M3; 4
 fn add_element_loads(
     rod: &Rod,
     cfg: &RodConfig,
-    skip: impl Fn(usize, &[V3]) -> bool,
+    skip: impl Fn(usize, &[V3; 4]) -> bool,
     element: impl Fn(usize, &[V3; 4], &mut [V3; 4], Option<&mut [[M3; 4]; 4]>),
     r: &mut [f64],
     mut sys: Option<&mut BandedSystem>,
 ) {
     for e in 0..rod.n_el {
-        if skip(e, &[cfg.x[e], cfg.x[e + 1]]) {
+        let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
+        if skip(e, &c) {
             continue;
         }
-        let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
         let mut f = [V3::zeros(); 4];
         let mut ke = [[M3::zeros(); 4]; 4];
         element(e, &c, &mut f, sys.is_some().then_some(&mut ke));
@@ -175,7 +175,7 @@ pub fn add_static_seabed(
     sys: Option<&mut BandedSystem>,
 ) {
     let shapes = hermite_at_gauss(rod.h);
-    let skip = |e: usize, x: &[V3]| seabed::clear_of(bed.at(e), x, rod.h);
+    let skip = |e: usize, c: &[V3; 4]| seabed::clear_of(bed.at(e), &[c[0], c[2]], rod.h);
     let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
         seabed::element_static_force(bed.at(e), c, &shapes, rod.h, f, k)
     };
@@ -191,7 +191,7 @@ pub fn add_static_surface(
     r: &mut [f64],
     sys: Option<&mut BandedSystem>,
 ) {
-    let skip = |e: usize, x: &[V3]| s.at(e).below(x, rod.h);
+    let skip = |e: usize, c: &[V3; 4]| s.at(e).hermite_below(c, rod.h);
     let shape = |xi| crate::math::shape::hermite(xi, rod.h);
     let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
         surface::element_static_force(s.at(e), c, shape, rod.h, f, k)

@@ -406,7 +406,7 @@ impl StepEquations for RodModel {
             // the free surface: the buoyancy of the emerged part taken off, as
             // the discrete gradient of its potential (§10)
             if let Some(fs) = &fluid.surface
-                && !fs.below(&[eln.c[0], eln.c[2], el1.c[0], el1.c[2]], rod.h)
+                && !(fs.hermite_below(&eln.c, rod.h) && fs.hermite_below(&el1.c, rod.h))
             {
                 let mut fsv = [V3::zeros(); 4];
                 let mut kb = [[M3::zeros(); 4]; 4];

@@ -36,7 +36,8 @@ Format (every section but ``[run]`` optional; unknown keys are errors)::
     current_bottom = [0.5, 1.0]
 
     [outputs]
-    window = [40.0, 100.0]        # s: the reductions' time window (default the whole run)
+    window = [40.0, 100.0]        # s: the reductions' time window (default: the steady window,
+                                  # from one period after the ramp to the end; see below)
     reduce = { bottom_tension = ["max"], top_force_z = ["min", "max"] }   # extra columns
     timeseries = false            # true: DIR/cases/<case>.csv with the recorded outputs
 
@@ -56,6 +57,11 @@ order they appear in [grid]), then ``top_tension_min``, ``top_tension_mean``,
 ``top_tension_max``, ``min_tension_min`` (over the window),
 ``energy_balance_relative`` (over the whole run), ``wall_s``, ``status``,
 ``error``, then the extra reductions ``<output>_<min|mean|max>``.
+
+Without ``outputs.window`` each case's statistics are over its steady window,
+as ``riser run``'s: from ``ramp`` plus the longest period of the directions
+that move to the end of the run (the whole run if that leaves nothing, or
+nothing moves).
 """
 
 from __future__ import annotations
@@ -145,7 +151,7 @@ class Spec:
     timeout: float | None
     mode: str
     axes: list[Axis]
-    window: tuple[float, float]
+    window: tuple[float, float] | None    # None: each case's steady window (steady_window)
     reduce: dict[str, list[str]]
     timeseries: bool
     description: str = ""
@@ -178,7 +184,7 @@ class Spec:
             "motion": {k: repr(v) for k, v in sorted(self.motion.items()) if k not in self.columns},
             "duration": repr(self.duration),
             "communication_step": repr(self.communication_step),
-            "window": [repr(self.window[0]), repr(self.window[1])],
+            "window": [repr(self.window[0]), repr(self.window[1])] if self.window else "steady",
             "columns": self.columns,
             "reduce": self.reduce,
         }
@@ -198,11 +204,19 @@ class Spec:
             "duration": self.duration,
             "communication_step": self.communication_step,
             "timeout": self.timeout,
-            "window": self.window,
+            "window": self.window or steady_window(motion, self.duration),
             "record": self.recorded,
             "reduce": self.reduce,
             "timeseries": self.timeseries,
         }
+
+
+def steady_window(motion: dict[str, float], duration: float) -> tuple[float, float]:
+    """The steady window of a case (s), as `riser run`'s: from the ramp plus the longest
+    period of the directions that move to the end; the whole run if that leaves nothing."""
+    periods = [motion[f"{d}_period"] for d in DIRECTIONS if motion.get(f"{d}_amplitude", 0.0) != 0.0]
+    t0 = motion.get("ramp", 0.0) + max(periods, default=0.0)
+    return (t0, duration) if t0 < duration else (0.0, duration)
 
 
 def _canonical(v: Any) -> str:
@@ -419,7 +433,7 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
     if not isinstance(outputs, dict):
         raise SpecError("outputs: expected a table")
     _unknown("outputs", outputs, OUTPUT_KEYS)
-    window = (0.0, duration)
+    window = None
     if "window" in outputs:
         w = outputs["window"]
         if not isinstance(w, list) or len(w) != 2:
