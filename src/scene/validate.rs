@@ -189,6 +189,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.newton_tolerance", an.newton_tolerance);
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
+    c.0.extend(super::waves::check(s));
     c.0
 }
 
