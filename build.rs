@@ -250,7 +250,8 @@ fn main() {
             t.push_attribute(("min", min.as_str()));
             t.push_attribute(("max", max.as_str()));
         }
-        if !v.start.is_empty() {
+        // a parameter always has a start value (an empty String's too)
+        if !v.start.is_empty() || v.causality == "parameter" {
             t.push_attribute(("start", v.start.as_str()));
         }
         w.write_event(Event::Empty(t)).unwrap();

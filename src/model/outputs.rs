@@ -73,13 +73,17 @@ pub struct Outputs {
     /// Angle of the line's tangent at the hang-off from the downward
     /// vertical, deg (docs/theory.md §12.1).
     pub hang_off_angle: f64,
+    /// The water's elevation at the phase origin as the line feels it (the
+    /// ramp included), m: 0 in still water (docs/theory.md §13). Set by the
+    /// simulation, which knows the sea.
+    pub wave_elevation: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 17] = [
+    pub const NAMES: [&'static str; 18] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -97,10 +101,11 @@ impl Outputs {
         "touchdown_s",
         "work_seabed",
         "hang_off_angle",
+        "wave_elevation",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 17] {
+    pub fn values(&self) -> [f64; 18] {
         [
             self.top_tension,
             self.top_force.x,
@@ -119,6 +124,7 @@ impl Outputs {
             self.touchdown_s,
             self.work_seabed,
             self.hang_off_angle,
+            self.wave_elevation,
         ]
     }
 
@@ -180,6 +186,7 @@ impl Outputs {
             work_seabed: s.work_seabed,
             touchdown_s,
             hang_off_angle: hang_off_angle(hang_off_tangent),
+            wave_elevation: 0.0,
             shape,
         }
     }

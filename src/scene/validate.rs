@@ -197,6 +197,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
                 .to_string(),
         );
     }
+    c.0.extend(super::waves::check(s));
     c.0
 }
 
