@@ -570,6 +570,7 @@ impl Instance {
             "work_seabed" => o.work_seabed,
             "hang_off_angle" => o.hang_off_angle,
             "wave_elevation" => o.wave_elevation,
+            "hang_off_moment" => o.hang_off_moment,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

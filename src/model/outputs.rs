@@ -77,13 +77,17 @@ pub struct Outputs {
     /// ramp included), m: 0 in still water (docs/theory.md §13). Set by the
     /// simulation, which knows the sea.
     pub wave_elevation: f64,
+    /// Bending moment at the hang-off, N m: EI |κ| extrapolated to S = 0
+    /// from the first element's two nearest Gauss points (0 for a pinned end
+    /// to the discretisation's accuracy, and for the cable; §15).
+    pub hang_off_moment: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 18] = [
+    pub const NAMES: [&'static str; 19] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -102,10 +106,11 @@ impl Outputs {
         "work_seabed",
         "hang_off_angle",
         "wave_elevation",
+        "hang_off_moment",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 18] {
+    pub fn values(&self) -> [f64; 19] {
         [
             self.top_tension,
             self.top_force.x,
@@ -125,6 +130,7 @@ impl Outputs {
             self.work_seabed,
             self.hang_off_angle,
             self.wave_elevation,
+            self.hang_off_moment,
         ]
     }
 
@@ -187,6 +193,7 @@ impl Outputs {
             touchdown_s,
             hang_off_angle: hang_off_angle(hang_off_tangent),
             wave_elevation: 0.0,
+            hang_off_moment: 0.0,
             shape,
         }
     }
