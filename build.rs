@@ -20,7 +20,7 @@ struct Var {
 }
 
 /// (unit, [kg, m, s]) exponents of the SI base units.
-const UNITS: [(&str, [i32; 3]); 12] = [
+const UNITS: [(&str, [i32; 3]); 13] = [
     ("m", [0, 1, 0]),
     ("m/s", [0, 1, -1]),
     ("m/s2", [0, 1, -2]),
@@ -29,6 +29,7 @@ const UNITS: [(&str, [i32; 3]); 12] = [
     ("J", [1, 2, -2]),
     ("N/m", [1, 0, -2]),
     ("N.m2", [1, 3, -2]),
+    ("N.m", [1, 2, -2]),
     ("kg/m", [1, -1, 0]),
     ("kg/m3", [1, -3, 0]),
     ("Pa/m", [1, -2, -2]),
@@ -250,7 +251,8 @@ fn main() {
             t.push_attribute(("min", min.as_str()));
             t.push_attribute(("max", max.as_str()));
         }
-        if !v.start.is_empty() {
+        // a parameter always has a start value (an empty String's too)
+        if !v.start.is_empty() || v.causality == "parameter" {
             t.push_attribute(("start", v.start.as_str()));
         }
         w.write_event(Event::Empty(t)).unwrap();

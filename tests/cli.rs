@@ -88,7 +88,7 @@ fn run_json_summary_and_csv_columns() {
         header,
         "t,top_tension,top_force_x,top_force_y,top_force_z,bottom_tension,min_tension,total_energy,\
          kinetic_energy,strain_energy,potential_energy,work_top,work_hydro,dissipated_energy,algorithmic_dissipation,\
-         touchdown_s,work_seabed,hang_off_angle"
+         touchdown_s,work_seabed,hang_off_angle,wave_elevation,hang_off_moment"
     );
     assert_eq!(ts.lines().count(), 42); // header + t = 0 + 40 steps
     let last_t: f64 = ts.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();

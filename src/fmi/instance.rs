@@ -346,7 +346,16 @@ impl Instance {
                 if n == "scene" || n == COUPLING {
                     continue;
                 }
-                sets.push(format!("{n}={}", v.to_text()));
+                let mut text = v.to_text();
+                // a relative components file: the FMU's resources first, as the scene's
+                if n == "wave_file"
+                    && let Some(r) = &self.resources
+                    && PathBuf::from(&text).is_relative()
+                    && r.join(&text).exists()
+                {
+                    text = r.join(&text).to_string_lossy().into_owned();
+                }
+                sets.push(format!("{n}={text}"));
             }
         }
         scene = scene.with_overrides(&sets).map_err(|e| e.to_string())?;
@@ -602,6 +611,8 @@ impl Instance {
             "touchdown_s" => o.touchdown_s,
             "work_seabed" => o.work_seabed,
             "hang_off_angle" => o.hang_off_angle,
+            "wave_elevation" => o.wave_elevation,
+            "hang_off_moment" => o.hang_off_moment,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

@@ -8,6 +8,7 @@ pub mod fluid;
 pub mod morison;
 pub mod seabed;
 pub mod surface;
+pub mod waves;
 pub mod weight;
 
 use crate::math::V3;

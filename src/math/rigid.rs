@@ -48,7 +48,7 @@ impl RotationOrder {
         }
     }
 
-    /// The angular velocity in the vessel frame, ω_b with Ṙ = R [ω_b]×, of
+    /// The angular velocity in the vessel frame, ω_b with Ṙ = R \[ω_b\]×, of
     /// the angle rates [φ̇, θ̇, ψ̇] at `angles` (14.2): each rate about its own
     /// axis carried into the vessel frame by the rotations that follow it.
     /// Defined at every attitude (the inverse, rates from ω_b, is singular
@@ -104,7 +104,7 @@ impl RigidMotion {
     }
 }
 
-/// Ṙ of R = `order`.rotation(angles) with rates, by its definition R [ω_b]×.
+/// Ṙ of R = `order`.rotation(angles) with rates, by its definition R \[ω_b\]×.
 pub fn rotation_rate(order: RotationOrder, angles: [f64; 3], rates: [f64; 3]) -> M3 {
     order.rotation(angles) * skew(&order.body_rates(angles, rates))
 }
@@ -142,7 +142,7 @@ mod tests {
         assert!((r.column(0) - V3::new(0.7f64.cos(), 0.7f64.sin(), 0.0)).norm() < 1e-15);
     }
 
-    /// Ṙ = R [ω_b]× (14.2) against central differences of R along the angles'
+    /// Ṙ = R \[ω_b\]× (14.2) against central differences of R along the angles'
     /// path, both orders, at a general attitude and at pitch 90° (gimbal lock).
     #[test]
     fn body_rates_are_the_derivative_of_the_rotation() {

@@ -73,13 +73,21 @@ pub struct Outputs {
     /// Angle of the line's tangent at the hang-off from the downward
     /// vertical, deg (docs/theory.md §12.1).
     pub hang_off_angle: f64,
+    /// The water's elevation at the phase origin as the line feels it (the
+    /// ramp included), m: 0 in still water (docs/theory.md §13). Set by the
+    /// simulation, which knows the sea.
+    pub wave_elevation: f64,
+    /// Bending moment at the hang-off, N m: EI |κ| extrapolated to S = 0
+    /// from the first element's two nearest Gauss points (0 for a pinned end
+    /// to the discretisation's accuracy, and for the cable; §15).
+    pub hang_off_moment: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 17] = [
+    pub const NAMES: [&'static str; 19] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -97,10 +105,12 @@ impl Outputs {
         "touchdown_s",
         "work_seabed",
         "hang_off_angle",
+        "wave_elevation",
+        "hang_off_moment",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 17] {
+    pub fn values(&self) -> [f64; 19] {
         [
             self.top_tension,
             self.top_force.x,
@@ -119,6 +129,8 @@ impl Outputs {
             self.touchdown_s,
             self.work_seabed,
             self.hang_off_angle,
+            self.wave_elevation,
+            self.hang_off_moment,
         ]
     }
 
@@ -180,6 +192,8 @@ impl Outputs {
             work_seabed: s.work_seabed,
             touchdown_s,
             hang_off_angle: hang_off_angle(hang_off_tangent),
+            wave_elevation: 0.0,
+            hang_off_moment: 0.0,
             shape,
         }
     }

@@ -7,6 +7,7 @@ mod overrides;
 pub mod ranges;
 pub mod sections;
 mod validate;
+pub mod waves;
 
 pub use overrides::PARAMETER_NAMES;
 pub use validate::FieldError;
@@ -334,8 +335,40 @@ pub struct Scene {
     /// The seabed (none: the line never touches bottom, at no cost).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seabed: Option<SeabedSpec>,
+    /// Waves (none: still water, at no cost), docs/theory.md §13.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub waves: Option<waves::WavesSpec>,
     #[serde(default)]
     pub analysis: Analysis,
+    /// The hang-off's end condition (`[hang_off]`; default pinned).
+    #[serde(default, skip_serializing_if = "HangOffSpec::is_default")]
+    pub hang_off: HangOffSpec,
+}
+
+/// How the line's end is held at the hang-off (docs/theory.md §15).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HangOffEnd {
+    /// Position follows the vessel; free to rotate and twist (no moment).
+    #[default]
+    Pinned,
+    /// Position follows the vessel; the end's orientation held at its
+    /// static one (a stiff connection, the rod only).
+    Clamped,
+}
+
+/// `[hang_off]`: the end condition at the hang-off.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HangOffSpec {
+    #[serde(default)]
+    pub end: HangOffEnd,
+}
+
+impl HangOffSpec {
+    fn is_default(&self) -> bool {
+        *self == HangOffSpec::default()
+    }
 }
 
 /// Why a scene could not be used.
@@ -395,8 +428,17 @@ fn in_users_terms(message: &str) -> String {
 impl Scene {
     /// Parses and validates scene TOML text; `source` names it in messages.
     pub fn from_toml(text: &str, source: &str) -> Result<Scene, SceneError> {
-        let scene: Scene = toml::from_str(text)
+        Scene::from_toml_at(text, source, None)
+    }
+
+    /// [`Scene::from_toml`] of the file at `path`: a relative `waves.file`
+    /// is taken from the file's folder.
+    fn from_toml_at(text: &str, source: &str, path: Option<&std::path::Path>) -> Result<Scene, SceneError> {
+        let mut scene: Scene = toml::from_str(text)
             .map_err(|e| SceneError::Parse { source: source.to_string(), message: in_users_terms(&e.to_string()) })?;
+        if let Some(p) = path {
+            scene.resolve_wave_file(p);
+        }
         scene.validate()?;
         Ok(scene)
     }
@@ -413,7 +455,7 @@ impl Scene {
         }
         let text = std::fs::read_to_string(name_or_path)
             .map_err(|e| SceneError::NotFound { name: name_or_path.to_string(), reason: e.to_string() })?;
-        Scene::from_toml(&text, name_or_path)
+        Scene::from_toml_at(&text, name_or_path, Some(std::path::Path::new(name_or_path)))
     }
 
     /// Checks every value; lists all problems with the allowed ranges.

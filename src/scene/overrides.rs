@@ -1,11 +1,13 @@
 //! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
+use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpec, read_table};
 use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 33] = [
+pub const PARAMETER_NAMES: [(&str, &str); 48] = [
     ("model", "rod | cable"),
+    ("hang_off_end", "pinned | clamped"),
     ("n_elements", "-"),
     ("time_step", "s"),
     ("newton_tolerance", "-"),
@@ -38,6 +40,20 @@ pub const PARAMETER_NAMES: [(&str, &str); 33] = [
     ("seabed_stiffness", "Pa/m"),
     ("seabed_damping", "Pa s/m"),
     ("seabed_friction", "-"),
+    ("wave_kind", "none | airy | jonswap | pierson_moskowitz | table"),
+    ("wave_height", "m"),
+    ("wave_period", "s"),
+    ("wave_direction", "deg from +x"),
+    ("wave_phase", "deg"),
+    ("wave_hs", "m"),
+    ("wave_tp", "s"),
+    ("wave_gamma", "-"),
+    ("wave_components", "-"),
+    ("wave_seed", "-"),
+    ("wave_file", "path"),
+    ("wave_stretching", "wheeler | vertical | none"),
+    ("wave_ramp", "s"),
+    ("water_depth", "m"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -111,6 +127,9 @@ fn current_end(s: &mut Scene, name: &str, v: f64, top: bool) -> Result<(), Scene
 }
 
 pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneError> {
+    if let Some(r) = set_wave(s, name, value) {
+        return r;
+    }
     let num = || number(name, value);
     match name {
         "model" => {
@@ -121,6 +140,18 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
                     return Err(SceneError::Override {
                         name: name.into(),
                         message: format!("'{value}' is not a model: rod or cable"),
+                    });
+                }
+            }
+        }
+        "hang_off_end" => {
+            s.hang_off.end = match value {
+                "pinned" => super::HangOffEnd::Pinned,
+                "clamped" => super::HangOffEnd::Clamped,
+                _ => {
+                    return Err(SceneError::Override {
+                        name: name.into(),
+                        message: format!("'{value}' is not an end condition: pinned or clamped"),
                     });
                 }
             }
@@ -199,6 +230,9 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
 /// unknown name, or where the scene has no single value: a current table's
 /// ends, several buoyancy sections).
 pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
+    if let Some(v) = get_wave(s, name) {
+        return Some(v);
+    }
     let num = |v: f64| Some(format!("{v}"));
     let c = &s.current;
     let end = |top: bool| match c.profile {
@@ -217,6 +251,13 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
             Model::Rod => "rod".into(),
             Model::Cable => "cable".into(),
         }),
+        "hang_off_end" => Some(
+            match s.hang_off.end {
+                super::HangOffEnd::Pinned => "pinned",
+                super::HangOffEnd::Clamped => "clamped",
+            }
+            .into(),
+        ),
         "n_elements" => Some(s.analysis.n_elements.to_string()),
         "time_step" => num(s.analysis.time_step),
         "newton_tolerance" => num(s.analysis.newton_tolerance),
@@ -255,6 +296,99 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
                 if a == l { num(a) } else { None }
             }
         },
+        _ => None,
+    }
+}
+
+fn waves(s: &mut Scene) -> &mut WavesSpec {
+    s.waves.get_or_insert_with(WavesSpec::none)
+}
+
+/// Sets a wave parameter (None: `name` is not one).
+fn set_wave(s: &mut Scene, name: &str, value: &str) -> Option<Result<(), SceneError>> {
+    let bad = |message: String| Err(SceneError::Override { name: name.to_string(), message });
+    let num = || number(name, value);
+    let whole = || -> Result<u64, SceneError> {
+        let n = value.parse::<i64>().map_err(|_| SceneError::Override {
+            name: name.to_string(),
+            message: format!("'{value}' is not a whole number"),
+        })?;
+        in_range(name, n as f64)?;
+        Ok(n.max(0) as u64)
+    };
+    let r = (|| {
+        match name {
+            "wave_kind" => match WaveKind::parse(value) {
+                Some(WaveKind::None) => s.waves = None,
+                Some(k) => waves(s).kind = k,
+                None => {
+                    return bad(format!(
+                        "'{value}' is not a kind of waves: none, airy, jonswap, pierson_moskowitz or table"
+                    ));
+                }
+            },
+            "wave_height" => waves(s).height = Some(num()?),
+            "wave_period" => waves(s).period = Some(num()?),
+            "wave_direction" => waves(s).direction = Some(num()?),
+            "wave_phase" => waves(s).phase = Some(num()?),
+            "wave_hs" => waves(s).hs = Some(num()?),
+            "wave_tp" => waves(s).tp = Some(num()?),
+            "wave_gamma" => waves(s).gamma = Some(num()?),
+            "wave_components" => waves(s).components = Some(whole()? as usize),
+            "wave_seed" => waves(s).seed = Some(whole()?),
+            "wave_file" => waves(s).file = if value.is_empty() { None } else { Some(value.to_string()) },
+            "wave_stretching" => match StretchingSpec::parse(value) {
+                Some(k) => waves(s).stretching = Some(k),
+                None => return bad(format!("'{value}' is not a stretching: wheeler, vertical or none")),
+            },
+            "wave_ramp" => waves(s).ramp = Some(num()?),
+            "water_depth" => {
+                let d = num()?;
+                waves(s).depth = if d == 0.0 { None } else { Some(d) };
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    })();
+    match r {
+        Ok(false) => None,
+        Ok(true) => Some(Ok(())),
+        Err(e) => Some(Err(e)),
+    }
+}
+
+/// A wave parameter's value in the scene as `--set` would write it (the
+/// FMU's start value where the scene has none; None: not a wave parameter).
+fn get_wave(s: &Scene, name: &str) -> Option<String> {
+    let w = s.waves.clone().unwrap_or_else(WavesSpec::none);
+    let num = |v: f64| Some(format!("{v}"));
+    match name {
+        "wave_kind" => Some(w.kind.name().to_string()),
+        "wave_height" => num(w.height.unwrap_or(0.0)),
+        "wave_period" => num(w.period.unwrap_or(START_PERIOD)),
+        "wave_direction" => num(w.direction.unwrap_or(0.0)),
+        "wave_phase" => num(w.phase.unwrap_or(0.0)),
+        "wave_hs" => num(w.hs.unwrap_or(0.0)),
+        "wave_tp" => num(w.tp.unwrap_or(START_PERIOD)),
+        "wave_gamma" => {
+            num(if w.kind == WaveKind::Jonswap { w.gamma_or_default() } else { w.gamma.unwrap_or(START_GAMMA) })
+        }
+        "wave_components" => Some(w.components_or_default().to_string()),
+        "wave_seed" => Some(w.seed.unwrap_or(0).to_string()),
+        "wave_file" => Some(w.file.clone().unwrap_or_default()),
+        "wave_stretching" => Some(w.stretching.unwrap_or_default().name().to_string()),
+        "wave_ramp" => num(w.ramp.unwrap_or(match w.kind {
+            WaveKind::Airy => w.period.unwrap_or(START_PERIOD),
+            WaveKind::Jonswap | WaveKind::PiersonMoskowitz => w.tp.unwrap_or(START_PERIOD),
+            WaveKind::Table => read_table(&w)
+                .ok()
+                .and_then(|rows| {
+                    rows.iter().max_by(|a, b| a.amplitude.total_cmp(&b.amplitude)).map(|r| 1.0 / r.frequency)
+                })
+                .unwrap_or(START_PERIOD),
+            WaveKind::None => START_PERIOD,
+        })),
+        "water_depth" => num(w.depth.unwrap_or(0.0)),
         _ => None,
     }
 }

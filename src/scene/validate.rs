@@ -189,6 +189,15 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.newton_tolerance", an.newton_tolerance);
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
+    if s.hang_off.end == super::HangOffEnd::Clamped && an.model == super::Model::Cable {
+        c.err(
+            "hang_off.end",
+            "'clamped' needs the rod: the cable model has no rotations (its ends are pinned); use \
+             analysis.model = \"rod\" or hang_off.end = \"pinned\""
+                .to_string(),
+        );
+    }
+    c.0.extend(super::waves::check(s));
     c.0
 }
 

@@ -272,6 +272,7 @@ impl Design {
         let numbers = self.numbers(engine, state, touchdown_s);
         let mut warnings: Vec<String> = reach_warning(scene).into_iter().collect();
         warnings.extend(self.warnings(&numbers, &engine.line_points(state)));
+        warnings.extend(crate::loads::waves::warnings(scene));
         (numbers, warnings)
     }
 }

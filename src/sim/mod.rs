@@ -8,6 +8,7 @@ pub mod error;
 pub mod modes;
 pub mod report;
 
+use crate::loads::waves::{Sea, sea_of};
 use crate::math::{M3, V3};
 use crate::model::cable::CableModel;
 use crate::model::cable::linearized::CableLinearized;
@@ -15,7 +16,8 @@ use crate::model::rod::RodModel;
 use crate::model::rod::linearized::RodLinearized;
 use crate::model::rod::statics::StaticLoads;
 use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
-use crate::scene::{Model, Scene};
+use crate::scene::waves::WaveKind;
+use crate::scene::{Model, Scene, SceneError};
 use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
 use crate::solve::eigen::hang_off_stiffness;
 use crate::solve::{Integrator, SolverLog, StepInfo};
@@ -218,29 +220,57 @@ pub struct Simulation {
     pub initial_energy: f64,
     /// The loads of the statics (for the stiffness at the hang-off).
     pub static_loads: StaticLoads,
+    /// The scene's sea (None: still water); its ramp starts at [`Simulation::start`].
+    pub sea: Option<Sea>,
+}
+
+/// A scene whose `[waves]` block would make waves is refused for a dynamic
+/// run until the water's force with waves is built (docs/theory.md §13.5):
+/// run as it is, it would be still water without saying so.
+pub fn refuse_waves(scene: &Scene) -> Result<(), RiserError> {
+    match scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) {
+        None => Ok(()),
+        Some(w) => Err(RiserError::Unsupported(format!(
+            "waves are not yet applied to the line: scene '{}' has waves (kind '{}'), and this version would run it \
+             in still water. `riser waves` shows the sea; remove the [waves] block or set wave_kind=none to run \
+             without waves",
+            scene.name,
+            w.kind.name()
+        ))),
+    }
 }
 
 impl Simulation {
     /// Solves the scene's statics and prepares the integrator of the scene's
     /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
+        refuse_waves(scene)?;
+        let sea = sea_of(scene, 0.0).map_err(|e| RiserError::Scene(SceneError::Invalid(vec![e])))?;
         let statics = solve_scene(scene)?;
         let integrator = Engine::from_scene(scene)?;
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
         let initial_energy = integrator.outputs(&state).total_energy;
         let static_loads = scene_static_loads(scene);
-        Ok(Simulation { integrator, state, statics, initial_energy, static_loads })
+        Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea })
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
     pub fn start(&mut self, motion: HangOff) {
+        if let Some(sea) = self.sea.as_mut() {
+            sea.set_ramp_start(self.state.time);
+        }
         self.integrator.impose_hang_off(&mut self.state, motion);
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
     }
 
     /// Outputs of the current state.
     pub fn outputs(&self) -> Outputs {
-        self.integrator.outputs(&self.state)
+        let mut o = self.integrator.outputs(&self.state);
+        if let Some(sea) = &self.sea {
+            let [x0, y0] = sea.settings().origin;
+            o.wave_elevation = sea.ramped_elevation(x0, y0, self.state.time);
+        }
+        o
     }
 
     /// Advances to `t_target` in one internal step (split only if Newton

@@ -4,6 +4,8 @@
 //! `riser run SCENE [--set name=value]... [--heave A,T] [--surge A,T] [--sway A,T] [--heave-until T] --duration D [--out DIR] [--json]`
 //! `riser modes SCENE [--set name=value]... [--count N] [--json] [--out DIR]` — natural periods and
 //! mode shapes about the static state (modes.rs: text, JSON, modes.csv, mode_shapes.csv, modes.svg)
+//! `riser waves SCENE [--set name=value]... [--duration D] [--out DIR] [--json]` — the scene's sea
+//! (waves.rs: components, Hs and Tp; elevation.csv, spectrum.csv, components.csv, waves.svg)
 //! `riser params`, `riser model-description`, `riser scene SCENE [--set name=value]...`
 
 /// `println!` for the command's output on stdout, which a closed pipe
@@ -29,6 +31,7 @@ macro_rules! out {
 mod modes;
 mod svg;
 mod touchdown;
+mod waves;
 
 /// Writes to stdout; a reader that has gone away (broken pipe) is not an
 /// error of the command, any other failure is reported once on stderr.
@@ -122,6 +125,9 @@ enum Command {
     },
     /// Natural periods and mode shapes of the line about its static state (with added mass).
     Modes(modes::ModesArgs),
+    /// The scene's sea as riser realises it: components, Hs and Tp, and with --out the elevation, its
+    /// spectrum and a plot.
+    Waves(waves::WavesArgs),
     /// List the parameters accepted by --set (the FMU's parameters) with their units and allowed ranges.
     Params {
         /// The scene whose values are shown (the defaults of a run of it).
@@ -876,6 +882,7 @@ fn main() -> ExitCode {
             run(&scene, &set, args)
         }
         Command::Modes(args) => modes::modes(args),
+        Command::Waves(args) => waves::waves(args),
         Command::ModelDescription => {
             out!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())

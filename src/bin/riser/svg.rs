@@ -1,4 +1,4 @@
-//! Pieces of the CLI's SVG plots (modes.svg, touchdown.svg): round tick
+//! Pieces of the CLI's SVG plots (modes.svg, touchdown.svg, waves.svg): round tick
 //! values, their labels, and a panel's grid.
 
 use std::fmt::Write;

@@ -47,7 +47,11 @@ impl RodModel {
     /// The line of a scene: its rod, sections, weight, drag, current and added mass.
     pub fn from_scene(scene: &Scene) -> Self {
         let props = sections::element_properties(scene);
-        let rod = of_properties(scene, &props);
+        let mut rod = of_properties(scene, &props);
+        // the static state is the pinned line's; a clamp holds the end at that orientation
+        if scene.hang_off.end == crate::scene::HangOffEnd::Clamped {
+            rod.ends[0] = super::EndBc::CLAMPED;
+        }
         let h = rod.h;
         let mass = props.map(|p| ElementMass::new(p.mass_per_length, [p.rotary_inertia; 2], h));
         let vertical = loads::vertical_load(scene);

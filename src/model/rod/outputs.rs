@@ -124,6 +124,21 @@ impl RodModel {
             Some(bed) => seabed::touchdown(bed.first(), &cfg.x, |a| rod.s_node(a), rod.length),
             None => rod.length,
         };
-        Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, cfg.xp[0], shape)
+        let mut o =
+            Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, cfg.xp[0], shape);
+        o.hang_off_moment = self.hang_off_moment(cfg);
+        o
+    }
+
+    /// The bending moment at S = 0, N m (15.1): the curvature vector of the
+    /// first element's two Gauss points nearest the hang-off extrapolated
+    /// linearly to the end, times EI.
+    pub fn hang_off_moment(&self, cfg: &crate::model::RodConfig) -> f64 {
+        let rod = &self.rod;
+        let eps = rod.strains_of(&ElemDofs::gather(cfg, 0), 0);
+        let xi = crate::math::shape::GAUSS4.xi;
+        let w = xi[0] / (xi[1] - xi[0]);
+        let k = |i: usize| (1.0 + w) * eps[0][i] - w * eps[1][i];
+        rod.stiff(0)[3] * k(3).hypot(k(4))
     }
 }

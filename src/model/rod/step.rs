@@ -189,8 +189,21 @@ impl StepEquations for RodModel {
         // directors: the smallest rotation that turns d3 onto the predicted
         // centreline tangent (the director rates of the scheme carry the
         // unresolved shear oscillation and predict badly at large steps)
+        let last = rod.n_director_nodes() - 1;
         for j in 0..rod.n_director_nodes() {
             let d = prev.config.d[j];
+            // a clamped end keeps its frame: its rotation unknowns are held at zero from here
+            let end = if j == 0 {
+                Some(0)
+            } else if j == last {
+                Some(1)
+            } else {
+                None
+            };
+            if end.is_some_and(|e| rod.ends[e].rotation == RotationBc::Clamped) {
+                trial.config.d[j] = d;
+                continue;
+            }
             let a = slope_at_director_node(rod, &prev.config, j).normalize();
             let b = slope_at_director_node(rod, &trial.config, j).normalize();
             // Cayley vector of the smallest rotation a → b: 2 (a × b)/(1 + a·b)

@@ -1,0 +1,85 @@
+//! The cost of the wave kinematics (docs/theory.md §13.4) where the force
+//! integration will call them: once per Newton iteration at the Gauss points
+//! of the whole line (the catenary's static state, 60 elements: 240 points),
+//! against one residual of the step equations in still water (the kernel a
+//! Newton iteration evaluates once). A regular wave and JONSWAP seas of 50
+//! and 200 components, in 100 m of water and in deep water. Median of 7
+//! rounds.
+//!
+//! Run: `cargo bench --bench waves` (or `--profile fasttest`).
+
+use riser::loads::waves::{WavePoint, WaveScratch, sea_of};
+use riser::math::V3;
+use riser::scene::Scene;
+use riser::sim::{Engine, Heave, Simulation};
+use std::hint::black_box;
+use std::time::Instant;
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// µs per call of `f`, median of 7 rounds of `calls` calls.
+fn time(calls: usize, mut f: impl FnMut()) -> f64 {
+    let mut rounds = Vec::new();
+    for _ in 0..7 {
+        let t0 = Instant::now();
+        for _ in 0..calls {
+            f();
+        }
+        rounds.push(t0.elapsed().as_secs_f64() / calls as f64 * 1e6);
+    }
+    median(&mut rounds)
+}
+
+fn main() {
+    let base = Scene::builtin("catenary").unwrap();
+    let mut sim = Simulation::from_scene(&base).unwrap();
+    let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+    let motion = move |t: f64| heave.at(t);
+    sim.start(heave.at(0.0));
+    let dt = sim.integrator.options().time_step;
+    for k in 1..=200u64 {
+        sim.advance_to(k as f64 * dt, &motion).unwrap();
+    }
+    let points: Vec<V3> = sim.integrator.line_points(&sim.state).iter().map(|p| p.position).collect();
+    let prev = sim.state.clone();
+    let t = prev.time + dt;
+    let Engine::Rod(integ) = &mut sim.integrator else { unreachable!("the catenary scene is a rod") };
+    let predicted = integ.begin_step(&prev, dt, motion(t));
+    let residual = time(2000, || {
+        black_box(integ.step_residual(&prev, &predicted, dt, motion(t), false));
+    });
+    println!("catenary, 60 elements, {} Gauss points; median of 7 rounds", points.len());
+    println!("{:<44} {:>10} {:>14}", "", "µs", "x residual");
+    println!("{:<44} {:>10.1} {:>14.2}", "one residual of the step (still water)", residual, 1.0);
+    let seas = [
+        ("regular wave H 6 m T 10 s", "kind = \"airy\"\nheight = 6.0\nperiod = 10.0"),
+        ("JONSWAP Hs 6 m Tp 10 s, 50 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 50"),
+        ("JONSWAP Hs 6 m Tp 10 s, 200 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 200"),
+    ];
+    for (depth_name, depth) in [("100 m", "\ndepth = 100.0"), ("deep", "")] {
+        for (name, block) in seas {
+            let text = format!("{}\n[waves]\n{block}{depth}\nramp = 0.0\n", base.to_toml());
+            let scene = Scene::from_toml(&text, "bench").unwrap();
+            let sea = sea_of(&scene, 0.0).unwrap().unwrap();
+            let mut out = vec![WavePoint::STILL; points.len()];
+            let mut scratch = WaveScratch::default();
+            let mut clock = 0.0;
+            let calls = if sea.components().len() > 100 { 100 } else { 400 };
+            let us = time(calls, || {
+                clock += 0.05;
+                sea.kinematics_batch(clock, &points, &mut out, &mut scratch);
+                black_box(&out);
+            });
+            let deep = out.iter().filter(|p| p.deep).count();
+            println!(
+                "{:<44} {:>10.1} {:>14.2}   ({deep} points below the cutoff)",
+                format!("{name}, {depth_name}"),
+                us,
+                us / residual
+            );
+        }
+    }
+}

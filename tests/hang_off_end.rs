@@ -1,0 +1,118 @@
+//! The hang-off's end condition (issue 30, docs/theory.md §15): a clamped end
+//! against the boundary layer of a tensioned beam, M = δ √(EI T) for a small
+//! end rotation δ (the element length well below √(EI/T)); the energy balance
+//! of a clamped line in motion; the cable refuses a clamp.
+
+use riser::math::V3;
+use riser::model::rod::statics::StaticProblem;
+use riser::model::rod::{EndBc, RodModel};
+use riser::model::statics::StaticOptions;
+use riser::scene::Scene;
+use riser::sim::report::{scene_static_loads, solve_scene};
+use riser::sim::{Heave, Simulation};
+use riser::solve::statics::solve;
+
+/// A neutrally buoyant vertical line (the catenary's D with its displaced
+/// mass, 81.0 kg/m) stretched 1 cm between its ends: T = EA δL/L = 79.6 kN
+/// along it; EI 1e6 N m² gives a bending length λ = √(EI/T) = 3.5 m.
+fn taut(sets: &[&str]) -> Scene {
+    let mass = 1025.0 * std::f64::consts::PI * 0.3172f64.powi(2) / 4.0;
+    let mut all = vec![
+        format!("mass_per_length={mass}"),
+        "bending_stiffness=1e6".into(),
+        "anchor_x=0".into(),
+        "anchor_z=-100.01".into(),
+        "n_elements=200".into(),
+    ];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    Scene::builtin("catenary").unwrap().with_overrides(&all).unwrap()
+}
+
+/// The clamp turned by δ = 0.01 rad about y from the pinned line's static
+/// orientation. The tensioned beam EI w⁗ − T w″ = 0 with w(0) = 0, w′(0) = δ
+/// and the far end pinned, w(L) = 0, has w = A (e^{−s/λ} − 1) + A s/L to
+/// O(e^{−L/λ}): the end moment is EI |w″(0)| = δ √(EI T) / (1 − λ/L) (the
+/// chord turns by δλ/L; 3.7 % here). Measured within 5e-3 at h = λ/7 (the
+/// error falls with h: −1.7e-3 at 200 elements, −5e-4 at 400; linear in δ:
+/// the same at δ = 0.001); the pinned line (its end free to turn) carries none.
+#[test]
+fn a_clamped_end_turned_by_delta_carries_delta_sqrt_ei_t() {
+    let sc = taut(&["hang_off_end=clamped"]);
+    let pinned = solve_scene(&sc).unwrap();
+    let model = RodModel::from_scene(&sc);
+    assert_eq!(model.rod.ends[0], EndBc::CLAMPED);
+    let delta = 0.01;
+    let turn = riser::math::rigid::rot_y(delta);
+    let mut start = pinned.solution.config.clone();
+    start.d[0] = turn * start.d[0];
+    start.xp[0] = turn * start.xp[0];
+    let loads = scene_static_loads(&sc);
+    let opts = StaticOptions { tolerance: 1e-11, ..Default::default() };
+    let sol = solve(&StaticProblem::new(&model.rod, &loads), start, &opts).unwrap();
+    let t = sol.reactions[0].norm();
+    let ei = sc.line.bending_stiffness;
+    let lambda = (ei / t).sqrt();
+    let exact = delta * (ei * t).sqrt() / (1.0 - lambda / sc.line.length);
+    let m = model.hang_off_moment(&sol.config);
+    let free = model.hang_off_moment(&pinned.solution.config);
+    println!(
+        "T {t:.1} N, lambda {lambda:.3} m, h {:.3} m: M {m:.3} N m against delta sqrt(EI T)/(1 - lambda/L) \
+         {exact:.3} ({:.2e}); pinned {free:.3e} N m",
+        sc.line.length / sc.analysis.n_elements as f64,
+        m / exact - 1.0
+    );
+    assert!((m - exact).abs() <= 5e-3 * exact, "M {m} vs {exact}");
+    assert!(free <= 1e-3 * exact, "pinned {free}");
+    // the clamp held: the end's director is where it was turned to
+    let d3: V3 = sol.config.d[0].column(2).into();
+    let want: V3 = (turn * pinned.solution.config.d[0]).column(2).into();
+    assert!((d3 - want).norm() < 1e-12);
+}
+
+/// A clamped catenary heaved 2.5 m / 20 s: the energy balance closes to the
+/// Newton tolerance (the clamp turns nothing, so its moment does no work),
+/// and the end moment is that of a clamp (kN m), where the pinned line's is
+/// its discretisation's (far smaller).
+#[test]
+fn a_clamped_line_in_motion_closes_its_energy_balance() {
+    let run = |end: &str| {
+        let sc = Scene::builtin("catenary")
+            .unwrap()
+            .with_overrides(&[format!("hang_off_end={end}"), "n_elements=30".into(), "rho_infinity=1".into()])
+            .unwrap();
+        let mut sim = Simulation::from_scene(&sc).unwrap();
+        let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+        sim.start(heave.at(0.0));
+        let e0 = sim.initial_energy;
+        let (mut balance, mut exchanged, mut moment) = (0.0f64, 0.0f64, 0.0f64);
+        for k in 1..=600 {
+            sim.advance_to(k as f64 * 0.05, &|t| heave.at(t)).unwrap();
+            let o = sim.outputs();
+            balance = balance.max(o.energy_balance_residual(e0).abs());
+            exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs());
+            moment = moment.max(o.hang_off_moment);
+        }
+        (balance / exchanged, moment)
+    };
+    let (clamped_balance, clamped_moment) = run("clamped");
+    let (pinned_balance, pinned_moment) = run("pinned");
+    println!(
+        "clamped: balance {clamped_balance:.2e}, moment {clamped_moment:.1} N m; pinned: {pinned_balance:.2e}, \
+         {pinned_moment:.1} N m"
+    );
+    assert!(clamped_balance < 1e-6 && pinned_balance < 1e-6);
+    assert!(clamped_moment > 1e3 && pinned_moment < 0.1 * clamped_moment);
+}
+
+/// The cable has no rotations: a clamp is refused naming the field.
+#[test]
+fn the_cable_refuses_a_clamped_end() {
+    let err = Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&["model=cable", "hang_off_end=clamped"])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("hang_off.end") && err.contains("needs the rod"), "{err}");
+    let err = Scene::builtin("catenary").unwrap().with_overrides(&["hang_off_end=welded"]).unwrap_err().to_string();
+    assert!(err.contains("pinned or clamped"), "{err}");
+}

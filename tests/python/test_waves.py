@@ -1,0 +1,100 @@
+"""Waves through the FMU (issue 27): the wave parameters and the output
+`wave_elevation` as a master sees them; a bad wave parameter is refused with
+fmi2Error and a message naming it (at fmi2SetXxx for a value outside its
+range or an unknown name, at fmi2ExitInitializationMode for a scene the
+values make: Tp too short for Hs, a components file that cannot be read, a
+depth that contradicts the seabed); a scene with waves is refused for a run
+until the water's force with waves is built, so that it never runs as still
+water without saying so."""
+import json
+import subprocess
+import sys
+
+from slaves import started_slave
+
+# run in a child process with fmpy's own logger (its native logger proxy is
+# process-wide, as in test_parameter_ranges.py); the child prints what the FMU
+# logged for each case between markers, then the statuses as JSON
+CHILD = r"""
+import json, sys
+from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+md = read_model_description(fmu_path)
+vars_ = {v.name: v for v in md.modelVariables}
+out = []
+for case in cases:
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="waves")
+    s.instantiate(loggingOn=True)
+    print("@@begin", flush=True)
+    status, where = 0, None
+    try:
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+        where = "set"
+        for name, value in case:
+            var = vars_[name]
+            if var.type == "String":
+                s.setString([var.valueReference], [value])
+            elif var.type == "Integer":
+                s.setInteger([var.valueReference], [int(value)])
+            else:
+                s.setReal([var.valueReference], [float(value)])
+        where = "exit"
+        s.exitInitializationMode()
+        where = "ok"
+    except FMICallException as e:
+        status = e.status
+    print("@@end", flush=True)
+    s.freeInstance()
+    out.append([status, where])
+print("@@result " + json.dumps(out), flush=True)
+"""
+
+CASES = [
+    # (what the master sets, where it is refused, what the message names)
+    ([("wave_height", -1.0)], "set", ["wave_height", "is outside [0, 40] m"]),
+    ([("wave_period", 0.0)], "set", ["wave_period", "is outside [1, 40] s"]),
+    ([("wave_kind", "stokes")], "set", ["wave_kind", "not a kind of waves"]),
+    ([("wave_stretching", "linear")], "set", ["wave_stretching", "wheeler, vertical or none"]),
+    ([("wave_components", 0)], "set", ["wave_components", "is outside [1, 10000]"]),
+    ([("wave_kind", "jonswap"), ("wave_hs", 12.0), ("wave_tp", 5.0)], "exit", ["waves.tp", "1/15"]),
+    ([("wave_kind", "airy"), ("wave_height", 4.0)], "exit", ["waves.period", "missing"]),
+    ([("wave_kind", "table"), ("wave_file", "/no/such/components.csv")], "exit", ["waves.file", "cannot read"]),
+    ([("scene", "steel_catenary"), ("wave_kind", "airy"), ("wave_height", 4.0), ("wave_period", 9.0),
+      ("water_depth", 50.0)], "exit", ["waves.depth", "contradicts the seabed"]),
+    # a good sea: refused until the force lands, never still water in silence
+    ([("wave_kind", "airy"), ("wave_height", 4.0), ("wave_period", 9.0)], "exit",
+     ["waves are not yet applied to the line"]),
+]
+
+
+def test_bad_wave_parameters_are_refused_with_fmi2error_naming_them(fmu_path, unzipped):
+    cases = [c[0] for c in CASES]
+    p = subprocess.run([sys.executable, "-c", CHILD, fmu_path, unzipped, json.dumps(cases)], capture_output=True,
+                       text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    results = json.loads(p.stdout.split("@@result ")[1])
+    logs = [chunk.split("@@end")[0] for chunk in p.stdout.split("@@begin")[1:]]
+    assert len(results) == len(CASES) == len(logs)
+    for (sets, where, parts), (status, at), logged in zip(CASES, results, logs):
+        assert status == 3, f"{sets}: not refused with fmi2Error (status {status}, reached {at})"
+        assert at == where, f"{sets}: refused at {at}, expected at {where}"
+        for part in parts:
+            assert part in logged, f"{sets}: '{part}' not in the log:\n{logged}"
+
+
+def test_still_water_reads_back_the_wave_parameters_and_a_zero_elevation(fmu_path, unzipped):
+    s, vr = started_slave(fmu_path, unzipped, "still")
+    assert s.getString([vr["wave_kind"], vr["wave_stretching"], vr["wave_file"]]) == [b"none", b"wheeler", b""] \
+        or s.getString([vr["wave_kind"], vr["wave_stretching"], vr["wave_file"]]) == ["none", "wheeler", ""]
+    assert s.getReal([vr["wave_period"], vr["wave_tp"], vr["wave_gamma"], vr["water_depth"]]) == [10.0, 10.0, 3.3, 0.0]
+    assert s.getInteger([vr["wave_components"], vr["wave_seed"]]) == [100, 0]
+    t = 0.0
+    for _ in range(3):
+        s.doStep(t, 0.1)
+        t += 0.1
+        assert s.getReal([vr["wave_elevation"]]) == [0.0]
+    s.terminate()
+    s.freeInstance()
