@@ -13,10 +13,10 @@
 //!
 //!   u(t_k) = Q(t_k − t) + (a0 + a1 (t_k − t)/h) (−1)^k,               (7.1)
 //!
-//! in the least-squares sense, with the design of [`DESIGNS`]: a quadratic or
-//! cubic over 8 points with both nuisances on uniform steps below 0.25 s, the
-//! quartic through 6 points with a0 alone above or where the steps change
-//! (Q'(0), Q''(0) = the input derivatives when the master gives them),
+//! in the least-squares sense (Q a quartic; with a2 ξ² (−1)^k too below
+//! 0.075 s), with the design of [`DESIGNS`]: over 16 or 12 points on uniform
+//! steps below 0.21 s, through 6 points with a0 alone above or where the steps
+//! change (Q'(0), Q''(0) = the input derivatives when the master gives them),
 //! and the path follows Q alone: a sequence that alternates from one
 //! communication point to the next (a vessel model's round-off, the chatter of
 //! a coupling loop) moves the hang-off not at all, where the interpolating
