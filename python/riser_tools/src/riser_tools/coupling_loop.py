@@ -11,10 +11,10 @@ the velocity starts the line). With `feedback=False` the body moves on the wave 
 follows it one way; `motion=(t, x, v)` replays a recorded motion instead (the reference of a
 two-way run: one-way with the two-way run's motion).
 
-Why not libcosim with a body FMU: pythonfmu (the way to write one in Python) is not installed
-here; libcosim's fixed-step algorithm is exactly this Jacobi exchange (tests/python/
-test_cosim_inputs.py shows libcosim and fmpy drive riser identically), so the master loop is
-libcosim's algorithm with the body's FMU replaced by its ODE.
+This loop is libcosim's fixed-step exchange with the body's FMU replaced by its ODE: any body is
+a few numbers (the buoy of docs/theory.md §7.3). With the vessel as an FMU (osp/vessel/Vessel.py,
+pythonfmu), `fixed_step` and `ecco` run libcosim itself: its fixed-step algorithm and ECCO with the
+power bond (what tests/python/test_coupling.py checks).
 """
 from __future__ import annotations
 
@@ -177,6 +177,42 @@ def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
     a = np.array(rows)
     names = ["t", "top_tension", "z", "work_top", "heave", "heave_velocity", "work", "work_magnitude"]
     return {n: a[:, i] for i, n in enumerate(names)}
+
+
+def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None):
+    """libcosim's fixed-step algorithm (Jacobi) on riser and the vessel FMU: vessel.heave and
+    heave_velocity → riser.heave and heave_velocity (`auto`: the displacement drives),
+    riser.top_force_z → vessel.force; `vessel` sets the vessel's parameters (mass, damping,
+    stiffness, wave_force, wave_period, ramp). Returns t, heave, heave_velocity, top_tension at the
+    communication points after t = 0."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.WARNING)
+    ex = CosimExecution.from_step_size(step_size=int(round(h * 1e9)))
+    r = ex.add_local_slave(CosimLocalSlave(fmu_path=riser_fmu, instance_name="riser"))
+    v = ex.add_local_slave(CosimLocalSlave(fmu_path=vessel_fmu, instance_name="vessel"))
+    rr = {x.name.decode(): x.reference for x in ex.slave_variables(r)}
+    vr = {x.name.decode(): x.reference for x in ex.slave_variables(v)}
+    ex.real_initial_value(r, rr["time_step"], min(0.05, h))
+    for k, x in (vessel or {}).items():
+        ex.real_initial_value(v, vr[k], float(x))
+    for name in ["heave", "heave_velocity"]:
+        ex.connect_real_variables(v, vr[name], r, rr[name])
+    ex.connect_real_variables(r, rr["top_force_z"], v, vr["force"])
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(observer=obs)
+    n = int(round(duration / h))
+    out = np.zeros((n, 4))
+    for k in range(n):
+        if not ex.step():
+            raise RuntimeError(f"libcosim stopped at step {k}")
+        out[k] = [(k + 1) * h] + list(obs.last_real_values(v, [vr["heave"], vr["heave_velocity"]])) \
+            + list(obs.last_real_values(r, [rr["top_tension"]]))
+    return {"t": np.concatenate([[0.0], out[:, 0]]), "heave": np.concatenate([[0.0], out[:, 1]]),
+            "heave_velocity": np.concatenate([[0.0], out[:, 2]]), "top_tension": np.concatenate([[np.nan], out[:, 3]])}
 
 
 def window(res, start: float):
