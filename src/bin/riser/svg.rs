@@ -27,6 +27,23 @@ pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
+/// The opening of an SVG document of `width` × `height` px with its title
+/// (escaped here) centred at the top.
+pub(crate) fn open(width: f64, height: f64, title: &str) -> String {
+    let mut w = String::new();
+    let _ = writeln!(
+        w,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">"#
+    );
+    let _ = writeln!(
+        w,
+        r#"<text x="{:.1}" y="18" text-anchor="middle" font-size="13">{}</text>"#,
+        width / 2.0,
+        escape(title)
+    );
+    w
+}
+
 /// A panel's frame in pixels: x from `x0` to `x1`, y from `y0` (top) to `y1`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Frame {

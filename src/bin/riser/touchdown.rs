@@ -22,16 +22,13 @@ pub fn svg(shapes: &[Shape], touchdown: &[f64], length: f64, seabed_z: Option<f6
     let (s_lo, s_hi) = ((lo - 40.0).max(0.0), (hi + 40.0).min(length));
     let (width, panel_h, left) = (760.0, 180.0, 70.0);
     let height = 3.0 * (panel_h + 50.0) + 40.0;
-    let mut w = String::new();
-    let _ = writeln!(
-        w,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = writeln!(
-        w,
-        r#"<text x="{:.1}" y="18" text-anchor="middle" font-size="13">Touchdown zone: touchdown_s from {lo:.1} to {hi:.1} m; {} shapes (light to dark: earlier to later)</text>"#,
-        width / 2.0,
-        shapes.len()
+    let mut w = crate::svg::open(
+        width,
+        height,
+        &format!(
+            "Touchdown zone: touchdown_s from {lo:.1} to {hi:.1} m; {} shapes (light to dark: earlier to later)",
+            shapes.len()
+        ),
     );
     let panels: [(&str, usize, f64); 3] = [("z (m)", 3, 1.0), ("tension (kN)", 4, 1e-3), ("curvature (1/m)", 5, 1.0)];
     for (p, (label, col, scale)) in panels.iter().enumerate() {

@@ -4,7 +4,7 @@
 //! by hand as modes.svg), plus the components as a table another tool (or
 //! `kind = "table"`) reads.
 
-use crate::svg::{Frame, escape};
+use crate::svg::Frame;
 use riser::loads::waves::spectra::Spectrum;
 use riser::loads::waves::{Sea, sea_of};
 use riser::scene::Scene;
@@ -384,20 +384,17 @@ fn svg(
 ) -> String {
     let (width, panel_h, left, right) = (820.0, 240.0, 70.0, 20.0);
     let height = 2.0 * (panel_h + 60.0) + 50.0;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="18" text-anchor="middle" font-size="13">Waves of scene '{}' ({}): Hs = 4 sqrt(m0) = {:.3} m, Tp = {:.3} s, {} components</text>"#,
-        width / 2.0,
-        escape(&scene.name),
-        w.kind.name(),
-        sea.hs(),
-        sea.peak_period(),
-        sea.components().len()
+    let mut s = crate::svg::open(
+        width,
+        height,
+        &format!(
+            "Waves of scene '{}' ({}): Hs = 4 sqrt(m0) = {:.3} m, Tp = {:.3} s, {} components",
+            scene.name,
+            w.kind.name(),
+            sea.hs(),
+            sea.peak_period(),
+            sea.components().len()
+        ),
     );
     // panel 1: elevation
     let shown = (30.0 * sea.peak_period()).max(60.0).min(rec.t.last().copied().unwrap_or(0.0) + rec.dt);
