@@ -3,14 +3,15 @@
 //! scenes ship in `scenes/` and are compiled in. Parameters can be overridden
 //! by the FMU's parameter names (docs/interface.md).
 
+mod checker;
 mod overrides;
 pub mod ranges;
 pub mod sections;
 mod validate;
 pub mod waves;
 
+pub use checker::FieldError;
 pub use overrides::PARAMETER_NAMES;
-pub use validate::FieldError;
 
 use crate::math::V3;
 use serde::{Deserialize, Serialize};

@@ -1,55 +1,11 @@
 //! Range checks of every scene value, with the field and the allowed range in
 //! each message.
 
+use super::checker::{Checker, FieldError};
 use super::{ProfileKind, Scene, ranges};
-
-/// One bad value.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FieldError {
-    /// Dotted path in the scene file, e.g. `line.length`.
-    pub field: String,
-    pub message: String,
-}
-
-impl std::fmt::Display for FieldError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.field, self.message)
-    }
-}
 
 /// Largest axial strain the anchor distance may demand of the line.
 pub const MAX_REACH_STRAIN: f64 = 0.05;
-
-struct Checker(Vec<FieldError>);
-
-impl Checker {
-    fn err(&mut self, field: &str, message: String) {
-        self.0.push(FieldError { field: field.to_string(), message });
-    }
-    /// The value against its field's range (ranges.rs); true if it is in it.
-    fn range(&mut self, field: &str, v: f64) -> bool {
-        self.range_as(field, field, v)
-    }
-    /// The value against the range of another field (a section's keys have `[line]`'s ranges).
-    fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
-        let r = ranges::of_field(like).expect("every checked field has a range");
-        match r.check(v) {
-            Ok(()) => true,
-            Err(m) => {
-                self.err(field, m);
-                false
-            }
-        }
-    }
-    fn speed(&mut self, field: &str, v: Option<f64>) {
-        match v {
-            None => self.err(field, "missing: the current profile needs it (m/s)".to_string()),
-            Some(v) => {
-                self.range(field, v);
-            }
-        }
-    }
-}
 
 pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     let mut c = Checker(Vec::new());
@@ -221,11 +177,7 @@ fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
             ("ca_normal", sec.ca_normal),
             ("rotary_inertia", sec.rotary_inertia),
         ];
-        for (k, v) in keys {
-            if let Some(v) = v {
-                c.range_as(&f(k), &format!("line.{k}"), v);
-            }
-        }
+        c.optional(&keys, f, |k| format!("line.{k}"));
         let sizes = [
             ("module_diameter", sec.module_diameter),
             ("module_length", sec.module_length),

@@ -6,6 +6,7 @@
 //! The sea itself (dispersion, spectra, kinematics) is built from this in
 //! `loads::waves`.
 
+use super::checker::Checker;
 use super::{FieldError, NO_SEABED_Z, Scene, SeabedSpec, ranges};
 use serde::{Deserialize, Serialize};
 
@@ -350,31 +351,6 @@ pub fn read_table(w: &WavesSpec) -> Result<Vec<TableRow>, FieldError> {
     parse_table(&text).map_err(|m| err(format!("{path}: {m}")))
 }
 
-/// The problems found so far, each naming its field.
-struct Checker(Vec<FieldError>);
-
-impl Checker {
-    fn err(&mut self, field: &str, message: String) {
-        self.0.push(FieldError { field: field.to_string(), message });
-    }
-
-    /// `v` against the range of `like` (ranges.rs), named `field`; true if inside.
-    fn range_as(&mut self, field: &str, like: &str, v: f64) -> bool {
-        let r = ranges::of_field(like).expect("every checked field has a range");
-        match r.check(v) {
-            Ok(()) => true,
-            Err(m) => {
-                self.err(field, m);
-                false
-            }
-        }
-    }
-
-    fn range(&mut self, field: &str, v: f64) -> bool {
-        self.range_as(field, field, v)
-    }
-}
-
 /// The checks of a `[waves]` block (scene/validate.rs adds them to its list).
 pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     let mut c = Checker(Vec::new());
@@ -399,12 +375,7 @@ fn check_into(c: &mut Checker, s: &Scene) {
         ("ramp", w.ramp),
         ("depth", w.depth),
     ];
-    let mut ok = true;
-    for (key, v) in numbers {
-        if let Some(v) = v {
-            ok &= c.range(&format!("waves.{key}"), v);
-        }
-    }
+    let mut ok = c.optional(&numbers, |k| format!("waves.{k}"), |k| format!("waves.{k}"));
     if let Some([x, y]) = w.origin {
         ok &= c.range_as("waves.origin", "waves.origin", x) & c.range_as("waves.origin", "waves.origin", y);
     }
