@@ -307,7 +307,7 @@ fn ramp_zero_is_the_papers_abrupt_start_bit_for_bit() {
     assert!(max > 2.0 * sim.statics.top_tension, "max {max}");
 }
 
-/// Issue 31: the design numbers in `riser statics --json` (DESIGN.md,
+/// Issue 31: the design numbers in `riser statics --json` (README,
 /// "Summaries"), and a plausible model warns of nothing.
 #[test]
 fn statics_json_has_the_design_numbers_and_no_warning_for_plausible_scenes() {

@@ -1,5 +1,5 @@
-//! A vessel's pose and the motion of a point fixed on it (DESIGN.md "Vessel
-//! coupling"; docs/theory.md §14): Euler angles in the marine z-y-x order or
+//! A vessel's pose and the motion of a point fixed on it (the FMU's vessel coupling,
+//! issue 30; docs/theory.md §14): Euler angles in the marine z-y-x order or
 //! MoorDyn/OpenFAST's x-y-z order, the angular velocity in the vessel frame,
 //! and the position, velocity and acceleration of an offset point
 //! r = r₀ + R ρ.

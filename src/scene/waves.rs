@@ -1,4 +1,4 @@
-//! The `[waves]` block of a scene (../shared/DESIGN.md "Waves"; docs/theory.md
+//! The `[waves]` block of a scene (the README's `[waves]` keys under "Scenes"; docs/theory.md
 //! §13): what a user writes, its checks with the field's name in every
 //! message, the FMU / `--set` parameters `wave_*` and `water_depth`, and the
 //! components table (CSV) of `kind = "table"`.

@@ -308,7 +308,7 @@ fn static_design(
     Ok(riser::sim::design::Design::new(scene).report(scene, &engine, &state))
 }
 
-/// The design numbers as the JSON keys of DESIGN.md's "Summaries".
+/// The design numbers under the JSON keys the README documents for `riser statics --json`.
 fn design_json(d: &riser::sim::design::DesignNumbers) -> serde_json::Value {
     serde_json::json!({
         "touchdown_s": d.touchdown_s,

@@ -2,7 +2,7 @@
 //! its elevation and its kinematics at any point, built from a scene's
 //! `[waves]` block ([`sea_of`]).
 //!
-//! Convention (../shared/DESIGN.md "Waves"): z up, the mean water level at
+//! Convention (docs/theory.md §13; the README's `[waves]` keys): z up, the mean water level at
 //! `water_surface_z`; component i of frequency fᵢ (ωᵢ = 2π fᵢ), amplitude aᵢ,
 //! phase φᵢ and direction βᵢ (from +x towards +y) gives
 //!
