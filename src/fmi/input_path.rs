@@ -407,44 +407,23 @@ impl InputHistory {
             let newer = if k == 0 { t } else { self.past[k - 1].t };
             ((newer - self.past[k].t) / h - 1.0).abs() < 1e-6
         });
-        let d = if uniform { design(h) } else { DESIGNS[2].1 };
+        let index = if uniform { DESIGNS.iter().position(|x| x.1 == design(h)).unwrap_or(2) } else { 2 };
+        let d = DESIGNS[index].1;
         let n = (self.count + 1).min(d.taps);
+        let value = |k: usize| if k == 0 { u } else { self.past[k - 1].u[i] };
+        if uniform && n == d.taps {
+            // a fixed-step master once the window is full: the fit's fixed weights
+            let w = uniform_weights(index);
+            return std::array::from_fn(|c| (0..n).map(|k| w[c][k] * value(k)).sum());
+        }
         // the first steps: the polynomial first (up to the cubic a motion
         // starting from rest needs; a smaller one lags and then catches up
         // with a jerk the line's axial waves answer), the nuisances with the
         // samples beyond four
         let alt = d.alt.min(n.saturating_sub(4));
         let poly = d.poly.min(n - alt);
-        // abscissa ξ = σ / s ∈ [−1, 0] on uniform steps (σ = τ/h): a well-scaled system
-        let scale = ((n - 1) as f64).max(1.0);
-        let mut a = SMatrix::<f64, TAPS, UNKNOWNS>::zeros();
-        let mut b = SVector::<f64, TAPS>::zeros();
-        for k in 0..n {
-            let (tau, value) = if k == 0 { (0.0, u) } else { (self.past[k - 1].t - t, self.past[k - 1].u[i]) };
-            let xi = tau / h / scale;
-            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-            for j in 0..poly {
-                a[(k, j)] = xi.powi(j as i32);
-            }
-            for m in 0..alt {
-                a[(k, POLY + m)] = sign * xi.powi(m as i32);
-            }
-            b[k] = value;
-        }
-        // the minimum-norm least-squares solution: unused unknowns are zero
-        let coef = a.svd(true, true).solve(&b, 1e-12).unwrap_or_else(|_| {
-            let mut c = SVector::<f64, UNKNOWNS>::zeros();
-            c[0] = u;
-            c
-        });
-        let (mut value, mut slope, mut curvature) = (0.0, 0.0, 0.0);
-        for j in 0..poly {
-            let cj = coef[j] / scale.powi(j as i32);
-            value += cj;
-            slope += j as f64 * cj;
-            curvature += (j * j.saturating_sub(1)) as f64 * cj;
-        }
-        [value, slope, curvature]
+        let sigma = |k: usize| if k == 0 { 0.0 } else { (self.past[k - 1].t - t) / h };
+        least_squares(poly, alt, n, sigma, value)
     }
 
     /// Solves (7.1) for Q in σ = τ/h and returns (Q, h Q', h² Q'') at
@@ -596,6 +575,69 @@ impl InputHistory {
         }
         Some(h)
     }
+}
+
+/// (7.1) in the least-squares sense: `poly` coefficients and `alt`
+/// alternating nuisances through the `n` samples `value(k)` at σ_k =
+/// `sigma(k)` (τ/h; k = 0 the newest, at σ = 0), the minimum-norm solution
+/// (unused unknowns zero); returns (Q, h Q', h² Q'') at σ = 1, the step's end.
+fn least_squares(
+    poly: usize,
+    alt: usize,
+    n: usize,
+    sigma: impl Fn(usize) -> f64,
+    value: impl Fn(usize) -> f64,
+) -> [f64; 3] {
+    // abscissa ξ = σ / s ∈ [−1, 0] on uniform steps: a well-scaled system
+    let scale = ((n - 1) as f64).max(1.0);
+    let mut a = SMatrix::<f64, TAPS, UNKNOWNS>::zeros();
+    let mut b = SVector::<f64, TAPS>::zeros();
+    for k in 0..n {
+        let xi = sigma(k) / scale;
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        for j in 0..poly {
+            a[(k, j)] = xi.powi(j as i32);
+        }
+        for m in 0..alt {
+            a[(k, POLY + m)] = sign * xi.powi(m as i32);
+        }
+        b[k] = value(k);
+    }
+    let coef = a.svd(true, true).solve(&b, 1e-12).unwrap_or_else(|_| {
+        let mut c = SVector::<f64, UNKNOWNS>::zeros();
+        c[0] = value(0);
+        c
+    });
+    let (mut q, mut slope, mut curvature) = (0.0, 0.0, 0.0);
+    for j in 0..poly {
+        let cj = coef[j] / scale.powi(j as i32);
+        q += cj;
+        slope += j as f64 * cj;
+        curvature += (j * j.saturating_sub(1)) as f64 * cj;
+    }
+    [q, slope, curvature]
+}
+
+/// The weights of each design's fit on uniform steps with its window full:
+/// (Q, h Q', h² Q'') = Σ_k w[·][k] u_k. The fit is linear in the samples and,
+/// on uniform steps (σ_k = −k), independent of h, so a fixed-step master's
+/// communication step takes a dot product instead of a singular value
+/// decomposition per axis (computed once per process by the same solve).
+fn uniform_weights(index: usize) -> &'static [[f64; TAPS]; 3] {
+    static WEIGHTS: std::sync::OnceLock<[[[f64; TAPS]; 3]; 3]> = std::sync::OnceLock::new();
+    &WEIGHTS.get_or_init(|| {
+        std::array::from_fn(|di| {
+            let d = DESIGNS[di].1;
+            let mut w = [[0.0; TAPS]; 3];
+            for k in 0..d.taps {
+                let r = least_squares(d.poly, d.alt, d.taps, |j| -(j as f64), |j| if j == k { 1.0 } else { 0.0 });
+                for c in 0..3 {
+                    w[c][k] = r[c];
+                }
+            }
+            w
+        })
+    })[index]
 }
 
 #[cfg(test)]
