@@ -53,6 +53,26 @@ impl WavePoint {
     };
 }
 
+/// What the water's force on the line needs at a point (docs/theory.md
+/// §13.5): the ramped elevation above the point and the water's velocity
+/// and acceleration there (no gradient: the force freezes the field over a
+/// step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaterPoint {
+    /// r η at the point's (x, y), m.
+    pub elevation: f64,
+    /// m/s.
+    pub velocity: V3,
+    /// m/s².
+    pub acceleration: V3,
+}
+
+impl WaterPoint {
+    /// Still water.
+    pub const STILL: WaterPoint =
+        WaterPoint { elevation: 0.0, velocity: V3::new(0.0, 0.0, 0.0), acceleration: V3::new(0.0, 0.0, 0.0) };
+}
+
 /// Reusable storage of [`Sea::kinematics_batch`]: one (sin θ, cos θ) per
 /// component (allocated at the first call, reused after).
 #[derive(Debug, Clone, Default)]
@@ -129,6 +149,20 @@ impl Sea {
         }
         for (p, o) in points.iter().zip(out.iter_mut()) {
             *o = self.evaluate(p, t, Some(&mut scratch.sin_cos));
+        }
+    }
+
+    /// The elevation, velocity and acceleration at each of `points` at time
+    /// `t` into `out` (same length): what the force integration evaluates
+    /// once per step at the Gauss points of the whole line (equal to the
+    /// fields of [`Sea::kinematics`]).
+    pub fn water_batch(&self, t: f64, points: &[V3], out: &mut [WaterPoint], scratch: &mut WaveScratch) {
+        if scratch.sin_cos.len() < self.terms.len() {
+            scratch.sin_cos.resize(self.terms.len(), [0.0; 2]);
+        }
+        for (p, o) in points.iter().zip(out.iter_mut()) {
+            let k = self.evaluate(p, t, Some(&mut scratch.sin_cos));
+            *o = WaterPoint { elevation: k.elevation, velocity: k.velocity, acceleration: k.acceleration };
         }
     }
 

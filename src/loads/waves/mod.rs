@@ -25,7 +25,7 @@ use crate::scene::{FieldError, Scene};
 use spectra::{Discretisation, Spectrum};
 use std::f64::consts::PI;
 
-pub use kinematics::{WavePoint, WaveScratch};
+pub use kinematics::{WaterPoint, WavePoint, WaveScratch};
 
 /// One linear wave component.
 #[derive(Debug, Clone, Copy, PartialEq)]
