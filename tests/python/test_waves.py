@@ -126,7 +126,9 @@ def test_a_run_in_waves_reports_the_elevation_at_the_phase_origin_at_every_commu
     for step in (0.2, 0.6):
         for t, _, tt in by_step[step]:
             assert abs(tt - fine[round(t, 9)]) <= 1e-6 * tt, (step, t, tt, fine[round(t, 9)])
-    # the waves move the top tension: still water keeps it within a few N of its static value
+    # the waves move the top tension: against the same run in still water (where the
+    # current's start moves it too) by far more than the 1e-6 the steps agree to
     still = run_in_waves(fmu_path, unzipped, 0.6, height=0.0)
-    swing = lambda rows: max(r[2] for r in rows) - min(r[2] for r in rows)
-    assert swing(by_step[0.6]) > 1e3 and swing(still) < 50.0, (swing(by_step[0.6]), swing(still))
+    moved = max(abs(a[2] - b[2]) for a, b in zip(by_step[0.6], still))
+    print(f"the waves move the top tension by up to {moved:.0f} N")
+    assert moved > 200.0, moved
