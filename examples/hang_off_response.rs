@@ -65,10 +65,10 @@ fn main() {
         let n = (memory / h).round() as usize;
         let run = |j: Option<usize>| -> Vec<f64> {
             let mut sim = Simulation::from_scene(&sc).expect("statics");
-            sim.start(HangOff { displacement: V3::zeros(), velocity: V3::zeros() });
+            sim.start(HangOff::default());
             let motion = |t: f64| {
                 let (z, vz) = j.map_or((0.0, 0.0), |j| bump(j, a, tc, h, t));
-                HangOff { displacement: V3::new(0.0, 0.0, z), velocity: V3::new(0.0, 0.0, vz) }
+                HangOff::translation(V3::new(0.0, 0.0, z), V3::new(0.0, 0.0, vz))
             };
             let dt = sc.analysis.time_step;
             let mut out = Vec::new();

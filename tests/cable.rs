@@ -142,7 +142,7 @@ fn step_tangent_error(sc: &Scene) -> f64 {
         *v = V3::new(0.3, 0.1, -0.2) * (a as f64 * 0.7).sin();
     }
     let h = 0.1;
-    let target = HangOff { displacement: V3::new(0.05, 0.0, 0.1), velocity: V3::new(0.2, 0.0, 0.6) };
+    let target = HangOff::translation(V3::new(0.05, 0.0, 0.1), V3::new(0.2, 0.0, 0.6));
     let mut cfg = integ.begin_step(&prev, h, target);
     for (a, x) in cfg.x.iter_mut().enumerate().skip(1).take(7) {
         *x += V3::new(0.01, -0.02, 0.015) * (a as f64).cos();

@@ -132,7 +132,7 @@ fn heaving_catenary(extra: &[&str]) -> (Integrator<RodModel>, State, f64) {
 
 fn heave(t: f64) -> HangOff {
     let w = 2.0 * std::f64::consts::PI / 20.0;
-    HangOff { displacement: V3::z() * (2.5 * (w * t).sin()), velocity: V3::z() * (2.5 * w * (w * t).cos()) }
+    HangOff::translation(V3::z() * (2.5 * (w * t).sin()), V3::z() * (2.5 * w * (w * t).cos()))
 }
 
 #[test]

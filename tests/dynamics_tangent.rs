@@ -116,7 +116,7 @@ fn check_tangent_scene(scene: &Scene, eta: f64, corotated: bool, rho_infinity: f
         prev.director_vel[j] = prev.config.d[j] * riser::math::skew(&V3::new(0.02, -0.01, 0.03));
     }
     let h = 0.1;
-    let target = HangOff { displacement: V3::new(0.05, 0.02, 0.1), velocity: V3::new(0.3, 0.1, 0.6) };
+    let target = HangOff::translation(V3::new(0.05, 0.02, 0.1), V3::new(0.3, 0.1, 0.6));
     let mut cfg = integ.begin_step(&prev, h, target);
     // move away from the predictor so the state is generic
     let n = integ.model.rod.n_dof();

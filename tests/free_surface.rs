@@ -144,7 +144,7 @@ fn the_lowe_langley_jumper_matches_the_paper_within_1_kn() {
         let heave = Heave { amplitude: 10.0, period: 27.0, until: None, ramp: 27.0 };
         let motion = move |t: f64| {
             let h = heave.at(t);
-            riser::model::HangOff { displacement: axis * h.displacement.z, velocity: axis * h.velocity.z }
+            riser::model::HangOff::translation(axis * h.displacement.z, axis * h.velocity.z)
         };
         sim.start(motion(0.0));
         let mut out = vec![];

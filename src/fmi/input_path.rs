@@ -246,7 +246,7 @@ impl Path {
             displacement[c] = x[0];
             velocity[c] = x[1];
         }
-        HangOff { displacement, velocity }
+        HangOff::translation(displacement, velocity)
     }
 
     /// Hang-off acceleration at time s (clamped to the step), m/s².
@@ -645,7 +645,7 @@ mod tests {
     use super::*;
 
     fn hang_off(z: f64, vz: f64) -> HangOff {
-        HangOff { displacement: V3::new(0.0, 0.0, z), velocity: V3::new(0.0, 0.0, vz) }
+        HangOff::translation(V3::new(0.0, 0.0, z), V3::new(0.0, 0.0, vz))
     }
 
     /// Drives the history with heave u(t) (when given) and its velocity

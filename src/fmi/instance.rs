@@ -399,7 +399,7 @@ impl Instance {
         let v0 = self.history.start_velocity(coupling, &vin);
         let u = self.history.start_displacement(coupling, &u);
         // input order heave, surge, sway → z, x, y
-        let m = HangOff { displacement: V3::new(u[1], u[2], u[0]), velocity: V3::new(v0[1], v0[2], v0[0]) };
+        let m = HangOff::translation(V3::new(u[1], u[2], u[0]), V3::new(v0[1], v0[2], v0[0]));
         if m.displacement.norm() > 0.0 {
             self.log(
                 Status::Warning,
@@ -613,6 +613,16 @@ impl Instance {
             "hang_off_angle" => o.hang_off_angle,
             "wave_elevation" => o.wave_elevation,
             "hang_off_moment" => o.hang_off_moment,
+            "top_moment_x" => o.top_moment.x,
+            "top_moment_y" => o.top_moment.y,
+            "top_moment_z" => o.top_moment.z,
+            "vessel_force_x" => o.vessel_force.x,
+            "vessel_force_y" => o.vessel_force.y,
+            "vessel_force_z" => o.vessel_force.z,
+            "vessel_moment_x" => o.vessel_moment.x,
+            "vessel_moment_y" => o.vessel_moment.y,
+            "vessel_moment_z" => o.vessel_moment.z,
+            "flex_joint_angle" => o.flex_joint_angle,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");

@@ -22,11 +22,29 @@ use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::{M3, V3};
 
 /// Prescribed motion of the hang-off: displacement from its initial position
-/// (m) and velocity (m/s).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// (m) and velocity (m/s), and the vessel's rotation since the static state
+/// R (the active rotation, vessel frame to global) and angular velocity ω
+/// (rad/s, global frame; docs/theory.md §14): a clamped end turns with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HangOff {
     pub displacement: V3,
     pub velocity: V3,
+    pub rotation: M3,
+    pub angular_velocity: V3,
+}
+
+impl Default for HangOff {
+    /// At rest at the initial position, not rotated.
+    fn default() -> Self {
+        HangOff::translation(V3::zeros(), V3::zeros())
+    }
+}
+
+impl HangOff {
+    /// A translation of the hang-off without rotation.
+    pub fn translation(displacement: V3, velocity: V3) -> Self {
+        HangOff { displacement, velocity, rotation: M3::identity(), angular_velocity: V3::zeros() }
+    }
 }
 
 /// The state of a run: everything needed to continue it (no scratch data).

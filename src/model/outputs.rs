@@ -81,13 +81,28 @@ pub struct Outputs {
     /// from the first element's two nearest Gauss points (0 for a pinned end
     /// to the discretisation's accuracy, and for the cable; §15).
     pub hang_off_moment: f64,
+    /// The moment the line exerts on the vessel at the hang-off, global
+    /// frame, N m (a clamped end; 0 for a pinned one; §15). Not an FMU output
+    /// itself: it enters `top_moment`.
+    pub end_moment: V3,
+    /// The line's force and end moment on the vessel as moments about the
+    /// vessel's reference point, global frame, N m (§14, (14.4)); and force
+    /// and moment in the vessel frame. Set by the simulation, which knows
+    /// the vessel (at a vessel's reference point = the hang-off, unrotated:
+    /// the end moment, and the force itself).
+    pub top_moment: V3,
+    pub vessel_force: V3,
+    pub vessel_moment: V3,
+    /// Rotation of the line's end relative to the vessel since the static
+    /// state, rad (a flex joint's angle; 0 for pinned and clamped ends).
+    pub flex_joint_angle: f64,
     /// Centreline at S = k L / 20, m.
     pub shape: [V3; SHAPE_POINTS],
 }
 
 impl Outputs {
     /// Names of the scalar outputs, in the order of [`Outputs::values`].
-    pub const NAMES: [&'static str; 19] = [
+    pub const NAMES: [&'static str; 29] = [
         "top_tension",
         "top_force_x",
         "top_force_y",
@@ -107,10 +122,20 @@ impl Outputs {
         "hang_off_angle",
         "wave_elevation",
         "hang_off_moment",
+        "top_moment_x",
+        "top_moment_y",
+        "top_moment_z",
+        "vessel_force_x",
+        "vessel_force_y",
+        "vessel_force_z",
+        "vessel_moment_x",
+        "vessel_moment_y",
+        "vessel_moment_z",
+        "flex_joint_angle",
     ];
 
     /// Scalar outputs in the order of [`Outputs::NAMES`].
-    pub fn values(&self) -> [f64; 19] {
+    pub fn values(&self) -> [f64; 29] {
         [
             self.top_tension,
             self.top_force.x,
@@ -131,6 +156,16 @@ impl Outputs {
             self.hang_off_angle,
             self.wave_elevation,
             self.hang_off_moment,
+            self.top_moment.x,
+            self.top_moment.y,
+            self.top_moment.z,
+            self.vessel_force.x,
+            self.vessel_force.y,
+            self.vessel_force.z,
+            self.vessel_moment.x,
+            self.vessel_moment.y,
+            self.vessel_moment.z,
+            self.flex_joint_angle,
         ]
     }
 
@@ -194,6 +229,11 @@ impl Outputs {
             hang_off_angle: hang_off_angle(hang_off_tangent),
             wave_elevation: 0.0,
             hang_off_moment: 0.0,
+            end_moment: V3::zeros(),
+            top_moment: V3::zeros(),
+            vessel_force: -reactions[0],
+            vessel_moment: V3::zeros(),
+            flex_joint_angle: 0.0,
             shape,
         }
     }

@@ -12,7 +12,7 @@ use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 5;
+const VERSION: u32 = 6;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -162,6 +162,8 @@ impl State {
         }
         w.v3(&self.hang_off.displacement);
         w.v3(&self.hang_off.velocity);
+        w.m3(&self.hang_off.rotation);
+        w.v3(&self.hang_off.angular_velocity);
         for v in [self.work_top, self.work_hydro, self.dissipated, self.work_anchor, self.algorithmic, self.work_seabed]
         {
             w.f(v);
@@ -231,7 +233,8 @@ impl State {
         let mean_slope_vel = r.vec3(np)?;
         let prev_mean_vel = r.vec3(n)?;
         let prev_mean_slope_vel = r.vec3(np)?;
-        let hang_off = HangOff { displacement: r.v3()?, velocity: r.v3()? };
+        let (displacement, velocity) = (r.v3()?, r.v3()?);
+        let hang_off = HangOff { displacement, velocity, rotation: r.m3()?, angular_velocity: r.v3()? };
         let (work_top, work_hydro, dissipated, work_anchor) = (r.f()?, r.f()?, r.f()?, r.f()?);
         let (algorithmic, work_seabed) = (r.f()?, r.f()?);
         let hf_accel = r.vec3(n + np)?;

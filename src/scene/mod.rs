@@ -358,12 +358,56 @@ pub enum HangOffEnd {
     Clamped,
 }
 
-/// `[hang_off]`: the end condition at the hang-off.
+/// The order in which roll, pitch and yaw compose the vessel's rotation
+/// (docs/theory.md §14).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RotationOrderSpec {
+    /// R = Rz(yaw) Ry(pitch) Rx(roll), the marine convention.
+    #[default]
+    Zyx,
+    /// R = Rx(roll) Ry(pitch) Rz(yaw), MoorDyn's and OpenFAST's.
+    Xyz,
+}
+
+impl RotationOrderSpec {
+    pub fn order(self) -> crate::math::rigid::RotationOrder {
+        match self {
+            RotationOrderSpec::Zyx => crate::math::rigid::RotationOrder::Zyx,
+            RotationOrderSpec::Xyz => crate::math::rigid::RotationOrder::Xyz,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            RotationOrderSpec::Zyx => "zyx",
+            RotationOrderSpec::Xyz => "xyz",
+        }
+    }
+}
+
+/// `[hang_off]`: the end condition at the hang-off and where it sits on the
+/// vessel (docs/theory.md §14).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HangOffSpec {
     #[serde(default)]
     pub end: HangOffEnd,
+    /// ρ, the hang-off's position in the vessel frame relative to the
+    /// vessel's reference point, m (default: at the reference point).
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub offset: [f64; 3],
+    /// How the vessel's roll, pitch and yaw compose its rotation.
+    #[serde(default, skip_serializing_if = "is_default_order")]
+    pub rotation_order: RotationOrderSpec,
+}
+
+fn is_zero3(v: &[f64; 3]) -> bool {
+    *v == [0.0; 3]
+}
+
+fn is_default_order(o: &RotationOrderSpec) -> bool {
+    *o == RotationOrderSpec::default()
 }
 
 impl HangOffSpec {

@@ -5,7 +5,7 @@ use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpe
 use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 48] = [
+pub const PARAMETER_NAMES: [(&str, &str); 52] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped"),
     ("n_elements", "-"),
@@ -54,6 +54,10 @@ pub const PARAMETER_NAMES: [(&str, &str); 48] = [
     ("wave_stretching", "wheeler | vertical | none"),
     ("wave_ramp", "s"),
     ("water_depth", "m"),
+    ("hang_off_x", "m"),
+    ("hang_off_y", "m"),
+    ("hang_off_z", "m"),
+    ("rotation_order", "zyx | xyz"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -156,6 +160,24 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
                 }
             }
         }
+        "rotation_order" => {
+            s.hang_off.rotation_order = match value {
+                "zyx" => super::RotationOrderSpec::Zyx,
+                "xyz" => super::RotationOrderSpec::Xyz,
+                _ => {
+                    return Err(SceneError::Override {
+                        name: name.into(),
+                        message: format!(
+                            "'{value}' is not a rotation order: zyx (R = Rz(yaw) Ry(pitch) Rx(roll), the marine \
+                             convention) or xyz (R = Rx Ry Rz, MoorDyn's and OpenFAST's)"
+                        ),
+                    });
+                }
+            }
+        }
+        "hang_off_x" => s.hang_off.offset[0] = num()?,
+        "hang_off_y" => s.hang_off.offset[1] = num()?,
+        "hang_off_z" => s.hang_off.offset[2] = num()?,
         "n_elements" => {
             let n = value.parse::<usize>().map_err(|_| SceneError::Override {
                 name: name.into(),
@@ -258,6 +280,10 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
             }
             .into(),
         ),
+        "rotation_order" => Some(s.hang_off.rotation_order.name().into()),
+        "hang_off_x" => num(s.hang_off.offset[0]),
+        "hang_off_y" => num(s.hang_off.offset[1]),
+        "hang_off_z" => num(s.hang_off.offset[2]),
         "n_elements" => Some(s.analysis.n_elements.to_string()),
         "time_step" => num(s.analysis.time_step),
         "newton_tolerance" => num(s.analysis.newton_tolerance),

@@ -20,6 +20,8 @@ pub struct Range {
 /// Largest |coordinate| of the anchor, the free surface and the hang-off's
 /// displacement, m.
 pub const MAX_COORDINATE: f64 = 20_000.0;
+/// Largest |component| of the hang-off's offset from the vessel's reference point, m.
+pub const MAX_HANG_OFF_OFFSET: f64 = 500.0;
 /// Largest current speed, m/s.
 pub const MAX_CURRENT: f64 = 10.0;
 /// Largest number of elements.
@@ -27,6 +29,8 @@ pub const MAX_ELEMENTS: f64 = 2000.0;
 
 const LENGTH_REASON: &str = "from a 1 m jumper to the longest umbilicals and moorings (about 20 km)";
 const COORD_REASON: &str = "20 km either way: the longest line's reach; vertically, deeper than any ocean";
+const OFFSET_REASON: &str =
+    "on the hull: the largest vessels are about 460 m long; farther is not a point on a vessel";
 const CURRENT_REASON: &str = "the strongest tidal streams reach about 5 m/s";
 
 /// Every range. Scene fields without a parameter name (`current.speed`,
@@ -196,6 +200,30 @@ pub const RANGES: &[Range] = &[
         min: -MAX_COORDINATE,
         max: MAX_COORDINATE,
         reason: COORD_REASON,
+    },
+    Range {
+        field: "hang_off.offset",
+        parameter: Some("hang_off_x"),
+        unit: "m",
+        min: -MAX_HANG_OFF_OFFSET,
+        max: MAX_HANG_OFF_OFFSET,
+        reason: OFFSET_REASON,
+    },
+    Range {
+        field: "hang_off.offset",
+        parameter: Some("hang_off_y"),
+        unit: "m",
+        min: -MAX_HANG_OFF_OFFSET,
+        max: MAX_HANG_OFF_OFFSET,
+        reason: OFFSET_REASON,
+    },
+    Range {
+        field: "hang_off.offset",
+        parameter: Some("hang_off_z"),
+        unit: "m",
+        min: -MAX_HANG_OFF_OFFSET,
+        max: MAX_HANG_OFF_OFFSET,
+        reason: OFFSET_REASON,
     },
     Range {
         field: "anchor.x",

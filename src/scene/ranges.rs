@@ -67,7 +67,15 @@ mod tests {
     #[test]
     fn every_numeric_parameter_has_a_range_and_the_table_is_consistent() {
         for (name, _) in super::super::PARAMETER_NAMES {
-            let non_numeric = ["model", "hang_off_end", "static_current", "wave_kind", "wave_file", "wave_stretching"];
+            let non_numeric = [
+                "model",
+                "hang_off_end",
+                "static_current",
+                "wave_kind",
+                "wave_file",
+                "wave_stretching",
+                "rotation_order",
+            ];
             assert!(non_numeric.contains(&name) || of_parameter(name).is_some(), "{name} has no range");
         }
         for r in RANGES {

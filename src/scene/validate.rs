@@ -26,6 +26,9 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("environment.water_density", env.water_density);
     c.range("environment.gravity", env.gravity);
     c.range("environment.water_surface_z", env.water_surface_z);
+    for (i, v) in s.hang_off.offset.iter().enumerate() {
+        c.range(&format!("hang_off.offset[{i}]"), *v);
+    }
     let a = &s.anchor;
     let ok = c.range("anchor.x", a.x) & c.range("anchor.y", a.y) & c.range("anchor.z", a.z);
     if ok && length_ok {

@@ -7,6 +7,7 @@ pub mod design;
 pub mod error;
 pub mod modes;
 pub mod report;
+pub mod vessel;
 
 use crate::loads::waves::{Sea, sea_of};
 use crate::math::{M3, V3};
@@ -21,6 +22,7 @@ use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
 use crate::solve::eigen::hang_off_stiffness;
 use crate::solve::{Integrator, SolverLog, StepInfo};
 use error::RiserError;
+use vessel::Vessel;
 
 /// Heave of the hang-off, U0 sin(2π t/T), held at its value after `until`
 /// (the paper's runs; the free-motion run stops the excitation at 15 s).
@@ -51,7 +53,7 @@ impl Heave {
         };
         let z = self.amplitude * r * (w * tt).sin();
         let vz = if held { 0.0 } else { self.amplitude * (r * w * (w * tt).cos() + dr * (w * tt).sin()) };
-        HangOff { displacement: V3::z() * z, velocity: V3::z() * vz }
+        HangOff::translation(V3::z() * z, V3::z() * vz)
     }
 }
 
@@ -242,6 +244,8 @@ pub struct Simulation {
     pub static_loads: StaticLoads,
     /// The scene's sea (None: still water); its ramp starts at [`Simulation::start`].
     pub sea: Option<Sea>,
+    /// Where the hang-off sits on the vessel (§14).
+    pub vessel: Vessel,
 }
 
 impl Simulation {
@@ -254,7 +258,8 @@ impl Simulation {
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
         let initial_energy = integrator.outputs(&state).total_energy;
         let static_loads = scene_static_loads(scene);
-        Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea })
+        let vessel = Vessel::of_scene(scene);
+        Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea, vessel })
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
@@ -270,6 +275,8 @@ impl Simulation {
     /// Outputs of the current state.
     pub fn outputs(&self) -> Outputs {
         let mut o = self.integrator.outputs(&self.state);
+        let loads = self.vessel.loads(&self.state.hang_off.rotation, o.top_force, o.end_moment);
+        (o.top_moment, o.vessel_force, o.vessel_moment) = (loads.moment, loads.force_vessel, loads.moment_vessel);
         if let Some(sea) = &self.sea {
             let [x0, y0] = sea.settings().origin;
             o.wave_elevation = sea.ramped_elevation(x0, y0, self.state.time);

@@ -26,7 +26,7 @@ pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
         *v = V3::new(0.3, 0.2, -0.1) * (a as f64 * 0.7).sin();
     }
     let h = 0.05;
-    let target = HangOff { displacement: V3::new(0.05, 0.0, 0.1), velocity: V3::new(0.2, 0.0, 0.6) };
+    let target = HangOff::translation(V3::new(0.05, 0.0, 0.1), V3::new(0.2, 0.0, 0.6));
     let mut cfg = integ.begin_step(&prev, h, target);
     let n_nodes = cfg.x.len();
     for (a, x) in cfg.x.iter_mut().enumerate().skip(1).take(n_nodes - 2) {

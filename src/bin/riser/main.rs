@@ -50,7 +50,6 @@ fn emit(args: std::fmt::Arguments) {
 }
 
 use clap::{Parser, Subcommand};
-use riser::math::V3;
 use riser::scene::{PARAMETER_NAMES, Scene};
 use riser::sim::report::{StaticReport, solve_scene};
 use std::io::Write;
@@ -80,49 +79,8 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
-    /// Dynamic run from the static state with the hang-off moving U0 sin(2πt/T) (heave, surge, sway).
-    Run {
-        /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
-        scene: String,
-        /// Override a parameter by name, e.g. --set time_step=0.1 (see `riser params`).
-        #[arg(long = "set", value_name = "NAME=VALUE")]
-        set: Vec<String>,
-        /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
-        heave: Option<(f64, f64)>,
-        /// Surge (along x) amplitude (m) and period (s) of the hang-off; adds to the other motions.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
-        surge: Option<(f64, f64)>,
-        /// Sway (along y) amplitude (m) and period (s) of the hang-off; adds to the other motions.
-        #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
-        sway: Option<(f64, f64)>,
-        /// Hold the hang-off still after this time (s).
-        #[arg(long, value_name = "T")]
-        heave_until: Option<f64>,
-        /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default one period
-        /// of the slowest motion. --ramp 0 is the paper's abrupt start (a velocity jump at t = 0).
-        #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
-        ramp: Option<f64>,
-        /// Simulated time, s.
-        #[arg(long, value_name = "D", allow_negative_numbers = true)]
-        duration: f64,
-        /// The steady window of the statistics, s (default: from the end of the ramp plus one
-        /// period of the slowest motion to the end of the run).
-        #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
-        window: Option<(f64, f64)>,
-        /// Times (s) at which shapes.csv records the shape; default: 8 over the last (longest) period.
-        #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
-        shape_times: Vec<f64>,
-        /// Steps a factorised Newton tangent may be reused for (0: a new one every step).
-        #[arg(long, value_name = "STEPS", default_value_t = 20)]
-        max_tangent_age: u32,
-        /// Print one JSON summary instead of the text summary.
-        #[arg(long)]
-        json: bool,
-        /// Write timeseries.csv and shapes.csv into this directory.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-    },
+    /// Dynamic run from the static state with the vessel moving A sin(2πt/T) (heave, surge, sway, roll, pitch, yaw).
+    Run(Box<RunCli>),
     /// Natural periods and mode shapes of the line about its static state (with added mass).
     Modes(modes::ModesArgs),
     /// The scene's sea as riser realises it: components, Hs and Tp, and with --out the elevation, its
@@ -224,21 +182,90 @@ fn print_scene(scene: Scene) {
     );
 }
 
-/// The hang-off's harmonic motions asked for: (amplitude m, period s) each.
+/// The arguments of `riser run`.
+#[derive(clap::Args)]
+struct RunCli {
+    /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
+    scene: String,
+    /// Override a parameter by name, e.g. --set time_step=0.1 (see `riser params`).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    heave: Option<(f64, f64)>,
+    /// Surge (along x) amplitude (m) and period (s) of the hang-off; adds to the other motions.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    surge: Option<(f64, f64)>,
+    /// Sway (along y) amplitude (m) and period (s) of the hang-off; adds to the other motions.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    sway: Option<(f64, f64)>,
+    /// Roll amplitude (rad) and period (s) of the vessel about its reference point (the
+    /// hang-off at [hang_off] offset, `--set hang_off_x=…`); adds to the other motions.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    roll: Option<(f64, f64)>,
+    /// Pitch amplitude (rad) and period (s) of the vessel; adds to the other motions.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    pitch: Option<(f64, f64)>,
+    /// Yaw amplitude (rad) and period (s) of the vessel; adds to the other motions.
+    #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
+    yaw: Option<(f64, f64)>,
+    /// Hold the hang-off still after this time (s).
+    #[arg(long, value_name = "T")]
+    heave_until: Option<f64>,
+    /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default one period
+    /// of the slowest motion. --ramp 0 is the paper's abrupt start (a velocity jump at t = 0).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    ramp: Option<f64>,
+    /// Simulated time, s.
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    duration: f64,
+    /// The steady window of the statistics, s (default: from the end of the ramp plus one
+    /// period of the slowest motion to the end of the run).
+    #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
+    window: Option<(f64, f64)>,
+    /// Times (s) at which shapes.csv records the shape; default: 8 over the last (longest) period.
+    #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
+    shape_times: Vec<f64>,
+    /// Steps a factorised Newton tangent may be reused for (0: a new one every step).
+    #[arg(long, value_name = "STEPS", default_value_t = 20)]
+    max_tangent_age: u32,
+    /// Print one JSON summary instead of the text summary.
+    #[arg(long)]
+    json: bool,
+    /// Write timeseries.csv and shapes.csv into this directory.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+/// The vessel's harmonic motions asked for: (amplitude m or rad, period s) each.
 struct Motions {
     heave: Option<(f64, f64)>,
     surge: Option<(f64, f64)>,
     sway: Option<(f64, f64)>,
+    roll: Option<(f64, f64)>,
+    pitch: Option<(f64, f64)>,
+    yaw: Option<(f64, f64)>,
 }
 
 impl Motions {
-    /// "heave 2.5 m / 20 s, surge ..." or "the hang-off held still".
+    /// "heave 2.5 m / 20 s, roll 0.1 rad / 12 s ..." or "the hang-off held still".
     fn describe(&self) -> String {
-        let parts: Vec<String> = [("heave", self.heave), ("surge", self.surge), ("sway", self.sway)]
-            .into_iter()
-            .filter_map(|(name, m)| m.map(|(a, t)| format!("{name} {a} m / {t} s")))
-            .collect();
+        let parts: Vec<String> = [
+            ("heave", self.heave, "m"),
+            ("surge", self.surge, "m"),
+            ("sway", self.sway, "m"),
+            ("roll", self.roll, "rad"),
+            ("pitch", self.pitch, "rad"),
+            ("yaw", self.yaw, "rad"),
+        ]
+        .into_iter()
+        .filter_map(|(name, m, unit)| m.map(|(a, t)| format!("{name} {a} {unit} / {t} s")))
+        .collect();
         if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
+    }
+
+    fn all(&self) -> [Option<(f64, f64)>; 6] {
+        [self.heave, self.surge, self.sway, self.roll, self.pitch, self.yaw]
     }
 }
 
@@ -545,23 +572,41 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
-    let period = [motions.heave, motions.surge, motions.sway].into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
-    let ramp = ramp.unwrap_or(period);
-    // heave, surge and sway: each a ramped sine along its axis, summed
-    let axes: Vec<(V3, Heave)> = [(V3::z(), motions.heave), (V3::x(), motions.surge), (V3::y(), motions.sway)]
+    if let Some(name) = [("roll", motions.roll), ("pitch", motions.pitch), ("yaw", motions.yaw)]
         .into_iter()
-        .filter_map(|(axis, m)| {
-            m.map(|(amplitude, period)| (axis, Heave { amplitude, period, until: heave_until, ramp }))
-        })
+        .find_map(|(name, m)| m.filter(|(a, _)| a.abs() >= 0.5 * std::f64::consts::PI).map(|_| name))
+    {
+        return Err(format!(
+            "--{name}: an amplitude of 90 degrees (π/2 rad) or more; the angles are in radians (0.1 rad = 5.7 deg)"
+        ));
+    }
+    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
+    let ramp = ramp.unwrap_or(period);
+    // each motion a ramped sine about its axis (heave, surge, sway of the
+    // reference point; roll, pitch, yaw), summed; the hang-off follows the
+    // vessel at its offset (theory §14)
+    let axes: Vec<(usize, Heave)> = motions
+        .all()
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|(amplitude, period)| (i, Heave { amplitude, period, until: heave_until, ramp })))
         .collect();
+    let vessel = sim.vessel;
     let motion_fn = move |t: f64| {
-        let mut h = riser::model::HangOff::default();
-        for (axis, m) in &axes {
-            let one = m.at(t);
-            h.displacement += axis * one.displacement.z;
-            h.velocity += axis * one.velocity.z;
+        let mut m = riser::sim::vessel::VesselMotion::default();
+        let mut rates = [0.0; 3];
+        for (i, h) in &axes {
+            let one = h.at(t);
+            let (u, v) = (one.displacement.z, one.velocity.z);
+            match i {
+                0 => (m.displacement.z, m.velocity.z) = (u, v),
+                1 => (m.displacement.x, m.velocity.x) = (u, v),
+                2 => (m.displacement.y, m.velocity.y) = (u, v),
+                k => (m.angles[k - 3], rates[k - 3]) = (u, v),
+            }
         }
-        h
+        m.body_rates = vessel.order.body_rates(m.angles, rates);
+        vessel.hang_off(&m)
     };
     sim.start(motion_fn(0.0));
     let e0 = sim.initial_energy;
@@ -861,22 +906,26 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
-        Command::Run {
-            scene,
-            set,
-            heave,
-            surge,
-            sway,
-            heave_until,
-            ramp,
-            duration,
-            window,
-            shape_times,
-            max_tangent_age,
-            json,
-            out,
-        } => {
-            let motions = Motions { heave, surge, sway };
+        Command::Run(r) => {
+            let RunCli {
+                scene,
+                set,
+                heave,
+                surge,
+                sway,
+                roll,
+                pitch,
+                yaw,
+                heave_until,
+                ramp,
+                duration,
+                window,
+                shape_times,
+                max_tangent_age,
+                json,
+                out,
+            } = *r;
+            let motions = Motions { heave, surge, sway, roll, pitch, yaw };
             let args =
                 RunArgs { motions, heave_until, ramp, duration, window, shape_times, max_tangent_age, json, out };
             run(&scene, &set, args)

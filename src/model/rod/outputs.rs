@@ -135,7 +135,39 @@ impl RodModel {
         let mut o =
             Outputs::of_state(s, reactions, min_tension, [kinetic, strain, potential], touchdown, cfg.xp[0], shape);
         o.hang_off_moment = self.hang_off_moment(cfg);
+        if self.rod.ends[0].rotation == super::RotationBc::Clamped {
+            o.end_moment = self.end_moment(s);
+        }
         o
+    }
+
+    /// The moment the line exerts on its support at S = 0 in `state`, global
+    /// frame, N m: minus the support's reaction, the moment row of the
+    /// equations of motion at the end's director node at the state (the
+    /// internal moment's row; the director inertia, of the rotary inertia
+    /// alone, left out), as the end forces are read (§15).
+    pub fn end_moment(&self, s: &State) -> V3 {
+        let rod = &self.rod;
+        let el = ElemDofs::gather(&s.config, 0);
+        let st = rod.stresses(0, &rod.strains_of(&el, 0));
+        let mut re = ElVec::zeros();
+        let shear = element::Shear::Spatial(rod.reference_penalty(0));
+        element::internal_force(&el, &el, &st, rod.stiff(0), Factors::STATIC, rod.h, shear, &mut re, None);
+        -V3::new(re[6], re[7], re[8])
+    }
+
+    /// The moment the line exerts on its support at S = 0, global frame, N m
+    /// (15.1), from the curvature: the stress couple m = Σᵢ Cᵢ Kᵢ dᵢ with the curvatures and twist
+    /// of the first element's two Gauss points nearest the end extrapolated
+    /// to it, and the end's directors.
+    pub fn hang_off_moment_vector(&self, cfg: &crate::model::RodConfig) -> V3 {
+        let rod = &self.rod;
+        let eps = rod.strains_of(&ElemDofs::gather(cfg, 0), 0);
+        let xi = crate::math::shape::GAUSS4.xi;
+        let w = xi[0] / (xi[1] - xi[0]);
+        let c = rod.stiff(0);
+        let m = V3::from_fn(|i, _| c[3 + i] * ((1.0 + w) * eps[0][3 + i] - w * eps[1][3 + i]));
+        cfg.d[0] * m
     }
 
     /// The bending moment at S = 0, N m (15.1): the curvature vector of the

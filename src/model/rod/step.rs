@@ -59,6 +59,8 @@ pub struct RodWorkspace {
     end_accel: [[V3; 4]; 2],
     /// Spatial reduced residual moment at the anchor (its twist reaction), N m.
     anchor_moment: V3,
+    /// The same at the hang-off: the clamp's moment on the line, N m (§15).
+    hang_off_moment: V3,
     /// Director nodes whose twist is held (§5.6) and the Cayley vector of
     /// their step rotation, d_{n+1} = cay(θ) d_n with θ·d3_n = 0.
     twist_nodes: Vec<usize>,
@@ -107,6 +109,7 @@ impl StepEquations for RodModel {
             end_inertia: [V3::zeros(); 2],
             end_accel: [[V3::zeros(); 4]; 2],
             anchor_moment: V3::zeros(),
+            hang_off_moment: V3::zeros(),
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
             corotated: true,
@@ -209,7 +212,9 @@ impl StepEquations for RodModel {
                 None
             };
             if end.is_some_and(|e| rod.ends[e].rotation == RotationBc::Clamped) {
-                trial.config.d[j] = d;
+                // the hang-off's clamp turns with the vessel: d = R(t) D_static,
+                // carried from R_n to R_{n+1} (the anchor's stays)
+                trial.config.d[j] = if j == 0 { target.rotation * prev.hang_off.rotation.transpose() * d } else { d };
                 continue;
             }
             let a = slope_at_director_node(rod, &prev.config, j).normalize();
@@ -531,6 +536,8 @@ impl StepEquations for RodModel {
             [V3::new(lin.r[i0], lin.r[i0 + 1], lin.r[i0 + 2]), V3::new(lin.r[i1], lin.r[i1 + 1], lin.r[i1 + 2])];
         let it = Rod::theta_dof(2 * n_el);
         buf.anchor_moment = V3::new(lin.r[it], lin.r[it + 1], lin.r[it + 2]);
+        let it = Rod::theta_dof(0);
+        buf.hang_off_moment = V3::new(lin.r[it], lin.r[it + 1], lin.r[it + 2]);
         // twist-held nodes: unknowns θ_loc with θ = D_n θ_loc, spatial increment
         // w = T(θ) D_n δθ_loc, T(θ) = 4/(4 + |θ|²) (I + ½θ̂) (the Cayley differential)
         for (k, &j) in buf.twist_nodes.iter().enumerate() {
@@ -615,6 +622,10 @@ impl StepEquations for RodModel {
         let dx0 = cfg1.x[0] - cfg0.x[0];
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
+        if rod.ends[0].rotation == RotationBc::Clamped {
+            // the clamp turning with the vessel works through its moment (θ·m, §5.5)
+            trial.work_top += cayley_vector(&(cfg1.d[0] * cfg0.d[0].transpose())).dot(&ws.hang_off_moment);
+        }
         trial.work_hydro += w_hydro + ws.surface_wave_work;
         if !ws.seabed.is_empty() {
             let mut w = 0.0;

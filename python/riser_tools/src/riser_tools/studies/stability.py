@@ -69,6 +69,20 @@ CELLS += [cell("cable", label, scene, ["model=cable"] + sets, motion, 0.05 if "1
               ("EA = 1e11, dt = 1 s, heave 10 m / 3 s", "catenary", ["axial_stiffness=1e11", "time_step=1"],
                Motion(10.0, 3.0)),
           ]]
+# waves (issue 27): a storm sea on both scenes with their heave, and the
+# jumper whose top (5 m under the mean level) is uncovered by every trough
+STORM = ["wave_kind=jonswap", "wave_hs=15", "wave_tp=13", "wave_direction=20"]
+JUMPER = "docs/cases/lowe_langley_jumper.toml"
+THROUGH = ["wave_kind=airy", "wave_height=14", "wave_period=10", "wave_direction=45"]
+CELLS += [cell("waves", f"{label}{', cable' if cable else ''}", scene, (["model=cable"] if cable else []) + sets, motion)
+          for cable in [False, True]
+          for label, scene, sets, motion in [
+              ("catenary, JONSWAP Hs 15 m Tp 13 s", "catenary", STORM, CATENARY_HEAVE),
+              ("catenary, JONSWAP Hs 15 m Tp 13 s, 400 components", "catenary", STORM + ["wave_components=400"],
+               CATENARY_HEAVE),
+              ("lazy wave, JONSWAP Hs 15 m Tp 13 s", "lazy_wave", STORM, LAZY_WAVE_HEAVE),
+              ("jumper, top through the surface, 14 m / 10 s", JUMPER, THROUGH, Motion(0.0, 10.0)),
+          ]]
 CELLS = unique_labels(CELLS)
 
 
