@@ -8,10 +8,12 @@ Sources (FloatingArrayDesign/MoorDyn, commit in REF_COMMIT):
 * tests/lowe_and_langley_2006.cpp: the test (static forces within 0.2 kN per
   component; cases 1-3: fairlead surge / sway / heave 10 m, 27 s, ramped in
   over one period, then every point of the paper's digitised top tension
-  over 80 s within 1 kN; cases 4-6: waves, no fairlead motion);
-* tests/Mooring/lowe_and_langley_2006/Case {1,2,3}.csv: the paper's top
+  over 80 s within 1 kN; cases 4-6: a regular wave H 10 m, T 10 s at 0, 45,
+  90 deg, phase 230, 165, 0 deg, no fairlead motion, at full height from
+  t = 0 (no ramp), every point over 30 s after t = 20 s within 1 kN);
+* tests/Mooring/lowe_and_langley_2006/Case {1,...,6}.csv: the paper's top
   tension (t - t_ramp in s, kN), copied unchanged to
-  docs/cases/lowe_langley_2006_case{1,2,3}.csv.
+  docs/cases/lowe_langley_2006_case{1,...,6}.csv.
 
 The scene is docs/cases/lowe_langley_jumper.toml (hang-off at the origin,
 surface 5 m above it). Runs (each from the static state):
@@ -26,7 +28,15 @@ surface 5 m above it). Runs (each from the static state):
 * case 3 with --set seabed_z=-95 (MoorDyn's seabed): no contact expected;
 * cases 1 and 2 (surge, sway) only if `riser run --help` offers --surge /
   --sway; the CLI moves the hang-off in heave only, so they are listed as
-  not run otherwise. Cases 4-6 need wave kinematics, which riser has not.
+  not run otherwise;
+* cases 4-6: no motion, `--duration 50` with --set wave_kind=airy,
+  wave_height=10, wave_period=10, wave_direction=0/45/90,
+  wave_phase=230/165/0, wave_ramp=0, wave_stretching=none, water_depth=100
+  (MoorDyn's sea on riser's axes: the hang-off at the origin with MoorDyn's
+  x and y, riser's time = MoorDyn's, the paper's t = t - 20 s; the reasoning
+  is in tests/free_surface.rs), and for case 4 the variants Wheeler
+  stretching, a 10 s ramp, and 68 elements with dt 0.025 s. A binary that
+  refuses waves (before the water's force with waves) lists them as not run.
 
 Usage (from the repository root; `make lowe-langley`):
     riser-tools lowe-langley [--bin target/release/riser] [--out out/lowe_langley] [--doc docs/lowe_langley.md]
@@ -36,6 +46,7 @@ import argparse
 import bisect
 import datetime
 import json
+import math
 import os
 import sys
 import time
@@ -51,7 +62,14 @@ A, T = 10.0, 27.0  # m, s: amplitude and period of cases 1-3
 T_RAMP = T  # s: MoorDyn ramps over one period; the paper's t = 0 is its end
 T_WINDOW = 80.0  # s of paper data after the ramp
 TOL_STATIC = 0.2  # kN per force component (test "Stationary")
-TOL_MOTION = 1.0  # kN at every digitised point (cases 1-3)
+TOL_MOTION = 1.0  # kN at every digitised point (cases 1-6)
+# cases 4-6 (tests/lowe_and_langley_2006.cpp, case456): amplitude 5 m, 10 s,
+# no ramp; the paper's t = 0 is MoorDyn's t = 2 T_W; compared over 30 s
+H_W, T_W = 10.0, 10.0
+T_START_W = 2 * T_W
+T_WINDOW_W = 30.0
+# (case, direction of travel deg from +x towards +y, phase deg): the test's
+WAVE_CASES = ((4, 0.0, 230.0), (5, 45.0, 165.0), (6, 90.0, 0.0))
 # test "Stationary": the force on the fairlead and on the anchor's node, kN
 # (the test checks ref + 1e-3 F = 0, so F = -ref)
 MD_TOP = (-11.40, 0.0, -45.71)
@@ -126,6 +144,57 @@ def motion_run(bin_, out, name, motion, extra, log):
     return summary, read_series(os.path.join(d, "timeseries.csv"))
 
 
+def wave_sets(direction, phase, extra=()):
+    """MoorDyn's sea of cases 4-6 as riser's --set (docstring; tests/free_surface.rs)."""
+    return ["wave_kind=airy", f"wave_height={H_W:g}", f"wave_period={T_W:g}", f"wave_direction={direction:g}",
+            f"wave_phase={phase:g}", "wave_ramp=0", "wave_stretching=none", "water_depth=100", *extra]
+
+
+def reduce_waves(series, ref, phase):
+    """Top tension (kN) against the paper's over cases 4-6: MoorDyn's pointwise
+    test, and max/min/mean over the last wave period of the paper's data; the
+    elevation at the origin against MoorDyn's A cos(phi - omega t)."""
+    ts = series["t"]
+    tt = [v / 1e3 for v in series["top_tension"]]
+    diffs = [interp(ts, tt, t + T_START_W) - v for t, v in ref]
+    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
+    w0 = T_WINDOW_W - T_W
+    rwin = [(t, v) for t, v in ref if t >= w0]
+    win = [(t - T_START_W, v) for t, v in zip(ts, tt) if w0 <= t - T_START_W <= T_WINDOW_W]
+    om, ph = 2 * math.pi / T_W, math.radians(phase)
+    eta = series.get("wave_elevation")
+    eta_err = None if eta is None else max(abs(e - H_W / 2 * math.cos(ph - om * t)) for t, e in zip(ts, eta))
+    return {
+        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
+        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
+        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
+        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
+        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
+        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
+        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
+        "n": len(diffs),
+        "eta_err": eta_err,
+    }
+
+
+def wave_run(bin_, out, name, sets, log):
+    """A wave case of 50 s from the static state, the hang-off still; None if
+    the binary refuses waves (built before the water's force with waves)."""
+    d = os.path.join(out, name)
+    cmd = cli.run_command(bin_, SCENE, sets, None, T_START_W + T_WINDOW_W, d)
+    t0 = time.monotonic()
+    p = cli.execute(cmd, cwd=ROOT)
+    if p.returncode != 0 and "not yet applied" in p.stderr:
+        return None
+    log.append((" ".join(cmd), time.monotonic() - t0, p.returncode))
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} exited {p.returncode}: {p.stderr.strip()}")
+    summary = json.loads(p.stdout)
+    if not summary.get("completed", True) or summary.get("error"):
+        raise RuntimeError(f"{name}: {summary.get('error')}")
+    return summary, read_series(os.path.join(d, "timeseries.csv"))
+
+
 def fmt(x, nd=2):
     return f"{x:.{nd}f}"
 
@@ -172,6 +241,23 @@ def main(argv=None):
                 horiz[case] = ("error", str(e))
         else:
             horiz[case] = ("absent", f"`riser run` has no `{flag}` (the CLI moves the hang-off in heave only)")
+
+    # cases 4-6: the jumper in regular waves; case 4's variants
+    waves = {}
+    for case, direction, phase in WAVE_CASES:
+        r = wave_run(bin_, args.out, f"case{case}", wave_sets(direction, phase), log)
+        waves[case] = None if r is None else reduce_waves(r[1], read_ref(case), phase)
+    wave_variants = [
+        ("case4_wheeler", "Wheeler stretching (`wave_stretching=wheeler`)", ["wave_stretching=wheeler"]),
+        ("case4_ramp", "the waves ramped in over 10 s (`wave_ramp=10`) instead of MoorDyn's abrupt start",
+         ["wave_ramp=10"]),
+        ("case4_fine", "68 elements, dt 0.025 s", ["n_elements=68", "time_step=0.025"]),
+    ]
+    wvar = {}
+    if waves[4] is not None:
+        for name, label, extra in wave_variants:
+            r = wave_run(bin_, args.out, name, wave_sets(0.0, 230.0, extra), log)
+            wvar[name] = (label, reduce_waves(r[1], read_ref(4), 230.0))
     total = time.monotonic() - t_start
 
     # --- the report ---
@@ -187,8 +273,8 @@ def main(argv=None):
     L.append("* `tests/Mooring/lowe_and_langley_2006/line.txt`: the MoorDyn input;")
     L.append("* `tests/lowe_and_langley_2006.cpp`: the checks and their tolerances;")
     L.append("* `tests/Mooring/lowe_and_langley_2006/Case {1..6}.csv`: the paper's top tension "
-             "(digitised with WebPlotDigitizer; time after the ramp in s, kN); cases 1-3 are copied unchanged to "
-             "`docs/cases/lowe_langley_2006_case{1,2,3}.csv`.\n")
+             "(digitised with WebPlotDigitizer; time after the ramp in s, kN); all six are copied unchanged to "
+             "`docs/cases/lowe_langley_2006_case{1,...,6}.csv`.\n")
     L.append("| quantity | MoorDyn test | riser scene (`docs/cases/lowe_langley_jumper.toml`) |")
     L.append("|---|---|---|")
     L.append("| line | 170 m, 165 kg/m, D 0.396 m, 68 segments | same, 60 elements (rod) |")
@@ -199,7 +285,13 @@ def main(argv=None):
     L.append("| fairlead | `Coupled` (0, 0, -5) m | the hang-off, origin |")
     L.append("| water | depth 100 m, ρ 1000 kg/m³, g 9.807 m/s², surface z = 0 | `water_surface_z` = +5 m, ρ 1000, g 9.807; no seabed (see the check below) |")
     L.append(f"| motion, cases 1/2/3 | fairlead x / y / z += f(t)·{A:g} sin(2πt/{T:g}), f a quintic smoothstep over {T_RAMP:g} s; compared for {T_WINDOW:g} s after it | `--heave {A:g},{T:g} --ramp {T_RAMP:g} --duration {T_RAMP + T_WINDOW:g}` (ramp ½(1 − cos(πt/{T_RAMP:g})); full amplitude from t = {T_RAMP:g} s in both) |")
-    L.append("| cases 4/5/6 | no fairlead motion; linear waves 5 m, 10 s at 0°/45°/90° | not run: riser has no wave kinematics |")
+    L.append(f"| cases 4/5/6 | no fairlead motion; the test's own linear wave (`WaveKin 1`, kinematics handed over at every node and step): "
+             f"A {H_W / 2:g} m, T {T_W:g} s, k = ω²/9.81, profiles cosh k(z+100)/cosh 100k at the node's own z, "
+             f"η = A cos(k(x cos d + y sin d) − ωt + φ), d 0°/45°/90°, φ 230°/165°/0°, full height from t = 0; "
+             f"compared for {T_WINDOW_W:g} s after t = {T_START_W:g} s | "
+             f"`--set wave_kind=airy,wave_height={H_W:g},wave_period={T_W:g},wave_direction=0/45/90,wave_phase=230/165/0,"
+             f"wave_ramp=0,wave_stretching=none,water_depth=100 --duration {T_START_W + T_WINDOW_W:g}` (phase origin the hang-off, "
+             "MoorDyn's (0, 0); riser's time = MoorDyn's; k = 0.04028 rad/m from ω² = gk tanh kd, g 9.807) |")
     L.append("| tolerances | statics: 0.2 kN per component of the top and bottom force; cases 1-6: 1 kN at every digitised point | |\n")
     L.append("The top tension is the magnitude of the force at the fairlead (MoorDyn: `MoorDyn_GetLineNodeForce` of the last node; riser: `top_tension`). "
              f"The heave crest is at t = {T_RAMP:g} + 6.75 + 27k s (the paper's t = 6.75 + 27k s), where the hang-off is 5 m above the surface: "
@@ -244,6 +336,25 @@ def main(argv=None):
             L.append(f"| case {case} {what}: largest \\|difference\\| | — | {fmt(md)} | {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
         else:
             L.append(f"| case {case} {what} 10 m, 27 s: max / min top tension | {fmt(max(rwin))} / {fmt(min(rwin))} | not run | — | ±{TOL_MOTION} each |")
+    w_last = f"t_ref in [{T_WINDOW_W - T_W:g}, {T_WINDOW_W:g}] s"
+    for case, direction, phase in WAVE_CASES:
+        r = waves[case]
+        tag = f"case {case} waves at {direction:g}° (φ {phase:g}°)"
+        if r is None:
+            ref = [v for t, v in read_ref(case) if t >= T_WINDOW_W - T_W]
+            L.append(f"| {tag}: max / min top tension ({w_last}) | {fmt(max(ref))} / {fmt(min(ref))} | not run: this binary refuses waves | — | ±{TOL_MOTION} each |")
+            continue
+        (pt, pv), (rt, rv) = r["max"]
+        L.append(f"| {tag}: max top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
+        (pt, pv), (rt, rv) = r["min"]
+        L.append(f"| {tag}: min top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
+        pm, rm = r["mean"]
+        L.append(f"| {tag}: mean top tension ({w_last}) | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
+        md, mt_, ms = r["maxdiff"]
+        L.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+    for name, (label, r) in wvar.items():
+        md, mt_, ms = r["maxdiff"]
+        L.append(f"| case 4, {label}: largest \\|difference\\| | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}; last period {fmt(r['maxdiff_last'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
     L.append("")
     L.append("Notes:\n")
     sub = res["case3_submerged"][3]
@@ -268,7 +379,21 @@ def main(argv=None):
              f"({'no contact at any step' if sb['touchdown_min'] >= 170.0 else 'CONTACT'}), and the crest tension {fmt(sb['crest'][1])} kN; the scene therefore has no `[seabed]`.")
     L.append("* MoorDyn's axial damping (BA/-zeta = −0.5) and the two codes' different ramps (quintic smoothstep, ½(1 − cos)) act mostly on the start: "
              f"the largest pointwise difference, {fmt(base['maxdiff'][0])} kN, is at t_ref {base['maxdiff'][1]:.1f} s, just after the ramp; "
-             f"over the last period (t_ref ≥ {T_WINDOW - T:g} s) it is {fmt(base['maxdiff_last'])} kN.\n")
+             f"over the last period (t_ref ≥ {T_WINDOW - T:g} s) it is {fmt(base['maxdiff_last'])} kN.")
+    if waves[4] is None:
+        L.append("* **Cases 4-6** (waves) are not run: this binary refuses a dynamic run with waves (the water's force with waves "
+                 "is not built into it). The paper's values over the last wave period are listed for when it is.\n")
+    else:
+        errs = [waves[c]["eta_err"] for c, _, _ in WAVE_CASES if waves[c]["eta_err"] is not None]
+        L.append("* **The same sea as MoorDyn's.** The elevation riser reports at the phase origin (the hang-off, MoorDyn's (0, 0)) "
+                 f"is A cos(φ − ωt) at every step to {max(errs):.1e} m in the three cases: MoorDyn's sea at MoorDyn's time "
+                 f"(the test's `wave()`, no ramp); the paper's t = riser's t − {T_START_W:g} s. MoorDyn's k = ω²/9.81 = 0.040243 rad/m against "
+                 "riser's 0.040281 (ω² = gk tanh kd, g 9.807, d 100 m): 0.2° of phase at the anchor.")
+        for name, (label, r) in wvar.items():
+            b = waves[4]
+            L.append(f"* **Case 4, {label}:** largest difference {fmt(r['maxdiff'][0])} kN (the case's {fmt(b['maxdiff'][0])}), "
+                     f"over the last wave period {fmt(r['maxdiff_last'])} kN (the case's {fmt(b['maxdiff_last'])}).")
+        L.append("")
     L.append("## Commands\n")
     L.append("```sh")
     L.append("riser-tools lowe-langley     # this page; the runs in out/lowe_langley/")
