@@ -3,6 +3,7 @@
 //! midpoint, added mass, the twist-held anchor's step basis), in the global
 //! frame and in the nodes' director frames (the corotated tangent, §5.7).
 
+use riser::loads::waves::sea_of;
 use riser::math::V3;
 use riser::model::rod::RodModel;
 use riser::model::{DynamicOptions, HangOff, State};
@@ -63,6 +64,30 @@ fn step_tangent_through_the_free_surface_matches_finite_differences() {
     check_tangent_scene(&scene, 0.0, true, 0.8);
 }
 
+/// In waves (§13.6): the drag on the velocity relative to the moving water,
+/// the water's inertia (Froude–Krylov and added mass on the relative
+/// acceleration) and the free surface cut at the moving elevation, with the
+/// line through the surface; the waves at full height from t = 0.
+#[test]
+fn step_tangent_in_waves_through_the_moving_surface_matches_finite_differences() {
+    let scene = Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&[
+            "n_elements=6",
+            "ca_normal=1.0",
+            "current_direction=40",
+            "water_surface_z=-30",
+            "wave_kind=airy",
+            "wave_height=8",
+            "wave_period=9",
+            "wave_direction=30",
+            "wave_ramp=0",
+        ])
+        .unwrap();
+    check_tangent_scene(&scene, 0.0, true, 0.8);
+    check_tangent_scene(&scene, 0.0, false, 1.0);
+}
+
 fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = Scene::builtin("catenary")
         .unwrap()
@@ -74,7 +99,7 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
 fn check_tangent_scene(scene: &Scene, eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = scene.clone();
     let report = solve_scene(&scene).unwrap();
-    let model = RodModel::from_scene(&scene);
+    let model = RodModel::from_scene(&scene).with_sea(sea_of(&scene, 0.0).unwrap());
     let opts =
         DynamicOptions { structural_damping: eta, corotated_tangent: corotated, rho_infinity, ..Default::default() };
     let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();

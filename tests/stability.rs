@@ -17,6 +17,11 @@ fn cell_dropped(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64, dr
     let mut all = vec!["n_elements=20".to_string()];
     all.extend(sets.iter().map(|s| s.to_string()));
     let scene = Scene::builtin(scene).unwrap().with_overrides(&all).unwrap();
+    run_cell(scene, heave, duration, drop)
+}
+
+/// [`cell_dropped`] on a scene as it is.
+fn run_cell(scene: Scene, heave: (f64, f64), duration: f64, drop: f64) -> String {
     let mut sim = match Simulation::from_scene(&scene) {
         Ok(s) => s,
         Err(e) => {
@@ -54,6 +59,9 @@ fn cell_dropped(scene: &str, sets: &[&str], heave: (f64, f64), duration: f64, dr
         }
         worst = worst.max(o.energy_balance_residual(e0).abs());
         exchanged = exchanged.max(o.work_top.abs() + o.work_hydro.abs() + o.work_seabed.abs());
+        if k == n {
+            eprintln!("  (energy balance {worst:.2e} J of {exchanged:.2e} J exchanged)");
+        }
     }
     assert!(worst <= 1e-6 * exchanged.max(1.0), "energy balance {worst:e} of {exchanged:e}");
     "completes".to_string()
@@ -168,4 +176,38 @@ fn a_spurious_root_is_rejected_and_the_balance_stays_closed() {
     }
     eprintln!("EA 1e10, 7.5 s: balance {worst:.2e} J of {exchanged:.2e} J, {} split steps", sim.state.retries);
     assert!(worst <= 1e-6 * exchanged, "energy balance {worst:e} of {exchanged:e}");
+}
+
+/// Storm seas (issue 27): a JONSWAP sea of Hs 15 m, Tp 13 s (grown over one
+/// Tp) on the catenary and the lazy wave with the vessel still, rod and
+/// cable; and the Lowe & Langley jumper, whose top (5 m under the mean
+/// level) goes through the surface in every 10 s wave of 14 m. Each
+/// completes with the balance closed or stops cleanly; never a NaN.
+#[test]
+fn storm_seas_and_a_top_through_the_surface() {
+    let storm = ["wave_kind=jonswap", "wave_hs=15", "wave_tp=13", "wave_direction=20"];
+    for scene in ["catenary", "lazy_wave"] {
+        for model in ["rod", "cable"] {
+            let m = format!("model={model}");
+            let mut sets = vec![m.as_str()];
+            sets.extend(storm);
+            let r = cell(scene, &sets, (0.0, 13.0), 30.0);
+            eprintln!("{scene}, {model}, JONSWAP Hs 15 m Tp 13 s: {r}");
+        }
+    }
+    let dir = env!("CARGO_MANIFEST_DIR");
+    for model in ["rod", "cable"] {
+        let sc = Scene::load(&format!("{dir}/docs/cases/lowe_langley_jumper.toml"))
+            .unwrap()
+            .with_overrides(&[
+                &format!("model={model}"),
+                "wave_kind=airy",
+                "wave_height=14",
+                "wave_period=10",
+                "wave_direction=45",
+            ])
+            .unwrap();
+        let r = run_cell(sc, (0.0, 10.0), 30.0, 0.0);
+        eprintln!("jumper, {model}, top through the surface (14 m, 10 s): {r}");
+    }
 }

@@ -10,10 +10,20 @@
 //!   added mass    f_A = −m_a (I − t tᵀ) a,                   m_a = C_a ρ_w π D²/4
 //! (drag acts on the current length |p| dS; the added mass per reference length).
 //! The consistent nodal force is F_k = ∫ N_k f dS (4-point Gauss).
+//!
+//! In waves (docs/theory.md §13.6) the water moves with velocity u_w and
+//! acceleration a_w at each Gauss point ([`WaterAtGauss`], frozen over a
+//! step): the drag acts on the relative velocity v_c + u_w − v, and the
+//! accelerating water adds its inertia force
+//!   f_I = ρ_w A a_w + m_a (I − t tᵀ)(a_w − a)                         (13.12)
+//! (Froude–Krylov on the displaced area A in every direction, added mass
+//! normal to the line: (1 + C_a) ρ_w A a_w,n normal, ρ_w A a_w,t along it);
+//! every term is cut at the local surface z_s + η.
 
 use super::current::Current;
 use super::morison::{DragCoefficients, drag, drag_force};
 use super::surface::FreeSurface;
+use super::waves::{Sea, WaterPoint, WaveScratch};
 use crate::math::shape::{GAUSS4, hermite, hermite_ds};
 use crate::math::{M3, V3};
 
@@ -27,16 +37,112 @@ pub struct Fluid {
     /// The free surface: drag and added mass act on the submerged fraction
     /// of the line (docs/theory.md §10; None: submerged everywhere).
     pub surface: Option<FreeSurface>,
+    /// The Froude–Krylov mass per unit length ρ_w A (A the displaced
+    /// area), kg/m: the waves' pressure gradient on the displaced water (13.12).
+    pub froude_krylov: f64,
 }
 
 impl Fluid {
     pub fn none() -> Self {
-        Fluid { drag: None, added_mass: 0.0, surface: None }
+        Fluid { drag: None, added_mass: 0.0, surface: None, froude_krylov: 0.0 }
     }
 
-    /// True if the water exerts no force beyond weight and buoyancy.
+    /// True if still water exerts no force beyond weight and buoyancy.
     pub fn is_inert(&self) -> bool {
         self.drag.is_none() && self.added_mass == 0.0
+    }
+
+    /// True if the water exerts no force beyond weight and buoyancy, in
+    /// waves (`waves`) or in still water.
+    pub fn is_inert_in(&self, waves: bool) -> bool {
+        self.is_inert() && !(waves && self.froude_krylov != 0.0)
+    }
+}
+
+/// The water's motion at the four Gauss points of an element, held over a
+/// step (docs/theory.md §13.6): velocity (m/s), acceleration (m/s²) and
+/// the elevation of the surface above the point, m (all ramped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaterAtGauss {
+    pub velocity: [V3; 4],
+    pub acceleration: [V3; 4],
+    pub elevation: [f64; 4],
+}
+
+impl WaterAtGauss {
+    /// Still water.
+    pub const STILL: WaterAtGauss = WaterAtGauss {
+        velocity: [V3::new(0.0, 0.0, 0.0); 4],
+        acceleration: [V3::new(0.0, 0.0, 0.0); 4],
+        elevation: [0.0; 4],
+    };
+
+    /// The elevation at ξ ∈ [0, 1] along the element: the cubic through the
+    /// four Gauss points' values (Lagrange), m.
+    pub fn elevation_at(&self, xi: f64) -> f64 {
+        let x = GAUSS4.xi;
+        let mut eta = 0.0;
+        for i in 0..4 {
+            let mut l = 1.0;
+            for j in 0..4 {
+                if j != i {
+                    l *= (xi - x[j]) / (x[i] - x[j]);
+                }
+            }
+            eta += l * self.elevation[i];
+        }
+        eta
+    }
+}
+
+/// The waves' motion at the Gauss points of a whole line, held over a step
+/// (docs/theory.md §13.6): evaluated once per step at the step's midpoint
+/// time t_n + h/2 and the predicted midpoint configuration, so that the
+/// force keeps the scheme's second order and its tangent has no term of
+/// the field's gradient. Allocated once.
+#[derive(Debug, Clone)]
+pub struct FrozenWater {
+    /// The Gauss points, four per element (filled by the model), m.
+    pub points: Vec<V3>,
+    /// The water's motion per element (still water until evaluated).
+    pub at: Vec<WaterAtGauss>,
+    out: Vec<WaterPoint>,
+    scratch: WaveScratch,
+}
+
+impl FrozenWater {
+    /// Storage for a line of `n_el` elements in `sea`.
+    pub fn new(sea: &Sea, n_el: usize) -> Self {
+        FrozenWater {
+            points: vec![V3::zeros(); 4 * n_el],
+            at: vec![WaterAtGauss::STILL; n_el],
+            out: vec![WaterPoint::STILL; 4 * n_el],
+            scratch: sea.scratch(),
+        }
+    }
+
+    /// Evaluates the sea at `t` s at [`FrozenWater::points`].
+    pub fn evaluate(&mut self, sea: &Sea, t: f64) {
+        sea.water_batch(t, &self.points, &mut self.out, &mut self.scratch);
+        for (e, w) in self.at.iter_mut().enumerate() {
+            for g in 0..4 {
+                let p = &self.out[4 * e + g];
+                w.velocity[g] = p.velocity;
+                w.acceleration[g] = p.acceleration;
+                w.elevation[g] = p.elevation;
+            }
+        }
+    }
+}
+
+/// The water's motion at the four Gauss points of an element at `points`
+/// at time `t` (for outputs at a state; no scratch: a few points).
+pub fn water_at(sea: &Sea, points: &[V3; 4], t: f64) -> WaterAtGauss {
+    let k = points.map(|p| sea.kinematics(&p, t));
+    WaterAtGauss {
+        velocity: k.map(|k| k.velocity),
+        acceleration: k.map(|k| k.acceleration),
+        elevation: k.map(|k| k.elevation),
     }
 }
 
@@ -58,6 +164,8 @@ pub struct FluidFields<'a> {
     pub v: &'a [V3; 4],
     /// Hermite acceleration dofs (used only with added mass).
     pub a: &'a [V3; 4],
+    /// The water's motion at the Gauss points (None: still water).
+    pub water: Option<&'a WaterAtGauss>,
 }
 
 /// Hermite functions and their slopes at the four Gauss points of an element
@@ -84,7 +192,7 @@ pub fn element_fluid_force(
     k: Option<&mut [[M3; 4]; 4]>,
 ) {
     let shape = |g: usize| shapes[g];
-    interpolated_fluid_force(fluid, fields.c, fields.v, fields.a, shape, s0, h, fac, f, k);
+    interpolated_fluid_force(fluid, fields.c, fields.v, fields.a, fields.water, shape, s0, h, fac, f, k);
 }
 
 /// The same for a straight two-node segment of the cable (linear
@@ -96,6 +204,7 @@ pub fn segment_fluid_force(
     x: &[V3; 2],
     v: &[V3; 2],
     a: &[V3; 2],
+    water: Option<&WaterAtGauss>,
     s0: f64,
     l: f64,
     fac: FluidFactors,
@@ -103,15 +212,16 @@ pub fn segment_fluid_force(
     k: Option<&mut [[M3; 2]; 2]>,
 ) {
     let shape = |g: usize| ([1.0 - GAUSS4.xi[g], GAUSS4.xi[g]], [-1.0 / l, 1.0 / l]);
-    interpolated_fluid_force(fluid, x, v, a, shape, s0, l, fac, f, k);
+    interpolated_fluid_force(fluid, x, v, a, water, shape, s0, l, fac, f, k);
 }
 
 /// The fluid force alone (no derivatives) of an element from the fields at
 /// its Gauss points, r = `x`, r' = `p`, velocity `v` (what the rod's residual
 /// kernel has already interpolated), with the shape values `shapes` (N, N')
 /// per Gauss point; `acc` the nodal accelerations (read only with added
-/// mass). The four points are evaluated in phases so that their square
-/// roots overlap (the residual is evaluated several times per step).
+/// mass); `water` the waves' motion (None: still water). The four points
+/// are evaluated in phases so that their square roots overlap (the residual
+/// is evaluated several times per step).
 #[allow(clippy::too_many_arguments)]
 pub fn gauss_point_fluid_force<const K: usize>(
     fluid: &Fluid,
@@ -119,6 +229,7 @@ pub fn gauss_point_fluid_force<const K: usize>(
     p: &[V3; 4],
     v: &[V3; 4],
     acc: &[V3; K],
+    water: Option<&WaterAtGauss>,
     shapes: &[([f64; K], [f64; K]); 4],
     s0: f64,
     h: f64,
@@ -128,26 +239,33 @@ pub fn gauss_point_fluid_force<const K: usize>(
     // unit tangents (a degenerate point, |p| = 0, feels nothing)
     let t: [V3; 4] = std::array::from_fn(|g| if len[g] > 0.0 { p[g] * (1.0 / len[g]) } else { V3::zeros() });
     let mut force = [V3::zeros(); 4];
+    let w = water.unwrap_or(&WaterAtGauss::STILL);
     if let Some((kd, current)) = &fluid.drag {
         for g in 0..4 {
             let (vc, _) = current.velocity(s0 + GAUSS4.xi[g] * h, x[g].z);
-            force[g] = drag_force(kd, &(vc - v[g]), &t[g]) * len[g];
+            force[g] = drag_force(kd, &(vc + w.velocity[g] - v[g]), &t[g]) * len[g];
         }
     }
     if fluid.added_mass > 0.0 {
         for g in 0..4 {
             let (n, _) = &shapes[g];
-            let mut a = V3::zeros();
+            let mut a = -w.acceleration[g];
             for j in 0..K {
                 a += acc[j] * n[j];
             }
-            // −m_a (I − t tᵀ) a
+            // −m_a (I − t tᵀ)(a − a_w)
             force[g] -= (a - t[g] * t[g].dot(&a)) * fluid.added_mass;
+        }
+    }
+    if water.is_some() {
+        for g in 0..4 {
+            // Froude–Krylov ρ_w A a_w (13.12)
+            force[g] += w.acceleration[g] * fluid.froude_krylov;
         }
     }
     if let Some(s) = &fluid.surface {
         for g in 0..4 {
-            force[g] *= s.submerged(x[g].z).0;
+            force[g] *= s.submerged(x[g].z - w.elevation[g]).0;
         }
     }
     for g in 0..4 {
@@ -167,6 +285,7 @@ fn interpolated_fluid_force<const K: usize>(
     c: &[V3; K],
     vel: &[V3; K],
     acc: &[V3; K],
+    water: Option<&WaterAtGauss>,
     shape: impl Fn(usize) -> ([f64; K], [f64; K]),
     s0: f64,
     h: f64,
@@ -186,8 +305,9 @@ fn interpolated_fluid_force<const K: usize>(
                 v[g] += vel[j] * n[j];
             }
         }
-        return gauss_point_fluid_force(fluid, &x, &p, &v, acc, &shapes, s0, h, f);
+        return gauss_point_fluid_force(fluid, &x, &p, &v, acc, water, &shapes, s0, h, f);
     }
+    let w = water.unwrap_or(&WaterAtGauss::STILL);
     for g in 0..4 {
         let xi = GAUSS4.xi[g];
         let wg = GAUSS4.w[g] * h;
@@ -214,14 +334,15 @@ fn interpolated_fluid_force<const K: usize>(
         let mut df_dp = M3::zeros();
         if let Some((kd, current)) = &fluid.drag {
             let (vc, dvc_dz) = current.velocity(s0 + xi * h, x.z);
-            let d = drag(kd, &(vc - v), &t);
+            let d = drag(kd, &(vc + w.velocity[g] - v), &t);
             force += d.force * len;
             df_dx += d.d_vrel * dvc_dz * V3::z().transpose() * len;
             df_dv -= d.d_vrel * len;
             df_dp += d.d_tangent * proj + d.force * t.transpose();
         }
         if fluid.added_mass > 0.0 {
-            let mut a = V3::zeros();
+            // the acceleration relative to the water's
+            let mut a = -w.acceleration[g];
             for j in 0..K {
                 a += acc[j] * n[j];
             }
@@ -231,9 +352,13 @@ fn interpolated_fluid_force<const K: usize>(
             // ∂(−m_a (I − t tᵀ) a)/∂t = m_a ((t·a) I + t aᵀ), ∂t/∂p = (I − t tᵀ)/|p|
             df_dp += (M3::identity() * t.dot(&a) + t * a.transpose()) * proj * (ma / len);
         }
+        if water.is_some() {
+            // Froude–Krylov ρ_w A a_w (13.12), the water's motion held over the step
+            force += w.acceleration[g] * fluid.froude_krylov;
+        }
         if let Some(s) = &fluid.surface {
-            // only the submerged fraction s(z) feels the water (§10)
-            let (sub, dsub) = s.submerged(x.z);
+            // only the submerged fraction s(z − η) feels the water (§10, §13.6)
+            let (sub, dsub) = s.submerged(x.z - w.elevation[g]);
             df_dx = df_dx * sub + force * V3::z().transpose() * dsub;
             df_dv *= sub;
             df_da *= sub;

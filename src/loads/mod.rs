@@ -60,7 +60,8 @@ pub fn fluid_of(scene: &Scene, p: &LineProperties) -> Fluid {
     let k = drag_coefficients_of(scene, p);
     let drag = if k.is_zero() { None } else { Some((k, current(scene))) };
     let added_mass = p.added_mass_area * scene.environment.water_density;
-    Fluid { drag, added_mass, surface: Some(free_surface_of(scene, p)) }
+    let froude_krylov = scene.environment.water_density * p.displaced_area;
+    Fluid { drag, added_mass, surface: Some(free_surface_of(scene, p)), froude_krylov }
 }
 
 /// The free surface as a piece of line feels it (docs/theory.md §10): its

@@ -101,6 +101,12 @@ impl FreeSurface {
         (g, (v1 - g) / (z1 - z0))
     }
 
+    /// The same surface `by` m lower (a bound of the band a moving surface
+    /// sweeps: the tests below against it hold for every elevation ≥ −`by`).
+    pub fn lowered(&self, by: f64) -> FreeSurface {
+        FreeSurface { z: self.z - by, ..*self }
+    }
+
     /// True if no point of an element whose nodes are at `nodes` reaches the
     /// band: every node more than ε + `margin` m below the surface.
     pub fn below(&self, nodes: &[V3], margin: f64) -> bool {
@@ -171,16 +177,26 @@ fn add_point<const K: usize>(n: &[f64; K], wg: f64, dv: f64, ddv: f64, f: &mut [
 /// a step (the discrete gradient at the points of the composite rule) to
 /// `f`, N, and −∂F/∂c₁ to `k`; `c0`, `c1` the dofs at t_n and the trial
 /// t_{n+1}, `shape(ξ)` the element's shape functions, `len` its length, m.
+///
+/// In waves `elevation(ξ)` is the surface's elevation η above the point,
+/// held over the step (docs/theory.md §13.6): the correction is cut at
+/// z_s + η, V_s(z − η), and the return value is the work the moving
+/// surface did on the line over the step, J: the total energy keeps the
+/// still-water potential V_s(z), so the water's work is
+/// [V_s(z₁) − V_s(z₀)] − [V_s(z₁ − η) − V_s(z₀ − η)] (13.13). Still water: 0.
+#[allow(clippy::too_many_arguments)]
 pub fn element_step_force<const K: usize>(
     s: &FreeSurface,
     c0: &[V3; K],
     c1: &[V3; K],
     shape: impl Fn(f64) -> [f64; K],
     len: f64,
+    elevation: Option<&dyn Fn(f64) -> f64>,
     f: &mut [V3; K],
     mut k: Option<&mut [[M3; K]; K]>,
-) {
+) -> f64 {
     let low = s.z - s.half_width;
+    let mut work = 0.0;
     for (xi, w) in points(s, len) {
         let n = shape(xi);
         let (mut z0, mut z1) = (0.0, 0.0);
@@ -188,28 +204,38 @@ pub fn element_step_force<const K: usize>(
             z0 += c0[j].z * n[j];
             z1 += c1[j].z * n[j];
         }
-        if z0 <= low && z1 <= low {
+        let eta = elevation.map_or(0.0, |e| e(xi));
+        if z0.max(z1) <= low + eta.min(0.0) {
             continue;
         }
-        let (dv, ddv) = s.discrete_slope(z0, z1);
+        let (dv, ddv) = s.discrete_slope(z0 - eta, z1 - eta);
         add_point(&n, w * len, dv, ddv, f, k.as_deref_mut());
+        if eta != 0.0 {
+            let still = s.potential(z1) - s.potential(z0);
+            let cut = s.potential(z1 - eta) - s.potential(z0 - eta);
+            work += w * len * (still - cut);
+        }
     }
+    work
 }
 
 /// The static force of the correction on one element at dofs `c` (V_s′ at
-/// the points of the composite rule) added to `f`, N, and −∂F/∂c to `k`.
+/// the points of the composite rule) added to `f`, N, and −∂F/∂c to `k`;
+/// in waves cut at the elevation `elevation(ξ)` above each point, m.
 pub fn element_static_force<const K: usize>(
     s: &FreeSurface,
     c: &[V3; K],
     shape: impl Fn(f64) -> [f64; K],
     len: f64,
+    elevation: Option<&dyn Fn(f64) -> f64>,
     f: &mut [V3; K],
     mut k: Option<&mut [[M3; K]; K]>,
 ) {
     let low = s.z - s.half_width;
     for (xi, w) in points(s, len) {
         let n = shape(xi);
-        let z: f64 = (0..K).map(|j| c[j].z * n[j]).sum();
+        let eta = elevation.map_or(0.0, |e| e(xi));
+        let z: f64 = (0..K).map(|j| c[j].z * n[j]).sum::<f64>() - eta;
         if z <= low {
             continue;
         }
@@ -316,7 +342,7 @@ mod tests {
         for top in [8.0, 8.13, 8.377] {
             let mut f = [V3::zeros(); 2];
             let c = [V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, top)];
-            element_static_force(&s, &c, linear, top, &mut f, None);
+            element_static_force(&s, &c, linear, top, None, &mut f, None);
             let lost = -(f[0].z + f[1].z) / s.buoyancy;
             assert!((lost - (top - 5.0)).abs() < 2e-3, "{top}: {lost}");
         }

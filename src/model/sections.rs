@@ -105,6 +105,11 @@ impl PerElement<Fluid> {
         self.values().iter().all(Fluid::is_inert)
     }
 
+    /// The same in waves (`waves`) or in still water.
+    pub fn is_inert_in(&self, waves: bool) -> bool {
+        self.values().iter().all(|f| f.is_inert_in(waves))
+    }
+
     /// The largest added mass per length, kg/m.
     pub fn max_added_mass(&self) -> f64 {
         self.values().iter().map(|f| f.added_mass).fold(0.0, f64::max)

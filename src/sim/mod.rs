@@ -16,7 +16,6 @@ use crate::model::rod::RodModel;
 use crate::model::rod::linearized::RodLinearized;
 use crate::model::rod::statics::StaticLoads;
 use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
-use crate::scene::waves::WaveKind;
 use crate::scene::{Model, Scene, SceneError};
 use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
 use crate::solve::eigen::hang_off_stiffness;
@@ -75,8 +74,10 @@ macro_rules! with_integrator {
 }
 
 impl Engine {
-    /// The integrator of the scene's model (`analysis.model`).
+    /// The integrator of the scene's model (`analysis.model`), in the
+    /// scene's waves (their ramp starting at t = 0: [`Engine::set_wave_ramp_start`]).
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
+        let sea = sea_of(scene, 0.0).map_err(|e| RiserError::Scene(SceneError::Invalid(vec![e])))?;
         let options = DynamicOptions {
             time_step: scene.analysis.time_step,
             newton_tolerance: scene.analysis.newton_tolerance,
@@ -86,12 +87,31 @@ impl Engine {
         };
         let origin = scene.hang_off();
         let engine = match scene.analysis.model {
-            Model::Rod => Integrator::new(RodModel::from_scene(scene), options, origin).map(|i| Engine::Rod(i.into())),
-            Model::Cable => {
-                Integrator::new(CableModel::from_scene(scene), options, origin).map(|i| Engine::Cable(i.into()))
-            }
+            Model::Rod => Integrator::new(RodModel::from_scene(scene).with_sea(sea), options, origin)
+                .map(|i| Engine::Rod(i.into())),
+            Model::Cable => Integrator::new(CableModel::from_scene(scene).with_sea(sea), options, origin)
+                .map(|i| Engine::Cable(i.into())),
         };
         engine.map_err(|e| RiserError::Unsupported(format!("cannot set up the linear solver: {e}")))
+    }
+
+    /// The sea the line is in (None: still water).
+    pub fn sea(&self) -> Option<&Sea> {
+        match self {
+            Engine::Rod(i) => i.model.sea.as_ref(),
+            Engine::Cable(i) => i.model.sea.as_ref(),
+        }
+    }
+
+    /// Starts the waves' ramp at `start` s (a run's start time).
+    pub fn set_wave_ramp_start(&mut self, start: f64) {
+        let sea = match self {
+            Engine::Rod(i) => i.model.sea.as_mut(),
+            Engine::Cable(i) => i.model.sea.as_mut(),
+        };
+        if let Some(sea) = sea {
+            sea.set_ramp_start(start);
+        }
     }
 
     pub fn options(&self) -> &DynamicOptions {
@@ -224,30 +244,13 @@ pub struct Simulation {
     pub sea: Option<Sea>,
 }
 
-/// A scene whose `[waves]` block would make waves is refused for a dynamic
-/// run until the water's force with waves is built (docs/theory.md §13.5):
-/// run as it is, it would be still water without saying so.
-pub fn refuse_waves(scene: &Scene) -> Result<(), RiserError> {
-    match scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) {
-        None => Ok(()),
-        Some(w) => Err(RiserError::Unsupported(format!(
-            "waves are not yet applied to the line: scene '{}' has waves (kind '{}'), and this version would run it \
-             in still water. `riser waves` shows the sea; remove the [waves] block or set wave_kind=none to run \
-             without waves",
-            scene.name,
-            w.kind.name()
-        ))),
-    }
-}
-
 impl Simulation {
     /// Solves the scene's statics and prepares the integrator of the scene's
     /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
-        refuse_waves(scene)?;
-        let sea = sea_of(scene, 0.0).map_err(|e| RiserError::Scene(SceneError::Invalid(vec![e])))?;
         let statics = solve_scene(scene)?;
         let integrator = Engine::from_scene(scene)?;
+        let sea = integrator.sea().cloned();
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
         let initial_energy = integrator.outputs(&state).total_energy;
         let static_loads = scene_static_loads(scene);
@@ -259,6 +262,7 @@ impl Simulation {
         if let Some(sea) = self.sea.as_mut() {
             sea.set_ramp_start(self.state.time);
         }
+        self.integrator.set_wave_ramp_start(self.state.time);
         self.integrator.impose_hang_off(&mut self.state, motion);
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
     }

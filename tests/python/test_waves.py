@@ -3,9 +3,10 @@
 fmi2Error and a message naming it (at fmi2SetXxx for a value outside its
 range or an unknown name, at fmi2ExitInitializationMode for a scene the
 values make: Tp too short for Hs, a components file that cannot be read, a
-depth that contradicts the seabed); a scene with waves is refused for a run
-until the water's force with waves is built, so that it never runs as still
-water without saying so."""
+depth that contradicts the seabed); a run in waves reports the sea's
+elevation at the phase origin, the same at every communication step, and
+the waves move the top tension."""
+import math
 import json
 import subprocess
 import sys
@@ -64,9 +65,6 @@ CASES = [
     ([("wave_kind", "table"), ("wave_file", "/no/such/components.csv")], "exit", ["waves.file", "cannot read"]),
     ([("scene", "steel_catenary"), ("wave_kind", "airy"), ("wave_height", 4.0), ("wave_period", 9.0),
       ("water_depth", 50.0)], "exit", ["waves.depth", "contradicts the seabed"]),
-    # a good sea: refused until the force lands, never still water in silence
-    ([("wave_kind", "airy"), ("wave_height", 4.0), ("wave_period", 9.0)], "exit",
-     ["waves are not yet applied to the line"]),
 ]
 
 
@@ -98,3 +96,39 @@ def test_still_water_reads_back_the_wave_parameters_and_a_zero_elevation(fmu_pat
         assert s.getReal([vr["wave_elevation"]]) == [0.0]
     s.terminate()
     s.freeInstance()
+
+
+def run_in_waves(fmu_path, unzipped, step, duration=12.0, height=4.0):
+    """(t, wave_elevation, top_tension) of the catenary in a regular 9 s wave
+    (its ramp one period long) with the vessel still, at communication step `step`."""
+    s, vr = started_slave(fmu_path, unzipped, f"waves{step}", strings={"wave_kind": "airy"},
+                          reals={"wave_height": height, "wave_period": 9.0})
+    rows, t = [], 0.0
+    for k in range(1, round(duration / step) + 1):
+        s.doStep(t, step)
+        t = k * step
+        rows.append((t, *s.getReal([vr["wave_elevation"], vr["top_tension"]])))
+    s.terminate()
+    s.freeInstance()
+    return rows
+
+
+def test_a_run_in_waves_reports_the_elevation_at_the_phase_origin_at_every_communication_step(fmu_path, unzipped):
+    w = 2 * math.pi / 9.0
+    by_step = {step: run_in_waves(fmu_path, unzipped, step) for step in (0.05, 0.2, 0.6)}
+    for step, rows in by_step.items():
+        for t, eta, _ in rows:
+            r = 0.5 * (1 - math.cos(math.pi * t / 9.0)) if t < 9.0 else 1.0
+            assert abs(eta - r * 2.0 * math.cos(-w * t)) < 1e-12, (step, t, eta)
+    # the same internal steps whatever the communication step (the scene's 0.05 s):
+    # the top tension agrees where the grids meet
+    fine = {round(t, 9): tt for t, _, tt in by_step[0.05]}
+    for step in (0.2, 0.6):
+        for t, _, tt in by_step[step]:
+            assert abs(tt - fine[round(t, 9)]) <= 1e-6 * tt, (step, t, tt, fine[round(t, 9)])
+    # the waves move the top tension: against the same run in still water (where the
+    # current's start moves it too) by far more than the 1e-6 the steps agree to
+    still = run_in_waves(fmu_path, unzipped, 0.6, height=0.0)
+    moved = max(abs(a[2] - b[2]) for a, b in zip(by_step[0.6], still))
+    print(f"the waves move the top tension by up to {moved:.0f} N")
+    assert moved > 200.0, moved

@@ -54,7 +54,7 @@ impl WavePoint {
 }
 
 /// What the water's force on the line needs at a point (docs/theory.md
-/// §13.5): the ramped elevation above the point and the water's velocity
+/// §13.6): the ramped elevation above the point and the water's velocity
 /// and acceleration there (no gradient: the force freezes the field over a
 /// step).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +78,15 @@ impl WaterPoint {
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {
     sin_cos: Vec<[f64; 2]>,
+}
+
+impl WaveScratch {
+    /// Grows the buffer to `components` entries.
+    pub(crate) fn reserve(&mut self, components: usize) {
+        if self.sin_cos.len() < components {
+            self.sin_cos.resize(components, [0.0; 2]);
+        }
+    }
 }
 
 impl Sea {

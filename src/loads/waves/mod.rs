@@ -12,9 +12,9 @@
 //! relation ([`dispersion`]). The kinematics ([`kinematics`]) are stretched
 //! above the mean level and multiplied by a ramp.
 //!
-//! The water's force on the line is not built yet: these are the kinematics
-//! it will be integrated with ([`Sea::kinematics_batch`], one call per
-//! Newton iteration at the Gauss points).
+//! The water's force on the line (docs/theory.md §13.6, `loads::fluid`)
+//! reads these kinematics once per step at the Gauss points of the whole
+//! line ([`Sea::water_batch`]).
 
 pub mod dispersion;
 pub mod kinematics;
@@ -181,6 +181,20 @@ impl Sea {
     /// Starts the ramp at `start` s (a run's start time).
     pub fn set_ramp_start(&mut self, start: f64) {
         self.settings.ramp.start = start;
+    }
+
+    /// The largest elevation the sea can reach anywhere, Σ |aᵢ|, m (a
+    /// bound on |η|: the band of heights the moving surface sweeps).
+    pub fn max_elevation(&self) -> f64 {
+        self.components.iter().map(|c| c.amplitude.abs()).sum()
+    }
+
+    /// A scratch buffer sized for this sea (so that the first evaluation
+    /// allocates nothing).
+    pub fn scratch(&self) -> WaveScratch {
+        let mut s = WaveScratch::default();
+        s.reserve(self.terms.len());
+        s
     }
 
     /// The components as given.

@@ -220,6 +220,8 @@ pub struct CableModel {
     pub seabed: Option<PerElement<Seabed>>,
     /// Nodal vertical load ∫ N_a q dS, N (z components).
     f_grav: Vec<f64>,
+    /// The sea whose waves act on the line (None: still water; §13.6).
+    pub sea: Option<crate::loads::waves::Sea>,
 }
 
 /// The segment mass matrix ρ̄ l/12 [[5, 1], [1, 5]] (6.4), kg.
@@ -234,12 +236,18 @@ impl CableModel {
         let n = cable.n_el;
         let f_grav = nodal_vertical_load(&cable, &vertical);
         let mass = PerElement::uniform(segment_mass(mass_per_length, cable.l), n);
-        CableModel { cable, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav }
+        CableModel { cable, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav, sea: None }
     }
 
     /// The same line on a uniform seabed.
     pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
         self.seabed = seabed.map(|b| PerElement::uniform(b, self.cable.n_el));
+        self
+    }
+
+    /// The same line in the waves of `sea` (None: still water).
+    pub fn with_sea(mut self, sea: Option<crate::loads::waves::Sea>) -> Self {
+        self.sea = sea;
         self
     }
 
@@ -255,7 +263,7 @@ impl CableModel {
         let mass = props.map(|p| segment_mass(p.mass_per_length, cable.l));
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
-        CableModel { cable, mass, vertical, fluid, seabed, f_grav }
+        CableModel { cable, mass, vertical, fluid, seabed, f_grav, sea: None }
     }
 
     /// Largest mass per length with the added mass, kg/m.

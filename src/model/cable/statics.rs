@@ -133,7 +133,7 @@ impl<'a> CableStatics<'a> {
     pub fn new(model: &'a CableModel, with_current: bool) -> Self {
         let water = model.fluid.map(|f| {
             let drag = if with_current { f.drag.clone() } else { None };
-            Fluid { drag, added_mass: 0.0, surface: f.surface }
+            Fluid { drag, added_mass: 0.0, surface: f.surface, froude_krylov: 0.0 }
         });
         let scale = crate::model::StepEquations::force_scale(model);
         CableStatics { model, water, scale, fixed: model.cable.fixed_dofs() }
@@ -183,7 +183,15 @@ impl<'a> CableStatics<'a> {
                 let mut k = [[M3::zeros(); 2]; 2];
                 let want = sys.is_some();
                 let seg = [x[e], x[e + 1]];
-                crate::loads::surface::element_static_force(fs, &seg, linear, c.l, &mut f, want.then_some(&mut k));
+                crate::loads::surface::element_static_force(
+                    fs,
+                    &seg,
+                    linear,
+                    c.l,
+                    None,
+                    &mut f,
+                    want.then_some(&mut k),
+                );
                 for i in 0..2 {
                     for j in 0..3 {
                         r[NODE_DOF * (e + i) + j] -= f[i][j];
@@ -209,6 +217,7 @@ impl<'a> CableStatics<'a> {
                     &[x[e], x[e + 1]],
                     &zero,
                     &zero,
+                    None,
                     c.s_node(e),
                     c.l,
                     fac,

@@ -5,7 +5,7 @@
 //! Kelvin–Voigt damping (6.5), and the water at the midpoint as for the rod.
 
 use super::{CableModel, NODE_DOF};
-use crate::loads::fluid::{FluidFactors, segment_fluid_force};
+use crate::loads::fluid::{FluidFactors, FrozenWater, segment_fluid_force, water_at};
 use crate::loads::seabed::{self, linear_at_gauss};
 use crate::loads::surface;
 use crate::math::band::LinearSolveError;
@@ -22,6 +22,10 @@ use nalgebra::SMatrix;
 pub struct CableWorkspace {
     /// Global fluid force vector, N.
     fluid: Vec<f64>,
+    /// The waves' motion at the Gauss points, held over the step (None:
+    /// still water), and the moving surface's work over the step, J (§13.6).
+    water: Option<FrozenWater>,
+    surface_wave_work: f64,
     /// Global force vector of the seabed's damping and friction, N (§9),
     /// and the segments' shape values at the Gauss points.
     seabed: Vec<f64>,
@@ -60,6 +64,8 @@ impl StepEquations for CableModel {
         let lin = Linear::new(c.new_system()?, c.fixed_dofs());
         let ws = CableWorkspace {
             fluid: vec![0.0; c.n_dof()],
+            water: self.sea.as_ref().map(|sea| FrozenWater::new(sea, c.n_el)),
+            surface_wave_work: 0.0,
             seabed: vec![0.0; if self.seabed.is_some() { c.n_dof() } else { 0 }],
             seabed_shapes: linear_at_gauss(c.l),
             vnew: vec![V3::zeros(); c.n_el + 1],
@@ -105,7 +111,7 @@ impl StepEquations for CableModel {
 
     fn predict(
         &self,
-        _ws: &mut CableWorkspace,
+        ws: &mut CableWorkspace,
         prev: &State,
         trial: &mut State,
         h: f64,
@@ -124,6 +130,18 @@ impl StepEquations for CableModel {
         }
         if self.cable.ends_fixed[0] {
             trial.config.x[0] = origin + target.displacement;
+        }
+        if let (Some(sea), Some(water)) = (&self.sea, ws.water.as_mut()) {
+            // the waves at the predicted midpoint's Gauss points at t_n + h/2 (§13.6)
+            let (x0, x1) = (&prev.config.x, &trial.config.x);
+            for e in 0..n {
+                let (a, b) = ((x0[e] + x1[e]) * 0.5, (x0[e + 1] + x1[e + 1]) * 0.5);
+                for g in 0..4 {
+                    let xi = crate::math::shape::GAUSS4.xi[g];
+                    water.points[4 * e + g] = a * (1.0 - xi) + b * xi;
+                }
+            }
+            water.evaluate(sea, prev.time + 0.5 * h);
         }
     }
 
@@ -165,8 +183,11 @@ impl StepEquations for CableModel {
             ws.vnew[n] = V3::zeros();
         }
         let k_inertia = 2.0 / (h * h);
-        let fluid_active = !self.fluid.is_inert();
+        let fluid_active = !self.fluid.is_inert_in(ws.water.is_some());
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
+        // a surface that moves sweeps the band of heights z_s ± max |η|
+        let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+        ws.surface_wave_work = 0.0;
         let mut ke = SMatrix::<f64, 6, 6>::zeros();
         for e in 0..n {
             let (a, b) = (e, e + 1);
@@ -207,6 +228,7 @@ impl StepEquations for CableModel {
                 ws.end_accel[1] = [acc[0], acc[1], V3::zeros(), V3::zeros()];
             }
             // water at the midpoint, v½ = Δx/h, added mass with the step's acceleration (§5.4)
+            let water = ws.water.as_ref().map(|w| &w.at[e]);
             if fluid_active {
                 let xm = [(x0[a] + x1[a]) * 0.5, (x0[b] + x1[b]) * 0.5];
                 let vm = [(x1[a] - x0[a]) / h, (x1[b] - x0[b]) / h];
@@ -217,6 +239,7 @@ impl StepEquations for CableModel {
                     &xm,
                     &vm,
                     &acc,
+                    water,
                     cable.s_node(e),
                     cable.l,
                     fac,
@@ -254,17 +277,19 @@ impl StepEquations for CableModel {
             }
             // the free surface: the emerged part's buoyancy taken off (§10)
             if let Some(fs) = &fluid.surface
-                && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], 0.0)
+                && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], sweep)
             {
                 let mut fsv = [V3::zeros(); 2];
                 let mut ks = [[M3::zeros(); 2]; 2];
                 let k = if tangent { Some(&mut ks) } else { None };
-                surface::element_step_force(
+                let eta = water.map(|w| move |xi: f64| w.elevation_at(xi));
+                ws.surface_wave_work += surface::element_step_force(
                     fs,
                     &[x0[a], x0[b]],
                     &[x1[a], x1[b]],
                     surface::linear,
                     cable.l,
+                    eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64),
                     &mut fsv,
                     k,
                 );
@@ -332,7 +357,7 @@ impl StepEquations for CableModel {
         let dx0 = x1[0] - x0[0];
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
-        trial.work_hydro += w_hydro;
+        trial.work_hydro += w_hydro + ws.surface_wave_work;
         if !ws.seabed.is_empty() {
             trial.work_seabed += (0..=self.cable.n_el).map(|a| (x1[a] - x0[a]).dot(&node(&ws.seabed, a))).sum::<f64>();
         }
@@ -384,7 +409,12 @@ impl CableModel {
             let acc = &s.end_accel[end];
             let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
             f += acc[0] * mass[row][0] + acc[1] * mass[row][1];
-            if !fluid.is_inert() {
+            // the waves at the state (§13.6)
+            let water = self.sea.as_ref().map(|sea| {
+                let xi = crate::math::shape::GAUSS4.xi;
+                water_at(sea, &xi.map(|xi| x[e] * (1.0 - xi) + x[e + 1] * xi), s.time)
+            });
+            if !fluid.is_inert_in(water.is_some()) {
                 let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
                 let mut ff = [V3::zeros(); 2];
                 segment_fluid_force(
@@ -392,6 +422,7 @@ impl CableModel {
                     &[x[e], x[e + 1]],
                     &[s.vel[e], s.vel[e + 1]],
                     &[acc[0], acc[1]],
+                    water.as_ref(),
                     c.s_node(e),
                     c.l,
                     fac,
@@ -402,7 +433,9 @@ impl CableModel {
             }
             if let Some(fsurf) = &fluid.surface {
                 let mut fs = [V3::zeros(); 2];
-                surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, &mut fs, None);
+                let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
+                let eta = eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64);
+                surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, eta, &mut fs, None);
                 f -= fs[row];
             }
             if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {

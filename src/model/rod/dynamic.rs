@@ -5,6 +5,7 @@ use super::mass::ElementMass;
 use super::statics::vertical_load_vector;
 use super::{Rod, of_properties};
 use crate::loads::seabed::{self, Seabed};
+use crate::loads::waves::Sea;
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::{M3, V3};
@@ -26,6 +27,8 @@ pub struct RodModel {
     pub seabed: Option<PerElement<Seabed>>,
     /// Consistent nodal vector of the vertical load, N (and N m on r' rows).
     f_grav: Vec<f64>,
+    /// The sea whose waves act on the line (None: still water; §13.6).
+    pub sea: Option<Sea>,
 }
 
 impl RodModel {
@@ -35,12 +38,18 @@ impl RodModel {
         let n = rod.n_el;
         let mass = PerElement::uniform(ElementMass::new(mass_per_length, rotary, rod.h), n);
         let f_grav = vertical_load_vector(&rod, &vertical);
-        RodModel { rod, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav }
+        RodModel { rod, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav, sea: None }
     }
 
     /// The same line on a uniform seabed.
     pub fn with_seabed(mut self, seabed: Option<Seabed>) -> Self {
         self.seabed = seabed.map(|b| PerElement::uniform(b, self.rod.n_el));
+        self
+    }
+
+    /// The same line in the waves of `sea` (None: still water).
+    pub fn with_sea(mut self, sea: Option<Sea>) -> Self {
+        self.sea = sea;
         self
     }
 
@@ -58,7 +67,7 @@ impl RodModel {
         let f_grav = vertical_load_vector(&rod, &vertical);
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
-        RodModel { rod, mass, vertical, fluid, seabed, f_grav }
+        RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None }
     }
 
     /// Largest mass per length with the added mass, kg/m.

@@ -2,7 +2,7 @@
 
 use super::element::{self, ElVec, ElemDofs, Factors};
 use super::{Rod, RodModel};
-use crate::loads::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss};
+use crate::loads::fluid::{FluidFactors, FluidFields, element_fluid_force, hermite_at_gauss, water_at};
 use crate::loads::{seabed, surface};
 use crate::math::V3;
 use crate::model::State;
@@ -41,14 +41,20 @@ impl RodModel {
             for m in 0..4 {
                 f += acc[m] * mass.centre[k][m];
             }
-            if !fluid.is_inert() {
+            // the waves at the state (§13.6)
+            let shapes = hermite_at_gauss(rod.h);
+            let water = self.sea.as_ref().map(|sea| {
+                let points = shapes.map(|(n, _)| (0..4).map(|k| el.c[k] * n[k]).sum::<V3>());
+                water_at(sea, &points, s.time)
+            });
+            if !fluid.is_inert_in(water.is_some()) {
                 let mut ff = [V3::zeros(); 4];
                 let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
                 let v = s.hermite_velocity(e);
                 element_fluid_force(
                     fluid,
-                    FluidFields { c: &el.c, v: &v, a: acc },
-                    &hermite_at_gauss(rod.h),
+                    FluidFields { c: &el.c, v: &v, a: acc, water: water.as_ref() },
+                    &shapes,
                     rod.s_node(e),
                     rod.h,
                     fac,
@@ -59,11 +65,13 @@ impl RodModel {
             }
             if let Some(fsurf) = &fluid.surface {
                 let mut fs = [V3::zeros(); 4];
+                let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
                 surface::element_static_force(
                     fsurf,
                     &el.c,
                     |xi| crate::math::shape::hermite(xi, rod.h),
                     rod.h,
+                    eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64),
                     &mut fs,
                     None,
                 );

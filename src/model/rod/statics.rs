@@ -194,7 +194,7 @@ pub fn add_static_surface(
     let skip = |e: usize, c: &[V3; 4]| s.at(e).hermite_below(c, rod.h);
     let shape = |xi| crate::math::shape::hermite(xi, rod.h);
     let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
-        surface::element_static_force(s.at(e), c, shape, rod.h, f, k)
+        surface::element_static_force(s.at(e), c, shape, rod.h, None, f, k)
     };
     add_element_loads(rod, cfg, skip, element, r, sys);
 }

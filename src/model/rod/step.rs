@@ -11,7 +11,8 @@
 
 use super::RodModel;
 use crate::loads::fluid::{
-    FluidFactors, FluidFields, HermiteAtGauss, element_fluid_force, gauss_point_fluid_force, hermite_at_gauss,
+    FluidFactors, FluidFields, FrozenWater, HermiteAtGauss, element_fluid_force, gauss_point_fluid_force,
+    hermite_at_gauss,
 };
 use crate::loads::{seabed, surface};
 use crate::math::band::LinearSolveError;
@@ -29,6 +30,11 @@ use crate::model::{DynamicOptions, HangOff, Linear, State, StepEquations, inerti
 pub struct RodWorkspace {
     /// Global fluid force vector (centreline rows), N.
     fluid: Vec<f64>,
+    /// The waves' motion at the Gauss points, held over the step (None:
+    /// still water), and the work of the moving surface on the line over
+    /// the step at the last trial configuration, J (§13.6).
+    water: Option<FrozenWater>,
+    surface_wave_work: f64,
     /// Global force vector of the seabed's damping and friction, N (§9).
     seabed: Vec<f64>,
     /// Candidate new centreline velocities.
@@ -86,6 +92,8 @@ impl StepEquations for RodModel {
         let lin = Linear::new(rod.new_system()?, fixed.clone());
         let ws = RodWorkspace {
             fluid: vec![0.0; n],
+            water: self.sea.as_ref().map(|sea| FrozenWater::new(sea, rod.n_el)),
+            surface_wave_work: 0.0,
             seabed: vec![0.0; if self.seabed.is_some() { n } else { 0 }],
             vnew: vec![V3::zeros(); rod.n_el + 1],
             vpnew: vec![V3::zeros(); rod.n_el + 1],
@@ -216,6 +224,18 @@ impl StepEquations for RodModel {
                 trial.config.d[j] = cayley(&theta_pred) * d;
             }
         }
+        if let (Some(sea), Some(water)) = (&self.sea, ws.water.as_mut()) {
+            // the waves at the predicted midpoint's Gauss points at t_n + h/2 (§13.6)
+            let sh = &ws.fluid_shapes;
+            for e in 0..rod.n_el {
+                let (c0, c1) = (ElemDofs::gather(&prev.config, e), ElemDofs::gather(&trial.config, e));
+                for g in 0..4 {
+                    let n = &sh[g].0;
+                    water.points[4 * e + g] = (0..4).map(|k| (c0.c[k] + c1.c[k]) * (0.5 * n[k])).sum();
+                }
+            }
+            water.evaluate(sea, prev.time + 0.5 * h);
+        }
     }
 
     fn residual_roundoff(&self, cfg: &RodConfig, h: f64) -> f64 {
@@ -263,8 +283,11 @@ impl StepEquations for RodModel {
         let k_inertia = 2.0 / (h * h);
         // (multiplications by 1/h in the element loop: a division costs several)
         let inv_h = 1.0 / h;
-        let fluid_active = !model.fluid.is_inert();
+        let fluid_active = !model.fluid.is_inert_in(buf.water.is_some());
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
+        // a surface that moves sweeps the band of heights z_s ± max |η|
+        let sweep = model.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+        buf.surface_wave_work = 0.0;
         let mut re = ElVec::zeros();
         let mut ke = ElMat::zeros();
         // element fluid tangent (zeroed per element only when a tangent is asked)
@@ -351,6 +374,7 @@ impl StepEquations for RodModel {
                 buf.end_accel[1] = acc;
             }
             // water: drag at the midpoint with v½ = Δr/h, added mass with the step's acceleration (§5.4)
+            let water = buf.water.as_ref().map(|w| &w.at[e]);
             if fluid_active {
                 let mut ff = [V3::zeros(); 4];
                 if want_k {
@@ -361,7 +385,7 @@ impl StepEquations for RodModel {
                     kf = [[M3::zeros(); 4]; 4];
                     element_fluid_force(
                         fluid,
-                        FluidFields { c: &elm.c, v: &vm, a: &acc },
+                        FluidFields { c: &elm.c, v: &vm, a: &acc, water },
                         &buf.fluid_shapes,
                         rod.s_node(e),
                         rod.h,
@@ -377,7 +401,7 @@ impl StepEquations for RodModel {
                     let p: [V3; NGP] = std::array::from_fn(|g| km.slope(g));
                     let v: [V3; NGP] = std::array::from_fn(|g| (k1.position(g) - kn.position(g)) * inv_h);
                     let (s0, sh) = (rod.s_node(e), &buf.fluid_shapes);
-                    gauss_point_fluid_force(fluid, &x, &p, &v, &acc, sh, s0, rod.h, &mut ff);
+                    gauss_point_fluid_force(fluid, &x, &p, &v, &acc, water, sh, s0, rod.h, &mut ff);
                 }
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {
@@ -419,17 +443,19 @@ impl StepEquations for RodModel {
             // the free surface: the buoyancy of the emerged part taken off, as
             // the discrete gradient of its potential (§10)
             if let Some(fs) = &fluid.surface
-                && !(fs.hermite_below(&eln.c, rod.h) && fs.hermite_below(&el1.c, rod.h))
+                && !(fs.lowered(sweep).hermite_below(&eln.c, rod.h) && fs.lowered(sweep).hermite_below(&el1.c, rod.h))
             {
                 let mut fsv = [V3::zeros(); 4];
                 let mut kb = [[M3::zeros(); 4]; 4];
                 let k = if want_k { Some(&mut kb) } else { None };
-                surface::element_step_force(
+                let eta = water.map(|w| move |xi: f64| w.elevation_at(xi));
+                buf.surface_wave_work += surface::element_step_force(
                     fs,
                     &eln.c,
                     &el1.c,
                     |xi| crate::math::shape::hermite(xi, rod.h),
                     rod.h,
+                    eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64),
                     &mut fsv,
                     k,
                 );
@@ -589,7 +615,7 @@ impl StepEquations for RodModel {
         let dx0 = cfg1.x[0] - cfg0.x[0];
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
-        trial.work_hydro += w_hydro;
+        trial.work_hydro += w_hydro + ws.surface_wave_work;
         if !ws.seabed.is_empty() {
             let mut w = 0.0;
             for a in 0..=rod.n_el {
