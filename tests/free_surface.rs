@@ -228,7 +228,8 @@ fn largest_difference(paper: &[(f64, f64)], riser: &[(f64, f64)]) -> (f64, f64) 
 /// waves act at full height from t = 0; the paper's t = 0 is MoorDyn's t =
 /// 2T = 20 s (`t_ref = t − t_ramp`, t_ramp = 20 s), and the test compares
 /// up to MoorDyn's t = 50 s (the CSVs end at 29.9 s). MoorDyn's Froude–Krylov
-/// and added-mass force is ρV((1 + Ca) a_n + (1 + CaAx) a_t), Ca 1, CaAx 0.
+/// and added-mass force is ρV((1 + Ca) a_n + (1 + CaAx) a_t), Ca 1, CaAx 0:
+/// riser's ρA a_w + Ca ρA a_n on the water's part.
 ///
 /// **riser's sea, the same.** riser's θ = k((x − x₀) cos β + (y − y₀) sin β)
 /// − ωt + φ (docs/theory.md (13.1)), η = a cos θ, u_h = aωC cos θ: the same
@@ -238,23 +239,52 @@ fn largest_difference(paper: &[(f64, f64)], riser: &[(f64, f64)]) -> (f64, f64) 
 /// β = d, φ = MoorDyn's φ, with riser's time = MoorDyn's time (both start
 /// from the still-water statics at t = 0): `wave_phase` 230, 165, 0,
 /// `wave_direction` 0, 45, 90, `wave_ramp` 0 (full height from t = 0, as
-/// MoorDyn), the paper's t = riser's t − 20 s. `wave_stretching = none`:
-/// MoorDyn's kinematics are linear theory at the node's own depth (Wheeler
-/// would take them at ζ′ = d(ζ − η)/(d + η): at the hang-off 17 % weaker
-/// under a crest, 22 % stronger under a trough). `water_depth = 100`
-/// (MoorDyn's WtrDpth and the test's Z): riser's k = 0.0402809 rad/m from
-/// ω² = gk tanh kd with the scene's g 9.807, MoorDyn's 0.0402430 from
-/// ω²/9.81: 3.8e-3 rad (0.2°) of phase at the anchor; MoorDyn's profiles
-/// over cosh kd where riser's are over sinh kd: 0.06 % weaker. The elevation
-/// riser reports at the origin is checked against A cos(φ − ωt) to make sure
-/// the sea is MoorDyn's at the same time.
+/// MoorDyn), the paper's t = riser's t − 20 s; riser's water is frozen over
+/// a step at its midpoint, as MoorDyn's over its 0.005 s. `wave_stretching =
+/// none`: MoorDyn's kinematics are linear theory at the node's own depth
+/// (Wheeler would take them at ζ′ = d(ζ − η)/(d + η): at the hang-off 17 %
+/// weaker under a crest, 22 % stronger under a trough; it misses the paper
+/// by 1.9–2.4 kN). `water_depth = 100` (MoorDyn's WtrDpth and the test's
+/// Z): riser's k = 0.0402809 rad/m from ω² = gk tanh kd with the scene's
+/// g 9.807, MoorDyn's 0.0402430 from ω²/9.81: 3.8e-3 rad (0.2°) of phase at
+/// the anchor; MoorDyn's profiles over cosh kd where riser's are over
+/// sinh kd: 0.06 % weaker. The elevation riser reports at the origin is
+/// checked against A cos(φ − ωt) at every step, so that the sea is MoorDyn's
+/// at the same time.
+///
+/// **MoorDyn's axial damping.** line.txt's BA/-zeta = −0.5 makes MoorDyn
+/// damp the line's axial strain rate with BA = 359 035 N s (MoorDyn 2.7.2
+/// logs "damping set to 2.91512e+06 Pa-s = 359035 Ns": ζ Δl √(EA m) for its
+/// 2.5 m segments), a Kelvin–Voigt stress BA ε̇: riser's
+/// `structural_damping` η = BA/EA = 7.18e-4 s (it also damps bending and
+/// torsion, by η ω/2 = 2e-4 at the wave's frequency). The abrupt start
+/// rings the axial modes (5–11 Hz); MoorDyn's BA damps them within a second.
+/// Without it riser leaves them to ρ∞ = 0.8 (strongly damped at dt 0.05 s,
+/// hardly at dt 0.00625 s, where they still ring at 30 s), and its answer
+/// depends on the time step.
+///
+/// **Result and what it rests on.** Run through MoorDyn 2.7.2's Python
+/// wrapper (the pinned `moordyn`; `riser-tools lowe-langley` does it),
+/// MoorDyn's own test misses the paper by up to 0.82, 0.97 and 0.46 kN
+/// (cases 4, 5, 6), and riser is within 0.08, 0.07, 0.09 kN of MoorDyn over
+/// the 30 s (RMS 0.025 kN; 0.14–0.22 kN without the axial damping). The
+/// largest difference from the paper in case 5 is at t = 1.3 s, where the
+/// digitised curve rises 1.55 kN in 0.1 s between neighbours 0.15 and
+/// 0.48 kN apart: MoorDyn is 0.97 kN below it there and riser 1.006 kN
+/// (0.995 and 0.999 kN at dt 0.025 and 0.0125 s, so 0.007 kN of it is the
+/// 0.05 s step). This test, at the scene's dt 0.05 s, therefore fails on
+/// that one point by 0.006 kN; every other of the 888 points is within
+/// 0.81 kN. The 1 kN acceptance is MoorDyn's and is kept.
 #[test]
 fn the_lowe_langley_jumper_in_waves_matches_the_paper_within_1_kn() {
     use riser::math::V3;
     let dir = env!("CARGO_MANIFEST_DIR");
     let (a, period, t_ref0) = (5.0, 10.0, 20.0);
+    // MoorDyn's BA = 359 035 N s over EA = 5e8 N
+    let eta = 359_035.0 / 5.0e8;
     let omega = 2.0 * std::f64::consts::PI / period;
     let still = |_t: f64| riser::model::HangOff { displacement: V3::zeros(), velocity: V3::zeros() };
+    let mut failures = vec![];
     for (case, direction, phase) in [(4, 0.0, 230.0_f64), (5, 45.0, 165.0), (6, 90.0, 0.0)] {
         let sets = [
             "wave_kind=airy".to_string(),
@@ -265,6 +295,7 @@ fn the_lowe_langley_jumper_in_waves_matches_the_paper_within_1_kn() {
             "wave_ramp=0".to_string(),
             "wave_stretching=none".to_string(),
             "water_depth=100".to_string(),
+            format!("structural_damping={eta}"),
         ];
         let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
         let sc =
@@ -287,8 +318,11 @@ fn the_lowe_langley_jumper_in_waves_matches_the_paper_within_1_kn() {
         println!(
             "case {case} (waves at {direction}°, phase {phase}°): largest difference from the paper {diff:.3} kN (t = {at} s)"
         );
-        assert!(diff <= 1.0, "case {case}: {diff} kN at t = {at} s");
+        if diff > 1.0 {
+            failures.push(format!("case {case}: {diff:.3} kN at t = {at} s"));
+        }
     }
+    assert!(failures.is_empty(), "over 1 kN from the paper: {}", failures.join("; "));
 }
 
 /// The modes take the added mass of the submerged part only: a taut
