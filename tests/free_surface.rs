@@ -258,10 +258,12 @@ fn largest_difference(paper: &[(f64, f64)], riser: &[(f64, f64)]) -> (f64, f64) 
 /// 2.5 m segments), a Kelvin–Voigt stress BA ε̇: riser's
 /// `structural_damping` η = BA/EA = 7.18e-4 s (it also damps bending and
 /// torsion, by η ω/2 = 2e-4 at the wave's frequency). The abrupt start
-/// rings the axial modes (5–11 Hz); MoorDyn's BA damps them within a second.
-/// Without it riser leaves them to ρ∞ = 0.8 (strongly damped at dt 0.05 s,
-/// hardly at dt 0.00625 s, where they still ring at 30 s), and its answer
-/// depends on the time step.
+/// rings the line's axial modes (10.6 Hz the strongest), which MoorDyn's BA
+/// damps by η ω/2 = 2.4 % (a decay time of 0.6 s). Without it riser leaves
+/// them to ρ∞ = 0.8 (strongly damped at dt 0.05 s, hardly at dt 0.00625 s,
+/// where they still ring, tens of kN, at t = 50 s), and its answer depends
+/// on the time step (case 5 at t = 1.3 s: 0.86, 1.01, 0.94, 1.59 kN at dt
+/// 0.1, 0.05, 0.025, 0.0125 s).
 ///
 /// **Result and what it rests on.** Run through MoorDyn 2.7.2's Python
 /// wrapper (the pinned `moordyn`; `riser-tools lowe-langley` does it),
