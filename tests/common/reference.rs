@@ -993,6 +993,91 @@ pub fn airy_kinematics(a: f64, omega: f64, k: f64, depth: f64, theta: f64, zeta:
     [u, w, du, dw]
 }
 
+/// The amplitudes of the horizontal Morison force on a fixed vertical
+/// cylinder in a regular linear wave, [`morison_vertical_cylinder`]: the
+/// force (N, along the wave's direction) at the phase θ is
+///
+///   F(θ) = F_I sin θ + F_D cos θ |cos θ|
+///
+/// (θ = k x' − ω t + φ at the cylinder's axis, so that η = a cos θ there).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MorisonAmplitudes {
+    /// F_I, N: amplitude of the inertia force C_M ρ A ∫ ∂u/∂t dz.
+    pub inertia: f64,
+    /// F_D, N: amplitude of the drag force ½ ρ C_D D ∫ u|u| dz.
+    pub drag: f64,
+}
+
+impl MorisonAmplitudes {
+    /// The force at the phase θ, N: F_I sin θ + F_D cos θ |cos θ|.
+    pub fn at(&self, theta: f64) -> f64 {
+        self.inertia * theta.sin() + self.drag * theta.cos() * theta.cos().abs()
+    }
+
+    /// The force's first harmonic in θ, (A₁, B₁) with F ≈ A₁ sin θ + B₁ cos θ
+    /// plus higher odd harmonics, N: A₁ = F_I and B₁ = 8/(3π) F_D, from the
+    /// Fourier series
+    ///
+    ///   cos θ |cos θ| = (8/3π) cos θ + (8/15π) cos 3θ − (8/105π) cos 5θ + …
+    ///
+    /// ((1/π) ∫ cos θ |cos θ| cos θ dθ over a period is (2/π) ∫ cos³ θ dθ
+    /// over (−π/2, π/2), that is (2/π)(4/3)).
+    pub fn first_harmonic(&self) -> (f64, f64) {
+        (self.inertia, 8.0 / (3.0 * PI) * self.drag)
+    }
+}
+
+/// Morison's horizontal force on a fixed, rigid vertical cylinder of
+/// diameter `diameter` (m) from the height `z_bot` to `z_top` (m above the
+/// mean level, −d ≤ z_bot < z_top ≤ 0: the whole length below the trough,
+/// where linear theory holds without stretching) in the linear wave of
+/// amplitude `a` (m), circular frequency `omega`, wave number `k` and depth
+/// `depth` d (m) of [`airy_kinematics`], water density `rho` (kg/m³),
+/// inertia coefficient `cm` (C_M = 1 + C_a) and drag coefficient `cd`.
+///
+/// With g = ω²/(k tanh kd) from the dispersion relation, the horizontal
+/// velocity and acceleration on the axis are (s = z + d)
+///
+///   u = a ω cosh(k s)/sinh(kd) cos θ,   ∂u/∂t = a ω² cosh(k s)/sinh(kd) sin θ
+///
+/// (the potential's a g k/(ω cosh kd) is a ω/sinh kd, since g k tanh kd =
+/// ω²), all at one phase θ along the axis, so that u|u| = U(z)² cos θ |cos θ|
+/// and the depth integrals separate from time. With A = π D²/4,
+///
+///   F_I = C_M ρ A a ω² ∫ cosh(k s) ds / sinh kd
+///       = C_M ρ A a ω² [sinh(k s_t) − sinh(k s_b)] / (k sinh kd),
+///   F_D = ½ ρ C_D D (a ω/sinh kd)² ∫ cosh²(k s) ds
+///       = ½ ρ C_D D (a ω/sinh kd)² [s/2 + sinh(2 k s)/(4k)] from s_b to s_t,
+///
+/// s_b = z_bot + d, s_t = z_top + d (∫ cosh² = ∫ (1 + cosh 2ks)/2). The
+/// forces per unit length integrated are Morison's for a fixed cylinder:
+/// C_M ρ A ∂u/∂t (Froude–Krylov ρ A ∂u/∂t plus added mass C_a ρ A ∂u/∂t)
+/// and ½ ρ C_D D u|u|; the convective acceleration and the vertical
+/// velocity (along the axis) do not enter at first order.
+#[allow(clippy::too_many_arguments)]
+pub fn morison_vertical_cylinder(
+    a: f64,
+    omega: f64,
+    k: f64,
+    depth: f64,
+    diameter: f64,
+    z_bot: f64,
+    z_top: f64,
+    rho: f64,
+    cm: f64,
+    cd: f64,
+) -> MorisonAmplitudes {
+    assert!(-depth <= z_bot && z_bot < z_top && z_top <= 0.0, "the cylinder is in the water column");
+    let (sb, st) = (z_bot + depth, z_top + depth);
+    let skd = (k * depth).sinh();
+    let area = PI * diameter * diameter / 4.0;
+    let int_cosh = ((k * st).sinh() - (k * sb).sinh()) / k;
+    let int_cosh2 = |s: f64| s / 2.0 + (2.0 * k * s).sinh() / (4.0 * k);
+    let inertia = cm * rho * area * a * omega * omega * int_cosh / skd;
+    let drag = 0.5 * rho * cd * diameter * (a * omega / skd).powi(2) * (int_cosh2(st) - int_cosh2(sb));
+    MorisonAmplitudes { inertia, drag }
+}
+
 /// JONSWAP's spectral density (m²/Hz) at f (Hz) for Hs, Tp, γ, with the
 /// constant α fixed by its own integral: S = α f⁻⁵ exp(−1.25 (f_p/f)⁴) γ^r,
 /// r = exp(−(f − f_p)²/(2 σ² f_p²)), σ = 0.07 below the peak and 0.09 above,
