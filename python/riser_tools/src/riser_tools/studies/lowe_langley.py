@@ -37,7 +37,7 @@ surface 5 m above it). Runs (each from the static state):
   MoorDyn's x and y, riser's time = MoorDyn's, the paper's t = t - 20 s; the
   reasoning is in tests/free_surface.rs), and for case 5 the variants
   without the axial damping, Wheeler stretching, a 10 s ramp, dt 0.025 and
-  0.0125 s, 68 elements. A binary that refuses waves (before the water's
+  0.0125 s, 68 elements, deep water. A binary that refuses waves (before the water's
   force with waves) lists them as not run;
 * cases 4-6 through MoorDyn itself (the pinned Python package `moordyn`,
   when it imports): the test's `case456` ported line for line (LINE_TXT,
@@ -381,6 +381,7 @@ def main(argv=None):
         ("case5_dt025", "dt 0.025 s", ["time_step=0.025"]),
         ("case5_dt0125", "dt 0.0125 s", ["time_step=0.0125"]),
         ("case5_68", "68 elements (MoorDyn's segments)", ["n_elements=68"]),
+        ("case5_deep", "deep-water kinematics (`water_depth=0`: k = ω²/g, profiles e^kζ), not MoorDyn's", ["water_depth=0"]),
     ]
     wvar = {}
     if waves[5] is not None:
