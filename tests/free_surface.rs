@@ -156,25 +156,9 @@ fn the_lowe_langley_jumper_matches_the_paper_within_1_kn() {
         out
     };
     let worst = |case: usize, riser: &[(f64, f64)]| {
-        let paper: Vec<(f64, f64)> =
-            std::fs::read_to_string(format!("{dir}/docs/cases/lowe_langley_2006_case{case}.csv"))
-                .unwrap()
-                .lines()
-                .filter_map(|l| {
-                    let (t, kn) = l.split_once(',')?;
-                    Some((t.trim().parse().ok()?, kn.trim().parse().ok()?))
-                })
-                .collect();
+        let paper = lowe_langley_paper(case);
         assert!(paper.len() > 700);
-        paper
-            .iter()
-            .map(|&(t, kn): &(f64, f64)| {
-                let i = riser.partition_point(|p| p.0 < t).clamp(1, riser.len() - 1);
-                let (a, b) = (riser[i - 1], riser[i]);
-                let here = a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0);
-                ((here - kn).abs(), t)
-            })
-            .fold((0.0, 0.0), |m, x| if x.0 > m.0 { x } else { m })
+        largest_difference(&paper, riser)
     };
     for (case, name, axis) in [(1, "surge", V3::x()), (2, "sway", V3::y()), (3, "heave", V3::z())] {
         let (with, at) = worst(case, &run(axis, &[]));
@@ -184,6 +168,165 @@ fn the_lowe_langley_jumper_matches_the_paper_within_1_kn() {
     let (without, at) = worst(3, &run(V3::z(), &["water_surface_z=1000"]));
     println!("heave fully submerged: {without:.3} kN (t = {at} s)");
     assert!(without > 3.0, "without the free surface the line still matches: {without} kN");
+}
+
+/// The paper's top tension of Lowe & Langley case `case` (s after MoorDyn's
+/// ramp, kN), as MoorDyn's test suite digitised it.
+fn lowe_langley_paper(case: usize) -> Vec<(f64, f64)> {
+    let dir = env!("CARGO_MANIFEST_DIR");
+    std::fs::read_to_string(format!("{dir}/docs/cases/lowe_langley_2006_case{case}.csv"))
+        .unwrap()
+        .lines()
+        .filter_map(|l| {
+            let (t, kn) = l.split_once(',')?;
+            Some((t.trim().parse().ok()?, kn.trim().parse().ok()?))
+        })
+        .collect()
+}
+
+/// The largest |riser − paper| over the paper's points (riser's series
+/// interpolated linearly between its steps) and the time where it is.
+fn largest_difference(paper: &[(f64, f64)], riser: &[(f64, f64)]) -> (f64, f64) {
+    paper
+        .iter()
+        .map(|&(t, kn)| {
+            let i = riser.partition_point(|p| p.0 < t).clamp(1, riser.len() - 1);
+            let (a, b) = (riser[i - 1], riser[i]);
+            let here = a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0);
+            ((here - kn).abs(), t)
+        })
+        .fold((0.0, 0.0), |m, x| if x.0 > m.0 { x } else { m })
+}
+
+/// The Lowe & Langley (OMAE 2006) jumper in regular waves, the hang-off
+/// still: MoorDyn's test cases 4–6 (FloatingArrayDesign/MoorDyn at
+/// 319ff99771cffb835fea4423306a0849692afd53, tests/lowe_and_langley_2006.cpp,
+/// `case456`; the paper's digitised top tension
+/// tests/Mooring/lowe_and_langley_2006/Case {4,5,6}.csv copied unchanged to
+/// docs/cases/lowe_langley_2006_case{4,5,6}.csv: 297, 292, 299 points, every
+/// 0.1 s over [0, 29.9] s with a few gaps), against the paper at every point
+/// with MoorDyn's own acceptance of 1 kN.
+///
+/// **MoorDyn's sea.** line.txt has `WaveKin 1`: the test computes the
+/// kinematics itself (its `wave()`) and hands them to MoorDyn
+/// (`MoorDyn_ExternalWaveKinSet`) at every node, every 0.005 s step, at the
+/// step's midpoint t + dt/2. No elevation is handed over, so MoorDyn's
+/// surface stays at z = 0 (irrelevant here: the line never rises above
+/// 5 m below the mean level, and no trough goes lower than that). The wave
+/// is linear, amplitude A = 5 m (H 10 m), T = 10 s, deep-water wave number
+/// k = ω²/9.81, the depth profile cosh k(z + 100)/cosh(100 k) (u, ∂u/∂t)
+/// and sinh k(z + 100)/cosh(100 k) (w, ∂w/∂t) at the node's own z (no
+/// stretching), and
+///
+///     θ = k (x cos d + y sin d) − ω t + φ,   u_h = ωA C cos θ, w = ωA S sin θ,
+///
+/// i.e. η = A cos θ, with (x, y) MoorDyn's (fairlead at (0, 0, −5), anchor at
+/// (−100, 0, −55)), t MoorDyn's time from the static state (t = 0, no
+/// fairlead motion), d = 0°, 45°, 90° for cases 4, 5, 6 (the direction of
+/// travel, from +x towards +y), and φ = 230°, 165°, 0° (the test's phases,
+/// chosen there to line the sea up with the paper's clock). **No ramp**: the
+/// waves act at full height from t = 0; the paper's t = 0 is MoorDyn's t =
+/// 2T = 20 s (`t_ref = t − t_ramp`, t_ramp = 20 s), and the test compares
+/// up to MoorDyn's t = 50 s (the CSVs end at 29.9 s). MoorDyn's Froude–Krylov
+/// and added-mass force is ρV((1 + Ca) a_n + (1 + CaAx) a_t), Ca 1, CaAx 0:
+/// riser's ρA a_w + Ca ρA a_n on the water's part.
+///
+/// **riser's sea, the same.** riser's θ = k((x − x₀) cos β + (y − y₀) sin β)
+/// − ωt + φ (docs/theory.md (13.1)), η = a cos θ, u_h = aωC cos θ: the same
+/// form as MoorDyn's. The scene puts the hang-off at the origin with MoorDyn's
+/// x and y (only z is shifted, by +5 m, and the surface is at z = +5), so
+/// the phase origin (x₀, y₀) = (0, 0) (the default) is MoorDyn's (0, 0), and
+/// β = d, φ = MoorDyn's φ, with riser's time = MoorDyn's time (both start
+/// from the still-water statics at t = 0): `wave_phase` 230, 165, 0,
+/// `wave_direction` 0, 45, 90, `wave_ramp` 0 (full height from t = 0, as
+/// MoorDyn), the paper's t = riser's t − 20 s; riser's water is frozen over
+/// a step at its midpoint, as MoorDyn's over its 0.005 s. `wave_stretching =
+/// none`: MoorDyn's kinematics are linear theory at the node's own depth
+/// (Wheeler would take them at ζ′ = d(ζ − η)/(d + η): at the hang-off 17 %
+/// weaker under a crest, 22 % stronger under a trough; it misses the paper
+/// by 1.9–2.4 kN). `water_depth = 100` (MoorDyn's WtrDpth and the test's
+/// Z): riser's k = 0.0402809 rad/m from ω² = gk tanh kd with the scene's
+/// g 9.807, MoorDyn's 0.0402430 from ω²/9.81: 3.8e-3 rad (0.2°) of phase at
+/// the anchor; MoorDyn's profiles over cosh kd where riser's are over
+/// sinh kd: 0.06 % weaker. The elevation riser reports at the origin is
+/// checked against A cos(φ − ωt) at every step, so that the sea is MoorDyn's
+/// at the same time.
+///
+/// **MoorDyn's axial damping.** line.txt's BA/-zeta = −0.5 makes MoorDyn
+/// damp the line's axial strain rate with BA = 359 035 N s (MoorDyn 2.7.2
+/// logs "damping set to 2.91512e+06 Pa-s = 359035 Ns": ζ Δl √(EA m) for its
+/// 2.5 m segments), a Kelvin–Voigt stress BA ε̇: riser's
+/// `structural_damping` η = BA/EA = 7.18e-4 s (it also damps bending and
+/// torsion, by η ω/2 = 2e-4 at the wave's frequency). The abrupt start
+/// rings the line's axial modes (10.6 Hz the strongest), which MoorDyn's BA
+/// damps by η ω/2 = 2.4 % (a decay time of 0.6 s). Without it riser leaves
+/// them to ρ∞ = 0.8 (strongly damped at dt 0.05 s, hardly at dt 0.00625 s,
+/// where they still ring, tens of kN, at t = 50 s), and its answer depends
+/// on the time step (case 5 at t = 1.3 s: 0.86, 1.01, 0.94, 1.59 kN at dt
+/// 0.1, 0.05, 0.025, 0.0125 s).
+///
+/// **Result and what it rests on.** Run through MoorDyn 2.7.2's Python
+/// wrapper (the pinned `moordyn`; `riser-tools lowe-langley` does it),
+/// MoorDyn's own test misses the paper by up to 0.82, 0.97 and 0.46 kN
+/// (cases 4, 5, 6), and riser is within 0.08, 0.07, 0.09 kN of MoorDyn over
+/// the 30 s (RMS 0.025 kN; 0.14–0.22 kN without the axial damping). The
+/// largest difference from the paper in case 5 is at t = 1.3 s, where the
+/// digitised curve rises 1.55 kN in 0.1 s between neighbours 0.15 and
+/// 0.48 kN apart: MoorDyn is 0.97 kN below it there and riser 1.006 kN
+/// (0.995 and 0.999 kN at dt 0.025 and 0.0125 s, so 0.007 kN of it is the
+/// 0.05 s step). This test, at the scene's dt 0.05 s, therefore fails on
+/// that one point by 0.006 kN; every other of the 888 points is within
+/// 0.81 kN. The 1 kN acceptance is MoorDyn's and is kept. Deep-water
+/// kinematics (`water_depth = 0`) would pass (0.985 kN there) but leave
+/// MoorDyn's sea (0.26–0.31 kN from MoorDyn, RMS 0.15 kN): not adopted.
+#[test]
+fn the_lowe_langley_jumper_in_waves_matches_the_paper_within_1_kn() {
+    use riser::math::V3;
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let (a, period, t_ref0) = (5.0, 10.0, 20.0);
+    // MoorDyn's BA = 359 035 N s over EA = 5e8 N
+    let eta = 359_035.0 / 5.0e8;
+    let omega = 2.0 * std::f64::consts::PI / period;
+    let still = |_t: f64| riser::model::HangOff { displacement: V3::zeros(), velocity: V3::zeros() };
+    let mut failures = vec![];
+    for (case, direction, phase) in [(4, 0.0, 230.0_f64), (5, 45.0, 165.0), (6, 90.0, 0.0)] {
+        let sets = [
+            "wave_kind=airy".to_string(),
+            format!("wave_height={}", 2.0 * a),
+            format!("wave_period={period}"),
+            format!("wave_direction={direction}"),
+            format!("wave_phase={phase}"),
+            "wave_ramp=0".to_string(),
+            "wave_stretching=none".to_string(),
+            "water_depth=100".to_string(),
+            format!("structural_damping={eta}"),
+        ];
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        let sc =
+            Scene::load(&format!("{dir}/docs/cases/lowe_langley_jumper.toml")).unwrap().with_overrides(&sets).unwrap();
+        let mut sim = Simulation::from_scene(&sc).unwrap();
+        sim.start(still(0.0));
+        let mut riser = vec![];
+        let mut worst_eta: f64 = 0.0;
+        for k in 1..=((t_ref0 + 30.0) / 0.05_f64).round() as usize {
+            let t = k as f64 * 0.05;
+            sim.advance_to(t, &still).unwrap();
+            let o = sim.outputs();
+            worst_eta = worst_eta.max((o.wave_elevation - a * (phase.to_radians() - omega * t).cos()).abs());
+            riser.push((t - t_ref0, o.top_tension / 1e3));
+        }
+        assert!(worst_eta < 1e-9, "case {case}: the elevation at the origin is not MoorDyn's: {worst_eta:e} m off");
+        let paper = lowe_langley_paper(case);
+        assert!(paper.len() > 280);
+        let (diff, at) = largest_difference(&paper, &riser);
+        println!(
+            "case {case} (waves at {direction}°, phase {phase}°): largest difference from the paper {diff:.3} kN (t = {at} s)"
+        );
+        if diff > 1.0 {
+            failures.push(format!("case {case}: {diff:.3} kN at t = {at} s"));
+        }
+    }
+    assert!(failures.is_empty(), "over 1 kN from the paper: {}", failures.join("; "));
 }
 
 /// The modes take the added mass of the submerged part only: a taut
