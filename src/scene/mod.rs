@@ -356,6 +356,20 @@ pub enum HangOffEnd {
     /// Position follows the vessel; the end's orientation held at its
     /// static one (a stiff connection, the rod only).
     Clamped,
+    /// Position follows the vessel; a rotational spring in bending
+    /// (`[hang_off] stiffness` or `table`), torsionally stiff, between the
+    /// vessel and the end (the rod only).
+    FlexJoint,
+}
+
+impl HangOffEnd {
+    pub fn name(self) -> &'static str {
+        match self {
+            HangOffEnd::Pinned => "pinned",
+            HangOffEnd::Clamped => "clamped",
+            HangOffEnd::FlexJoint => "flex_joint",
+        }
+    }
 }
 
 /// The order in which roll, pitch and yaw compose the vessel's rotation
@@ -400,6 +414,56 @@ pub struct HangOffSpec {
     /// How the vessel's roll, pitch and yaw compose its rotation.
     #[serde(default, skip_serializing_if = "is_default_order")]
     pub rotation_order: RotationOrderSpec,
+    /// A flex joint's bending stiffness, N m/rad (`end = "flex_joint"`;
+    /// ignored by the other ends).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// A flex joint's bending moment against its angle, rows [angle rad,
+    /// moment N m] from [0, 0], as vendors give it (instead of `stiffness`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<Vec<[f64; 2]>>,
+}
+
+/// Checks a flex joint's table of [angle rad, moment N m]: at least two
+/// rows, the first (0, 0), finite, angles increasing below π, moments
+/// non-decreasing (a joint that softens to nothing is allowed, one that
+/// pushes back less as it turns further is not).
+pub fn check_joint_table(rows: &[[f64; 2]]) -> Result<(), String> {
+    if rows.len() < 2 {
+        return Err(format!("{} row(s): a table needs at least two rows [angle rad, moment N m]", rows.len()));
+    }
+    if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| !(r[0].is_finite() && r[1].is_finite())) {
+        return Err(format!("row {i} [{}, {}] is not finite", r[0], r[1]));
+    }
+    if rows[0] != [0.0, 0.0] {
+        return Err(format!(
+            "starts at [{}, {}]: it must start at [0, 0] (no moment at no angle)",
+            rows[0][0], rows[0][1]
+        ));
+    }
+    for (i, w) in rows.windows(2).enumerate() {
+        if w[1][0] <= w[0][0] {
+            return Err(format!(
+                "angles must increase: row {} ({} rad) after row {i} ({} rad)",
+                i + 1,
+                w[1][0],
+                w[0][0]
+            ));
+        }
+        if w[1][1] < w[0][1] {
+            return Err(format!(
+                "not monotonic: the moment falls from {} N m (row {i}) to {} N m (row {})",
+                w[0][1],
+                w[1][1],
+                i + 1
+            ));
+        }
+    }
+    let last = rows[rows.len() - 1][0];
+    if last >= std::f64::consts::PI {
+        return Err(format!("angles are in radians, below pi: the last is {last}"));
+    }
+    Ok(())
 }
 
 fn is_zero3(v: &[f64; 3]) -> bool {

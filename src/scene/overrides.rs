@@ -5,9 +5,10 @@ use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpe
 use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 52] = [
+pub const PARAMETER_NAMES: [(&str, &str); 53] = [
     ("model", "rod | cable"),
-    ("hang_off_end", "pinned | clamped"),
+    ("hang_off_end", "pinned | clamped | flex_joint"),
+    ("flex_joint_stiffness", "N m/rad"),
     ("n_elements", "-"),
     ("time_step", "s"),
     ("newton_tolerance", "-"),
@@ -152,13 +153,19 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
             s.hang_off.end = match value {
                 "pinned" => super::HangOffEnd::Pinned,
                 "clamped" => super::HangOffEnd::Clamped,
+                "flex_joint" => super::HangOffEnd::FlexJoint,
                 _ => {
                     return Err(SceneError::Override {
                         name: name.into(),
-                        message: format!("'{value}' is not an end condition: pinned or clamped"),
+                        message: format!("'{value}' is not an end condition: pinned, clamped or flex_joint"),
                     });
                 }
             }
+        }
+        "flex_joint_stiffness" => {
+            // a linear joint replaces a table
+            s.hang_off.stiffness = Some(num()?);
+            s.hang_off.table = None;
         }
         "rotation_order" => {
             s.hang_off.rotation_order = match value {
@@ -273,13 +280,12 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
             Model::Rod => "rod".into(),
             Model::Cable => "cable".into(),
         }),
-        "hang_off_end" => Some(
-            match s.hang_off.end {
-                super::HangOffEnd::Pinned => "pinned",
-                super::HangOffEnd::Clamped => "clamped",
-            }
-            .into(),
-        ),
+        "hang_off_end" => Some(s.hang_off.end.name().into()),
+        // 0 where no joint is given (the FMU's start value); none for a table
+        "flex_joint_stiffness" => match (&s.hang_off.table, s.hang_off.stiffness) {
+            (Some(_), _) => None,
+            (None, k) => num(k.unwrap_or(0.0)),
+        },
         "rotation_order" => Some(s.hang_off.rotation_order.name().into()),
         "hang_off_x" => num(s.hang_off.offset[0]),
         "hang_off_y" => num(s.hang_off.offset[1]),

@@ -226,6 +226,15 @@ pub const RANGES: &[Range] = &[
         reason: OFFSET_REASON,
     },
     Range {
+        field: "hang_off.stiffness",
+        parameter: Some("flex_joint_stiffness"),
+        unit: "N m/rad",
+        min: 0.0,
+        max: 1e9,
+        reason: "0 (a pinned end) up to far beyond a flex joint's tens of kN m per degree (1.7e6 N m/rad at \
+                 30 kN m/deg), where the joint is a clamp for any line",
+    },
+    Range {
         field: "anchor.x",
         parameter: Some("anchor_x"),
         unit: "m",

@@ -148,16 +148,49 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.newton_tolerance", an.newton_tolerance);
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
-    if s.hang_off.end == super::HangOffEnd::Clamped && an.model == super::Model::Cable {
+    let end = s.hang_off.end;
+    if end != super::HangOffEnd::Pinned && an.model == super::Model::Cable {
         c.err(
             "hang_off.end",
-            "'clamped' needs the rod: the cable model has no rotations (its ends are pinned); use \
-             analysis.model = \"rod\" or hang_off.end = \"pinned\""
+            format!(
+                "'{}' needs the rod: the cable model has no rotations (its ends are pinned); use analysis.model = \
+                 \"rod\" or hang_off.end = \"pinned\"",
+                end.name()
+            ),
+        );
+    }
+    check_flex_joint(&mut c, s);
+    c.0.extend(super::waves::check(s));
+    c.0
+}
+
+/// A flex joint's law (docs/theory.md §15): a stiffness in its range or a
+/// monotonic table from (0, 0), not both; needed when the end is a flex joint.
+fn check_flex_joint(c: &mut Checker, s: &Scene) {
+    let h = &s.hang_off;
+    if let Some(k) = h.stiffness {
+        c.range("hang_off.stiffness", k);
+    }
+    if let Some(rows) = &h.table
+        && let Err(e) = super::check_joint_table(rows)
+    {
+        c.err("hang_off.table", format!("flex-joint table: {e}"));
+    }
+    if h.stiffness.is_some() && h.table.is_some() {
+        c.err(
+            "hang_off.table",
+            "a flex joint takes hang_off.stiffness (linear) or hang_off.table (moment against angle), not both"
                 .to_string(),
         );
     }
-    c.0.extend(super::waves::check(s));
-    c.0
+    if h.end == super::HangOffEnd::FlexJoint && h.stiffness.is_none() && h.table.is_none() {
+        c.err(
+            "hang_off.stiffness",
+            "hang_off.end = \"flex_joint\" needs the joint's bending stiffness: hang_off.stiffness (N m/rad; \
+             parameter flex_joint_stiffness) or hang_off.table = [[angle rad, moment N m], ...] from [0, 0]"
+                .to_string(),
+        );
+    }
 }
 
 /// Line sections (docs/theory.md §11): each key in its `[line]` range, the

@@ -97,6 +97,14 @@ impl Engine {
         engine.map_err(|e| RiserError::Unsupported(format!("cannot set up the linear solver: {e}")))
     }
 
+    /// Gives a flex joint its static frame, the end frame of the static
+    /// configuration `cfg` (§15; nothing for other ends and the cable).
+    pub fn set_static_frame(&mut self, cfg: &crate::model::RodConfig) {
+        if let Engine::Rod(i) = self {
+            i.model.set_static_frame(cfg);
+        }
+    }
+
     /// The sea the line is in (None: still water).
     pub fn sea(&self) -> Option<&Sea> {
         match self {
@@ -253,7 +261,8 @@ impl Simulation {
     /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
         let statics = solve_scene(scene)?;
-        let integrator = Engine::from_scene(scene)?;
+        let mut integrator = Engine::from_scene(scene)?;
+        integrator.set_static_frame(&statics.solution.config);
         let sea = integrator.sea().cloned();
         let state = State::at_rest(statics.solution.config.clone(), 0.0);
         let initial_energy = integrator.outputs(&state).total_energy;
@@ -300,7 +309,18 @@ impl Simulation {
     pub fn hang_off_stiffness(&self) -> Result<M3, RiserError> {
         let cfg = &self.state.config;
         let s = match &self.integrator {
-            Engine::Rod(i) => hang_off_stiffness(&RodLinearized::new(&i.model, &self.static_loads), cfg),
+            Engine::Rod(i) => {
+                // a flex joint about the vessel's frame at the state
+                let turned = i.model.joint_frame(&self.state.hang_off.rotation).map(|f| {
+                    let mut m = i.model.clone();
+                    if let Some(j) = m.rod.flex_joint.as_mut() {
+                        j.frame = Some(f);
+                    }
+                    m
+                });
+                let model = turned.as_ref().unwrap_or(&i.model);
+                hang_off_stiffness(&RodLinearized::new(model, &self.static_loads), cfg)
+            }
             Engine::Cable(i) => {
                 hang_off_stiffness(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg)
             }

@@ -133,7 +133,8 @@ pub fn scene_modes(scene: &Scene, count: usize) -> Result<ModalReport, RiserErro
     let normal = plane_normal(scene.hang_off(), scene.anchor());
     let (modes, modes_raw) = match scene.analysis.model {
         Model::Rod => {
-            let model = RodModel::from_scene(scene);
+            let mut model = RodModel::from_scene(scene);
+            model.set_static_frame(cfg);
             let line = RodLinearized::new(&model, &loads);
             let raw = lowest_modes(&line, cfg, count)?;
             (describe(&line, cfg, &raw, &normal), raw)

@@ -330,7 +330,8 @@ fn static_design(
     scene: &Scene,
     rep: &StaticReport,
 ) -> Result<(riser::sim::design::DesignNumbers, Vec<String>), String> {
-    let engine = riser::sim::Engine::from_scene(scene).map_err(|e| e.to_string())?;
+    let mut engine = riser::sim::Engine::from_scene(scene).map_err(|e| e.to_string())?;
+    engine.set_static_frame(&rep.solution.config);
     let state = riser::model::State::at_rest(rep.solution.config.clone(), 0.0);
     Ok(riser::sim::design::Design::new(scene).report(scene, &engine, &state))
 }

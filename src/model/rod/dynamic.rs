@@ -58,8 +58,10 @@ impl RodModel {
         let props = sections::element_properties(scene);
         let mut rod = of_properties(scene, &props);
         // the static state is the pinned line's; a clamp holds the end at that orientation
-        if scene.hang_off.end == crate::scene::HangOffEnd::Clamped {
-            rod.ends[0] = super::EndBc::CLAMPED;
+        match scene.hang_off.end {
+            crate::scene::HangOffEnd::Pinned => {}
+            crate::scene::HangOffEnd::Clamped => rod.ends[0] = super::EndBc::CLAMPED,
+            crate::scene::HangOffEnd::FlexJoint => rod.flex_joint = Some(flex_joint_of_scene(scene, &rod)),
         }
         let h = rod.h;
         let mass = props.map(|p| ElementMass::new(p.mass_per_length, [p.rotary_inertia; 2], h));
@@ -68,6 +70,27 @@ impl RodModel {
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
         RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None }
+    }
+
+    /// Sets the flex joint's static frame D_static (the line's end frame in
+    /// the static state, `cfg.d[0]`): the vessel's frame is R(t) D_static.
+    /// Nothing without a flex joint.
+    pub fn set_static_frame(&mut self, cfg: &RodConfig) {
+        if let Some(j) = self.rod.flex_joint.as_mut() {
+            j.frame = Some(cfg.d[0]);
+        }
+    }
+
+    /// The vessel's frame at the flex joint for the vessel's rotation R,
+    /// R D_static (None: no flex joint).
+    ///
+    /// # Panics
+    /// With a flex joint whose static frame was never set ([`RodModel::set_static_frame`]).
+    pub fn joint_frame(&self, rotation: &M3) -> Option<M3> {
+        self.rod
+            .flex_joint
+            .as_ref()
+            .map(|j| rotation * j.frame.expect("the flex joint's static frame is set (RodModel::set_static_frame)"))
     }
 
     /// Largest mass per length with the added mass, kg/m.
@@ -133,6 +156,21 @@ impl RodModel {
         (0..self.rod.n_el).map(|e| self.mass.at(e).mass_per_length() * self.rod.h).sum()
     }
 }
+
+/// The scene's flex joint (§15): its law (linear or tabulated); torsion
+/// held by k_t = 100 GJ/h of the first element (the joint twists a
+/// hundredth of what that element does under the same torque), its static
+/// frame set once the statics is known.
+pub fn flex_joint_of_scene(scene: &Scene, rod: &Rod) -> super::FlexJoint {
+    let law = match (&scene.hang_off.table, scene.hang_off.stiffness) {
+        (Some(rows), _) => super::JointLaw::table(rows),
+        (None, k) => super::JointLaw::linear(k.unwrap_or(0.0)),
+    };
+    super::FlexJoint { law, torsion: TORSION_FACTOR * rod.stiff(0)[5] / rod.h, frame: None }
+}
+
+/// k_t / (GJ/h) of the flex joint's torsion (§15).
+pub const TORSION_FACTOR: f64 = 100.0;
 
 impl State {
     /// Director rates that follow the centreline: ḋ_i = ω × d_i with

@@ -84,6 +84,9 @@ pub struct Rod {
     stiff: Vec<[f64; 6]>,
     /// Conditions at S = 0 (hang-off) and S = L (anchor).
     pub ends: [EndBc; 2],
+    /// A flex joint between the vessel and the line's end at S = 0 (its
+    /// rotation unknowns free; docs/theory.md §15).
+    pub flex_joint: Option<super::FlexJoint>,
     /// Stress-free reference configuration.
     pub reference: RodConfig,
     /// Reference strains at the Gauss points (eq. 4).
@@ -104,6 +107,7 @@ impl Rod {
             stiffness,
             stiff: vec![stiffness.diagonal(); n_el],
             ends,
+            flex_joint: None,
             reference: RodConfig { x: vec![], xp: vec![], d: vec![] },
             eps0: vec![],
             g0: vec![],

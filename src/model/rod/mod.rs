@@ -7,6 +7,7 @@ pub mod dofs;
 pub mod dynamic;
 pub mod element;
 pub mod gauss;
+pub mod joint;
 pub mod line;
 pub mod linearized;
 pub mod mass;
@@ -15,6 +16,7 @@ pub mod statics;
 mod step;
 
 pub use dynamic::RodModel;
+pub use joint::{FlexJoint, JointLaw};
 pub use line::{EndBc, Rod, RotationBc, Stiffness};
 pub use step::RodWorkspace;
 

@@ -138,6 +138,15 @@ impl RodModel {
         if self.rod.ends[0].rotation == super::RotationBc::Clamped {
             o.end_moment = self.end_moment(s);
         }
+        if let (Some(joint), Some(f)) = (&self.rod.flex_joint, self.joint_frame(&s.hang_off.rotation)) {
+            // the joint's moment on the vessel, its angle and its energy,
+            // counted as strain energy (§15)
+            o.end_moment = joint.static_moment(&cfg.d[0], &f).0;
+            o.flex_joint_angle = super::FlexJoint::angle(&cfg.d[0], &f);
+            let v = joint.energy(&cfg.d[0], &f);
+            o.strain_energy += v;
+            o.total_energy += v;
+        }
         o
     }
 

@@ -244,6 +244,23 @@ impl<'a> StaticProblem<'a> {
         if let Some(s) = &self.loads.surface {
             add_static_surface(self.rod, cfg, s, r, sys.as_deref_mut());
         }
+        // a flex joint against the vessel's frame it holds (§15)
+        if let Some(joint) = &self.rod.flex_joint
+            && let Some(f) = joint.frame
+        {
+            let (m, k) = joint.static_moment(&cfg.d[0], &f);
+            let it = Rod::theta_dof(0);
+            for a in 0..3 {
+                r[it + a] += m[a];
+            }
+            if let Some(sys) = sys.as_deref_mut() {
+                for a in 0..3 {
+                    for b in 0..3 {
+                        sys.add(it + a, it + b, k[(a, b)]);
+                    }
+                }
+            }
+        }
         self.rod.to_local_basis(cfg, r, sys);
     }
 

@@ -61,6 +61,9 @@ pub struct RodWorkspace {
     anchor_moment: V3,
     /// The same at the hang-off: the clamp's moment on the line, N m (§15).
     hang_off_moment: V3,
+    /// The work of the vessel's turn on the flex joint over the step at the
+    /// last trial configuration, J (15.4).
+    joint_work: f64,
     /// Director nodes whose twist is held (§5.6) and the Cayley vector of
     /// their step rotation, d_{n+1} = cay(θ) d_n with θ·d3_n = 0.
     twist_nodes: Vec<usize>,
@@ -110,6 +113,7 @@ impl StepEquations for RodModel {
             end_accel: [[V3::zeros(); 4]; 2],
             anchor_moment: V3::zeros(),
             hang_off_moment: V3::zeros(),
+            joint_work: 0.0,
             twist_nodes: rod.local_basis_nodes(),
             theta_step: vec![V3::zeros(); rod.local_basis_nodes().len()],
             corotated: true,
@@ -538,6 +542,27 @@ impl StepEquations for RodModel {
         buf.anchor_moment = V3::new(lin.r[it], lin.r[it + 1], lin.r[it + 2]);
         let it = Rod::theta_dof(0);
         buf.hang_off_moment = V3::new(lin.r[it], lin.r[it + 1], lin.r[it + 2]);
+        // the flex joint's discrete gradient at the end director node (15.4),
+        // between the vessel's frames R_n D_static and R_{n+1} D_static
+        if let Some(joint) = &rod.flex_joint {
+            let (f0, f1) = (
+                model.joint_frame(&prev.hang_off.rotation).unwrap_or_default(),
+                model.joint_frame(&target.rotation).unwrap_or_default(),
+            );
+            let js = joint.step(&prev.config.d[0], &cfg.d[0], &f0, &f1);
+            for c in 0..3 {
+                lin.r[it + c] += js.moment[c];
+            }
+            buf.joint_work = js.vessel_work;
+            if want_k {
+                let k = if buf.corotated { cfg.d[0].transpose() * js.tangent * cfg.d[0] } else { js.tangent };
+                for a in 0..3 {
+                    for b in 0..3 {
+                        lin.sys.add(it + a, it + b, k[(a, b)]);
+                    }
+                }
+            }
+        }
         // twist-held nodes: unknowns θ_loc with θ = D_n θ_loc, spatial increment
         // w = T(θ) D_n δθ_loc, T(θ) = 4/(4 + |θ|²) (I + ½θ̂) (the Cayley differential)
         for (k, &j) in buf.twist_nodes.iter().enumerate() {
@@ -625,6 +650,10 @@ impl StepEquations for RodModel {
         if rod.ends[0].rotation == RotationBc::Clamped {
             // the clamp turning with the vessel works through its moment (θ·m, §5.5)
             trial.work_top += cayley_vector(&(cfg1.d[0] * cfg0.d[0].transpose())).dot(&ws.hang_off_moment);
+        }
+        if rod.flex_joint.is_some() {
+            // the vessel turning the flex joint works on it (15.4)
+            trial.work_top += ws.joint_work;
         }
         trial.work_hydro += w_hydro + ws.surface_wave_work;
         if !ws.seabed.is_empty() {
