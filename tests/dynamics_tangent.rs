@@ -88,6 +88,28 @@ fn step_tangent_in_waves_through_the_moving_surface_matches_finite_differences()
     check_tangent_scene(&scene, 0.0, false, 1.0);
 }
 
+/// A flex joint at the hang-off (§15) between the vessel's frame turning over
+/// the step and the line's end, bent and twisted: linear (stiff enough,
+/// 1e8 N m/rad, to show in its rows next to the shear penalty's) and a
+/// table, in both bases.
+#[test]
+fn step_tangent_with_a_flex_joint_matches_finite_differences() {
+    let linear = Scene::builtin("catenary")
+        .unwrap()
+        .with_overrides(&["n_elements=4", "hang_off_end=flex_joint", "flex_joint_stiffness=1e8"])
+        .unwrap();
+    let text = format!(
+        "{}\n[hang_off]\nend = \"flex_joint\"\ntable = [[0.0, 0.0], [0.01, 8e5], [0.05, 1.6e6]]\n",
+        linear.to_toml().split("\n[hang_off]").next().unwrap()
+    );
+    let table = Scene::from_toml(&text, "joint.toml").unwrap();
+    assert!(table.hang_off.table.is_some());
+    for corotated in [false, true] {
+        check_tangent_scene(&linear, 0.0, corotated, 1.0);
+        check_tangent_scene(&table, 0.0, corotated, 1.0);
+    }
+}
+
 fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = Scene::builtin("catenary")
         .unwrap()
@@ -99,7 +121,8 @@ fn check_tangent_rho(eta: f64, corotated: bool, rho_infinity: f64) {
 fn check_tangent_scene(scene: &Scene, eta: f64, corotated: bool, rho_infinity: f64) {
     let scene = scene.clone();
     let report = solve_scene(&scene).unwrap();
-    let model = RodModel::from_scene(&scene).with_sea(sea_of(&scene, 0.0).unwrap());
+    let mut model = RodModel::from_scene(&scene).with_sea(sea_of(&scene, 0.0).unwrap());
+    model.set_static_frame(&report.solution.config);
     let opts =
         DynamicOptions { structural_damping: eta, corotated_tangent: corotated, rho_infinity, ..Default::default() };
     let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
@@ -116,7 +139,10 @@ fn check_tangent_scene(scene: &Scene, eta: f64, corotated: bool, rho_infinity: f
         prev.director_vel[j] = prev.config.d[j] * riser::math::skew(&V3::new(0.02, -0.01, 0.03));
     }
     let h = 0.1;
-    let target = HangOff::translation(V3::new(0.05, 0.02, 0.1), V3::new(0.3, 0.1, 0.6));
+    let mut target = HangOff::translation(V3::new(0.05, 0.02, 0.1), V3::new(0.3, 0.1, 0.6));
+    // the vessel turned, and turning over the step (a flex joint feels it)
+    prev.hang_off.rotation = riser::math::cayley(&V3::new(0.01, -0.02, 0.015));
+    target.rotation = riser::math::cayley(&V3::new(0.03, 0.01, -0.02)) * prev.hang_off.rotation;
     let mut cfg = integ.begin_step(&prev, h, target);
     // move away from the predictor so the state is generic
     let n = integ.model.rod.n_dof();
