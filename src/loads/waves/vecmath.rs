@@ -105,10 +105,12 @@ fn exp_reduced(x: f64) -> f64 {
 /// sin and cos of each of `theta` into `sin` and `cos` (at least as long):
 /// within 2e-16 of the exact values (std's where some |θ| exceeds
 /// [`SIN_COS_MAX`] or is not finite).
+#[inline(always)]
 pub(crate) fn sin_cos(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
-    if theta.iter().fold(0.0f64, |m, t| m.max(t.abs())) <= SIN_COS_MAX && theta.iter().all(|t| !t.is_nan()) {
+    // one vectorised pass (NaN compares false)
+    if theta.iter().fold(true, |ok, t| ok & (t.abs() <= SIN_COS_MAX)) {
         for i in 0..n {
             (sin[i], cos[i]) = sin_cos_reduced(theta[i]);
         }
@@ -121,10 +123,11 @@ pub(crate) fn sin_cos(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
 
 /// e^x of each of `x` into `out` (at least as long): within one ulp (std's
 /// where some |x| exceeds [`EXP_MAX`] or is not finite).
+#[inline(always)]
 pub(crate) fn exp(x: &[f64], out: &mut [f64]) {
     let n = x.len();
     let out = &mut out[..n];
-    if x.iter().fold(0.0f64, |m, t| m.max(t.abs())) <= EXP_MAX && x.iter().all(|t| !t.is_nan()) {
+    if x.iter().fold(true, |ok, t| ok & (t.abs() <= EXP_MAX)) {
         for i in 0..n {
             out[i] = exp_reduced(x[i]);
         }
