@@ -4,11 +4,13 @@
 //! against one residual of the step equations in still water (the kernel a
 //! Newton iteration evaluates once). A regular wave and JONSWAP seas of 50
 //! and 200 components, in 100 m of water and in deep water. Median of 7
-//! rounds.
+//! rounds. Two calls: `kinematics_batch` (with the velocity gradient, for a
+//! tangent) and `water_batch` (elevation, velocity and acceleration: what
+//! the force evaluates once per step).
 //!
 //! Run: `cargo bench --bench waves` (or `--profile fasttest`).
 
-use riser::loads::waves::{WavePoint, WaveScratch, sea_of};
+use riser::loads::waves::{WaterPoint, WavePoint, WaveScratch, sea_of};
 use riser::math::V3;
 use riser::scene::Scene;
 use riser::sim::{Engine, Heave, Simulation};
@@ -52,7 +54,7 @@ fn main() {
         black_box(integ.step_residual(&prev, &predicted, dt, motion(t), false));
     });
     println!("catenary, 60 elements, {} Gauss points; median of 7 rounds", points.len());
-    println!("{:<44} {:>10} {:>14}", "", "µs", "x residual");
+    println!("{:<44} {:>10} {:>14} {:>10} {:>14}", "", "kin. µs", "x residual", "water µs", "x residual");
     println!("{:<44} {:>10.1} {:>14.2}", "one residual of the step (still water)", residual, 1.0);
     let seas = [
         ("regular wave H 6 m T 10 s", "kind = \"airy\"\nheight = 6.0\nperiod = 10.0"),
@@ -73,12 +75,20 @@ fn main() {
                 sea.kinematics_batch(clock, &points, &mut out, &mut scratch);
                 black_box(&out);
             });
+            let mut water = vec![WaterPoint::STILL; points.len()];
+            let water_us = time(calls, || {
+                clock += 0.05;
+                sea.water_batch(clock, &points, &mut water, &mut scratch);
+                black_box(&water);
+            });
             let deep = out.iter().filter(|p| p.deep).count();
             println!(
-                "{:<44} {:>10.1} {:>14.2}   ({deep} points below the cutoff)",
+                "{:<44} {:>10.1} {:>14.2} {:>10.1} {:>14.2}   ({deep} points below the cutoff)",
                 format!("{name}, {depth_name}"),
                 us,
-                us / residual
+                us / residual,
+                water_us,
+                water_us / residual
             );
         }
     }
