@@ -4,11 +4,13 @@
 //! against one residual of the step equations in still water (the kernel a
 //! Newton iteration evaluates once). A regular wave and JONSWAP seas of 50
 //! and 200 components, in 100 m of water and in deep water. Median of 7
-//! rounds.
+//! rounds. Two calls: `kinematics_batch` (with the velocity gradient, for a
+//! tangent) and `water_batch` (elevation, velocity and acceleration: what
+//! the force evaluates once per step).
 //!
 //! Run: `cargo bench --bench waves` (or `--profile fasttest`).
 
-use riser::loads::waves::{WavePoint, WaveScratch, sea_of};
+use riser::loads::waves::{WaterPoint, WavePoint, WaveScratch, sea_of};
 use riser::math::V3;
 use riser::scene::Scene;
 use riser::sim::{Engine, Heave, Simulation};
@@ -52,7 +54,7 @@ fn main() {
         black_box(integ.step_residual(&prev, &predicted, dt, motion(t), false));
     });
     println!("catenary, 60 elements, {} Gauss points; median of 7 rounds", points.len());
-    println!("{:<44} {:>10} {:>14}", "", "µs", "x residual");
+    println!("{:<44} {:>10} {:>14} {:>10} {:>14}", "", "kin. µs", "x residual", "water µs", "x residual");
     println!("{:<44} {:>10.1} {:>14.2}", "one residual of the step (still water)", residual, 1.0);
     let seas = [
         ("regular wave H 6 m T 10 s", "kind = \"airy\"\nheight = 6.0\nperiod = 10.0"),
@@ -73,13 +75,73 @@ fn main() {
                 sea.kinematics_batch(clock, &points, &mut out, &mut scratch);
                 black_box(&out);
             });
+            let mut water = vec![WaterPoint::STILL; points.len()];
+            let water_us = time(calls, || {
+                clock += 0.05;
+                sea.water_batch(clock, &points, &mut water, &mut scratch);
+                black_box(&water);
+            });
             let deep = out.iter().filter(|p| p.deep).count();
             println!(
-                "{:<44} {:>10.1} {:>14.2}   ({deep} points below the cutoff)",
+                "{:<44} {:>10.1} {:>14.2} {:>10.1} {:>14.2}   ({deep} points below the cutoff)",
                 format!("{name}, {depth_name}"),
                 us,
-                us / residual
+                us / residual,
+                water_us,
+                water_us / residual
             );
         }
+    }
+    steps_in_waves(&base);
+}
+
+/// Whole steps (issue 27): the catenary at 60 elements, dt 0.05 s, heave
+/// 2.5 m / 20 s, 400 steps after 100 steps of settling, in calm water, a
+/// regular wave and JONSWAP seas of 50 and 200 components (the sea's own
+/// depth, the waves at full height from the start); median of 5 rounds,
+/// each a fresh run; the ratio to calm water.
+fn steps_in_waves(base: &Scene) {
+    let seas = [
+        ("calm water", String::new()),
+        ("regular wave H 6 m T 10 s", "kind = \"airy\"\nheight = 6.0\nperiod = 10.0".to_string()),
+        ("JONSWAP Hs 6 m Tp 10 s, 50 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 50".into()),
+        ("JONSWAP Hs 6 m Tp 10 s, 200 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 200".into()),
+    ];
+    println!();
+    println!("a step of the catenary, 60 elements, dt 0.05 s (median of 5 runs of 400 steps)");
+    println!("{:<44} {:>10} {:>14} {:>12}", "", "µs/step", "x calm water", "Newton/step");
+    let mut calm = f64::NAN;
+    for (name, block) in seas {
+        let text = if block.is_empty() {
+            base.to_toml()
+        } else {
+            format!("{}\n[waves]\n{block}\nramp = 0.0\n", base.to_toml())
+        };
+        let scene = Scene::from_toml(&text, "bench").unwrap();
+        let mut rounds = Vec::new();
+        let mut newton = 0.0;
+        for _ in 0..5 {
+            let mut sim = Simulation::from_scene(&scene).unwrap();
+            let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+            let motion = move |t: f64| heave.at(t);
+            sim.start(heave.at(0.0));
+            let dt = sim.integrator.options().time_step;
+            for k in 1..=100u64 {
+                sim.advance_to(k as f64 * dt, &motion).unwrap();
+            }
+            let it0 = sim.state.newton_iterations;
+            let t0 = Instant::now();
+            for k in 101..=500u64 {
+                sim.advance_to(k as f64 * dt, &motion).unwrap();
+            }
+            rounds.push(t0.elapsed().as_secs_f64() / 400.0 * 1e6);
+            newton = (sim.state.newton_iterations - it0) as f64 / 400.0;
+            black_box(sim.outputs());
+        }
+        let us = median(&mut rounds);
+        if calm.is_nan() {
+            calm = us;
+        }
+        println!("{name:<44} {us:>10.1} {:>14.2} {newton:>12.2}", us / calm);
     }
 }

@@ -30,12 +30,16 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn time_steps_do_not_allocate() {
-    for model in ["rod", "cable"] {
+    let waves = ["wave_kind=jonswap", "wave_hs=6", "wave_tp=10", "wave_components=50", "hang_off_x=20"];
+    for (model, sea) in [("rod", false), ("cable", false), ("rod", true), ("cable", true)] {
         // water, damping and a moving hang-off: every term of the step is active
-        let scene = Scene::builtin("catenary")
-            .unwrap()
-            .with_overrides(&[&format!("model={model}"), "n_elements=20", "ca_normal=1", "structural_damping=0.002"])
-            .unwrap();
+        // (and waves, their kinematics, the surface cut at η: the second round)
+        let m = format!("model={model}");
+        let mut sets = vec![m.as_str(), "n_elements=20", "ca_normal=1", "structural_damping=0.002"];
+        if sea {
+            sets.extend(waves);
+        }
+        let scene = Scene::builtin("catenary").unwrap().with_overrides(&sets).unwrap();
         let mut sim = Simulation::from_scene(&scene).unwrap();
         let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 0.0 };
         let motion = move |t: f64| heave.at(t);
@@ -50,8 +54,12 @@ fn time_steps_do_not_allocate() {
         }
         let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
         let o = sim.outputs();
-        eprintln!("{model}: allocations in 100 steps: {during}; {} Newton iterations", sim.state.newton_iterations);
-        assert_eq!(during, 0, "{model}");
+        eprintln!(
+            "{model}{}: allocations in 100 steps: {during}; {} Newton iterations",
+            if sea { " in waves" } else { "" },
+            sim.state.newton_iterations
+        );
+        assert_eq!(during, 0, "{model}, waves {sea}");
         assert!(o.top_tension.is_finite());
     }
 }

@@ -21,7 +21,8 @@
 //! Points deeper than every component's 38 decay lengths 1/k under the
 //! lowest possible trough ([`Sea::deep_cutoff`]) cost one comparison.
 
-use super::{Sea, Stretching, Term};
+use super::vecmath;
+use super::{DECAY_LENGTHS, LANES, Sea, SortedTerms, Stretching, Term};
 use crate::math::{M3, V3};
 
 /// The wave field at one point, ramp included.
@@ -73,19 +74,84 @@ impl WaterPoint {
         WaterPoint { elevation: 0.0, velocity: V3::new(0.0, 0.0, 0.0), acceleration: V3::new(0.0, 0.0, 0.0) };
 }
 
-/// Reusable storage of [`Sea::kinematics_batch`]: one (sin θ, cos θ) per
-/// component (allocated at the first call, reused after).
+/// Reusable storage of [`Sea::kinematics_batch`] and [`Sea::water_batch`]:
+/// a few numbers per component (allocated at the first call, reused after).
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {
     sin_cos: Vec<[f64; 2]>,
+    /// ω t (per call), θ, sin θ, cos θ, e^{kζ′} (per point), sorted terms.
+    wt: Vec<f64>,
+    theta: Vec<f64>,
+    sin: Vec<f64>,
+    cos: Vec<f64>,
+    exp: Vec<f64>,
+    arg: Vec<f64>,
+}
+
+impl WaveScratch {
+    fn grow(&mut self, n: usize) {
+        for v in [&mut self.wt, &mut self.theta, &mut self.sin, &mut self.cos, &mut self.exp, &mut self.arg] {
+            if v.len() < n {
+                v.resize(n, 0.0);
+            }
+        }
+    }
+}
+
+/// Σ a·b over slices of a multiple of [`LANES`] elements, in [`LANES`]
+/// partial sums (which the compiler keeps in vector registers).
+#[inline(always)]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    for (a, b) in a.chunks_exact(LANES).zip(b.chunks_exact(LANES)) {
+        for l in 0..LANES {
+            acc[l] += a[l] * b[l];
+        }
+    }
+    acc.iter().sum()
+}
+
+/// The velocity and acceleration sums of pass 2 over the first `n` (a
+/// multiple of [`LANES`]) sorted terms, unramped: (13.3)-(13.4) with
+/// C = S = p (deep water) or C, S = c (p ± e^{−2kd}/p).
+#[inline(always)]
+fn kinematics_sums<const DEEP: bool>(st: &SortedTerms, n: usize, sin: &[f64], cos: &[f64], p: &[f64]) -> (V3, V3) {
+    let mut acc = [[0.0; LANES]; 6];
+    let (sin, cos, p) = (&sin[..n], &cos[..n], &p[..n]);
+    let (awx, awy, aw) = (&st.awx[..n], &st.awy[..n], &st.aw[..n]);
+    let (aw2x, aw2y, aw2) = (&st.aw2x[..n], &st.aw2y[..n], &st.aw2[..n]);
+    let (e2kd, cf) = (&st.e2kd[..n], &st.c[..n]);
+    for j in (0..n).step_by(LANES) {
+        for l in 0..LANES {
+            let i = j + l;
+            let (ch, sh) = if DEEP {
+                (p[i], p[i])
+            } else {
+                let q = e2kd[i] / p[i];
+                (cf[i] * (p[i] + q), cf[i] * (p[i] - q))
+            };
+            let (cc, ss) = (ch * cos[i], sh * sin[i]);
+            let (cs, sc) = (ch * sin[i], sh * cos[i]);
+            acc[0][l] += awx[i] * cc;
+            acc[1][l] += awy[i] * cc;
+            acc[2][l] += aw[i] * ss;
+            acc[3][l] += aw2x[i] * cs;
+            acc[4][l] += aw2y[i] * cs;
+            acc[5][l] -= aw2[i] * sc;
+        }
+    }
+    let sum = |a: &[f64; LANES]| a.iter().sum::<f64>();
+    (V3::new(sum(&acc[0]), sum(&acc[1]), sum(&acc[2])), V3::new(sum(&acc[3]), sum(&acc[4]), sum(&acc[5])))
 }
 
 impl WaveScratch {
     /// Grows the buffer to `components` entries.
-    pub(crate) fn reserve(&mut self, components: usize) {
+    /// Grows the buffers to `components` entries and `sorted` padded ones.
+    pub(crate) fn reserve(&mut self, components: usize, sorted: usize) {
         if self.sin_cos.len() < components {
             self.sin_cos.resize(components, [0.0; 2]);
         }
+        self.grow(sorted);
     }
 }
 
@@ -163,15 +229,71 @@ impl Sea {
 
     /// The elevation, velocity and acceleration at each of `points` at time
     /// `t` into `out` (same length): what the force integration evaluates
-    /// once per step at the Gauss points of the whole line (equal to the
-    /// fields of [`Sea::kinematics`]).
+    /// once per step at the Gauss points of the whole line. Equal to the
+    /// fields of [`Sea::kinematics`] to round-off (the sums run in another
+    /// order), without the gradient's work, and cheaper (docs/theory.md
+    /// §13.4): the components are visited sorted by wave number, and pass 2
+    /// stops at the first whose e^{kζ′} is below e^{−38} ≈ 3e-17 (C and S
+    /// are then below 2e^{−38} too: ζ′ ≥ −d), the rest of them, shorter
+    /// still, are smaller yet.
     pub fn water_batch(&self, t: f64, points: &[V3], out: &mut [WaterPoint], scratch: &mut WaveScratch) {
-        if scratch.sin_cos.len() < self.terms.len() {
-            scratch.sin_cos.resize(self.terms.len(), [0.0; 2]);
+        let st = &self.sorted;
+        let n = st.len;
+        scratch.grow(n);
+        let (r, dr) = self.settings.ramp.at(t);
+        if r == 0.0 {
+            out.iter_mut().for_each(|o| *o = WaterPoint::STILL);
+            return;
         }
+        // ω t once per call: θ below is `evaluate`'s bit for bit
+        for (wt, w) in scratch.wt[..n].iter_mut().zip(&st.omega) {
+            *wt = w * t;
+        }
+        // the loop compiled for the widest vectors the processor has (AVX2:
+        // four lanes instead of two), chosen at run time by pulp, the SIMD
+        // layer faer already brings (no unsafe here); the same operations in
+        // the same order on every path: the same bits
+        pulp::Arch::new().dispatch(|| self.water_points(r, dr, points, out, scratch));
+    }
+
+    /// The body of [`Sea::water_batch`] at ramp `r`, rate `dr`, with ω t in
+    /// the scratch.
+    #[inline(always)]
+    fn water_points(&self, r: f64, dr: f64, points: &[V3], out: &mut [WaterPoint], scratch: &mut WaveScratch) {
+        let st = &self.sorted;
+        let n = st.len;
+        let WaveScratch { wt, theta, sin, cos, exp, arg, .. } = scratch;
+        let (wt, theta, sin, cos) = (&wt[..n], &mut theta[..n], &mut sin[..n], &mut cos[..n]);
+        let (exp, arg) = (&mut exp[..n], &mut arg[..n]);
+        let (k, kx, ky, phi0) = (&st.k[..n], &st.kx[..n], &st.ky[..n], &st.phi0[..n]);
         for (p, o) in points.iter().zip(out.iter_mut()) {
-            let k = self.evaluate(p, t, Some(&mut scratch.sin_cos));
-            *o = WaterPoint { elevation: k.elevation, velocity: k.velocity, acceleration: k.acceleration };
+            let zeta = p.z - self.settings.surface_z;
+            if self.deep_cutoff.is_some_and(|cut| zeta < cut) {
+                *o = WaterPoint::STILL;
+                continue;
+            }
+            // pass 1: θ, its sine and cosine, η (every component: η is the
+            // surface's, whatever the point's depth)
+            for (((th, kx), ky), (wt, phi0)) in theta.iter_mut().zip(kx).zip(ky).zip(wt.iter().zip(phi0)) {
+                *th = kx * p.x + ky * p.y - wt + phi0;
+            }
+            vecmath::sin_cos(theta, sin, cos);
+            let eta = r * dot(&st.a[..n], cos);
+            let (zp, _, _) = self.stretch(zeta, eta);
+            // pass 2: the components whose e^{kζ′} ≥ e^{−38}, rounded up to
+            // whole lanes (the few beyond are evaluated at kζ′ ≥ −38: below
+            // 2e^{−38} of their surface values either way)
+            let active = if zp < 0.0 { k.partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
+            let m = active.div_ceil(LANES) * LANES;
+            for (arg, k) in arg[..m].iter_mut().zip(&k[..m]) {
+                *arg = (k * zp).max(-DECAY_LENGTHS);
+            }
+            vecmath::exp(&arg[..m], exp);
+            let (vel, acc) = match self.settings.depth {
+                None => kinematics_sums::<true>(st, m, sin, cos, exp),
+                Some(_) => kinematics_sums::<false>(st, m, sin, cos, exp),
+            };
+            *o = WaterPoint { elevation: eta, velocity: vel * r, acceleration: acc * r + vel * dr };
         }
     }
 
@@ -301,5 +423,104 @@ mod tests {
         // just above the cutoff the field is already negligible
         let above = s.kinematics(&V3::new(0.0, 0.0, 10.0 + cut + 1e-9), 4.0);
         assert!(above.velocity.norm() < 1e-15 && !above.deep);
+    }
+
+    /// A sea of 13 components from 0.05 Hz to 1.2 Hz (k from 0.01 to
+    /// 5.8 rad/m: the short ones reach the per-component cutoff 7 m down)
+    /// in seven directions, given out of order of k, ramping in.
+    fn broad_sea(stretching: Stretching, depth: Option<f64>) -> Sea {
+        let components = (0..13)
+            .map(|i| {
+                let f = 0.05 + 0.0959 * ((i * 5) % 13) as f64;
+                Component {
+                    frequency: f,
+                    amplitude: 0.6 / (1.0 + 4.0 * f),
+                    phase: 0.7 * i as f64,
+                    direction: -1.3 + 0.41 * (i % 7) as f64,
+                }
+            })
+            .collect();
+        let settings = SeaSettings {
+            depth,
+            gravity: 9.81,
+            surface_z: -4.0,
+            origin: [12.0, 5.0],
+            stretching,
+            ramp: Ramp { start: 1.0, duration: 10.0 },
+        };
+        Sea::new(components, settings)
+    }
+
+    #[test]
+    fn the_water_batch_equals_the_kinematics_at_every_depth_to_round_off() {
+        for stretching in [Stretching::Wheeler, Stretching::Vertical, Stretching::None] {
+            for depth in [None, Some(60.0), Some(400.0)] {
+                let s = broad_sea(stretching, depth);
+                let (mut k_max, mut a_sum, mut aw_sum, mut aw2_sum) = (0.0f64, 0.0, 0.0, 0.0);
+                for (c, k) in s.components().iter().zip(s.wave_numbers()) {
+                    let w = 2.0 * std::f64::consts::PI * c.frequency;
+                    k_max = k_max.max(k);
+                    a_sum += c.amplitude;
+                    aw_sum += c.amplitude * w;
+                    aw2_sum += c.amplitude * w * w;
+                }
+                // the components' order is the user's, the batch's is by k
+                assert!(s.wave_numbers().windows(2).any(|w| w[0] > w[1]));
+                let bottom = depth.unwrap_or(5000.0);
+                // from above the highest crest down to the seabed (and,
+                // in deep water, below the whole-point cutoff)
+                let points: Vec<V3> = (0..=120)
+                    .map(|i| {
+                        let zeta = 1.2 * a_sum - (i as f64 / 120.0).powi(3) * (bottom + 1.2 * a_sum);
+                        V3::new(-30.0 + 7.3 * i as f64, 11.0 - 2.9 * i as f64, -4.0 + zeta)
+                    })
+                    .collect();
+                let mut out = vec![WaterPoint::STILL; points.len()];
+                let mut scratch = WaveScratch::default();
+                let mut below_component_cutoff = 0;
+                let mut worst = 0.0f64;
+                for t in [0.5, 4.0, 11.0, 1234.5] {
+                    s.water_batch(t, &points, &mut out, &mut scratch);
+                    for (p, o) in points.iter().zip(&out) {
+                        let k = s.kinematics(p, t);
+                        let zp = s.stretch(p.z + 4.0, k.elevation).0;
+                        if k_max * zp < -DECAY_LENGTHS && !k.deep {
+                            below_component_cutoff += 1;
+                        }
+                        let what = format!("{stretching:?} {depth:?} t {t} {p:?}: {o:?} vs {k:?}");
+                        worst = worst
+                            .max((o.elevation - k.elevation).abs() / a_sum)
+                            .max((o.velocity - k.velocity).norm() / aw_sum)
+                            .max((o.acceleration - k.acceleration).norm() / (aw2_sum + aw_sum));
+                        assert!((o.elevation - k.elevation).abs() <= 1e-12 * a_sum, "{what}");
+                        assert!((o.velocity - k.velocity).norm() <= 1e-12 * aw_sum, "{what}");
+                        assert!((o.acceleration - k.acceleration).norm() <= 1e-12 * (aw2_sum + aw_sum), "{what}");
+                        if k.deep {
+                            assert_eq!(*o, WaterPoint::STILL);
+                        }
+                    }
+                }
+                eprintln!("{stretching:?} {depth:?}: largest difference {worst:.1e} of the surface scale");
+                assert!(below_component_cutoff > 50, "{below_component_cutoff}");
+                if depth.is_none() {
+                    assert!(points.iter().any(|p| p.z + 4.0 < s.deep_cutoff().unwrap()));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_water_batch_has_the_same_bits_on_every_instruction_set() {
+        let s = broad_sea(Stretching::Wheeler, Some(60.0));
+        let points: Vec<V3> =
+            (0..40).map(|i| V3::new(3.0 * i as f64, -1.5 * i as f64, -4.5 - 1.5 * i as f64)).collect();
+        let mut a = vec![WaterPoint::STILL; points.len()];
+        let mut b = a.clone();
+        let mut scratch = WaveScratch::default();
+        s.water_batch(13.0, &points, &mut a, &mut scratch);
+        let (r, dr) = s.settings.ramp.at(13.0);
+        // the portable body, with the scratch's ω t of the call above
+        s.water_points(r, dr, &points, &mut b, &mut scratch);
+        assert_eq!(a, b);
     }
 }

@@ -19,6 +19,7 @@
 pub mod dispersion;
 pub mod kinematics;
 pub mod spectra;
+mod vecmath;
 
 use crate::scene::waves::{self as spec, WaveKind, WavesSpec};
 use crate::scene::{FieldError, Scene};
@@ -118,15 +119,88 @@ pub(crate) struct Term {
     pub c: f64,
 }
 
+/// The terms sorted by wave number (ascending) as a struct of arrays, padded
+/// with silent terms (amplitude 0) to a multiple of [`LANES`]: what
+/// [`Sea::water_batch`] loops over (docs/theory.md §13.4). The velocity and
+/// acceleration amplitudes are split along x and y: a ω cos β, a ω sin β,
+/// a ω² cos β, a ω² sin β.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SortedTerms {
+    pub len: usize,
+    pub k: Vec<f64>,
+    pub kx: Vec<f64>,
+    pub ky: Vec<f64>,
+    pub omega: Vec<f64>,
+    pub phi0: Vec<f64>,
+    pub a: Vec<f64>,
+    pub aw: Vec<f64>,
+    pub awx: Vec<f64>,
+    pub awy: Vec<f64>,
+    pub aw2: Vec<f64>,
+    pub aw2x: Vec<f64>,
+    pub aw2y: Vec<f64>,
+    pub e2kd: Vec<f64>,
+    pub c: Vec<f64>,
+}
+
+/// The width of [`SortedTerms`]' padding and of the batch's accumulators.
+pub(crate) const LANES: usize = 4;
+
+impl SortedTerms {
+    fn new(terms: &[Term]) -> Self {
+        let mut order: Vec<usize> = (0..terms.len()).collect();
+        order.sort_by(|&i, &j| terms[i].k.total_cmp(&terms[j].k));
+        let padded = terms.len().div_ceil(LANES) * LANES;
+        let k_last = order.last().map_or(0.0, |&i| terms[i].k);
+        let silent = Term {
+            a: 0.0,
+            k: k_last,
+            omega: 0.0,
+            kx: 0.0,
+            ky: 0.0,
+            cos_b: 0.0,
+            sin_b: 0.0,
+            phi0: 0.0,
+            aw: 0.0,
+            aw2: 0.0,
+            e2kd: 0.0,
+            c: 1.0,
+        };
+        let sorted: Vec<Term> =
+            order.iter().map(|&i| terms[i]).chain(std::iter::repeat_n(silent, padded - terms.len())).collect();
+        let col = |f: fn(&Term) -> f64| sorted.iter().map(f).collect::<Vec<f64>>();
+        SortedTerms {
+            len: padded,
+            k: col(|t| t.k),
+            kx: col(|t| t.kx),
+            ky: col(|t| t.ky),
+            omega: col(|t| t.omega),
+            phi0: col(|t| t.phi0),
+            a: col(|t| t.a),
+            aw: col(|t| t.aw),
+            awx: col(|t| t.aw * t.cos_b),
+            awy: col(|t| t.aw * t.sin_b),
+            aw2: col(|t| t.aw2),
+            aw2x: col(|t| t.aw2 * t.cos_b),
+            aw2y: col(|t| t.aw2 * t.sin_b),
+            e2kd: col(|t| t.e2kd),
+            c: col(|t| t.c),
+        }
+    }
+}
+
 /// Below this many decay lengths 1/k under every trough the wave field is
 /// taken as zero (its size there is e^{−38} ≈ 3e-17 of the surface's).
-const DECAY_LENGTHS: f64 = 38.0;
+pub(crate) const DECAY_LENGTHS: f64 = 38.0;
 
 /// A sea: linear components and the water they travel in.
 #[derive(Debug, Clone)]
 pub struct Sea {
     components: Vec<Component>,
+    /// In the components' order.
     pub(crate) terms: Vec<Term>,
+    /// The same, sorted by k, for [`Sea::water_batch`].
+    pub(crate) sorted: SortedTerms,
     pub(crate) settings: SeaSettings,
     /// Below this ζ = z − z_s every component's kinematics are below 1e-16 of
     /// their surface values and are not evaluated (None: never).
@@ -175,7 +249,8 @@ impl Sea {
         };
         let deep_cutoff =
             (deep_everywhere && k_min.is_finite() && k_min > 0.0).then(|| -DECAY_LENGTHS / k_min - 2.0 * amplitude_sum);
-        Sea { components, terms, settings, deep_cutoff }
+        let sorted = SortedTerms::new(&terms);
+        Sea { components, terms, sorted, settings, deep_cutoff }
     }
 
     /// Starts the ramp at `start` s (a run's start time).
@@ -193,7 +268,7 @@ impl Sea {
     /// allocates nothing).
     pub fn scratch(&self) -> WaveScratch {
         let mut s = WaveScratch::default();
-        s.reserve(self.terms.len());
+        s.reserve(self.terms.len(), self.sorted.len);
         s
     }
 
