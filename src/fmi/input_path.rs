@@ -1069,4 +1069,174 @@ mod tests {
         assert!(InputHistory::from_values(&bad).is_none());
         assert!(InputHistory::from_values(&bad[..20]).is_none());
     }
+
+    use crate::math::rigid::RotationOrder;
+
+    /// Drives the history with the vessel's angles `angles(t)` (when
+    /// `use_angles`) and its body rates `rates(t)` (when given) under `auto`,
+    /// the hang-off at `vessel`'s offset; returns the hang-off at each
+    /// communication point and the paths.
+    fn drive_rotation(
+        times: &[f64],
+        vessel: &Vessel,
+        angles: &dyn Fn(f64) -> [f64; 3],
+        rates: Option<&dyn Fn(f64) -> [f64; 3]>,
+        use_angles: bool,
+    ) -> (Vec<HangOff>, Vec<Path>) {
+        let mut hist = InputHistory::new();
+        let inp = |t: f64| VesselInputs {
+            angles: if use_angles { angles(t) } else { [0.0; 3] },
+            rates: rates.map_or([0.0; 3], |r| r(t)),
+            ..Default::default()
+        };
+        if use_angles {
+            hist.note_set(7);
+        }
+        if rates.is_some() {
+            hist.note_set(11);
+        }
+        let mut at = hist.start(Coupling::Auto, vessel, &inp(times[0]));
+        let (mut points, mut paths) = (vec![at], vec![]);
+        for w in times.windows(2) {
+            let (t, h) = (w[0], w[1] - w[0]);
+            let path = hist.plan(Coupling::Auto, vessel, t, h, &inp(t), &at);
+            hist.commit(t, &inp(t), &path);
+            at = path.at(t + h);
+            points.push(at);
+            paths.push(path);
+        }
+        (points, paths)
+    }
+
+    /// A smooth attitude (period 20 s, angles up to 0.2 rad), its rates.
+    fn attitude(t: f64) -> [f64; 3] {
+        let w = 2.0 * std::f64::consts::PI / 20.0;
+        [0.1 * (w * t).sin(), 0.06 * (w * t + 1.0).sin() - 0.06 * 1f64.sin(), 0.2 * (w * t + 2.0).sin() - 0.2 * 2f64.sin()]
+    }
+
+    fn attitude_rates(t: f64) -> [f64; 3] {
+        let w = 2.0 * std::f64::consts::PI / 20.0;
+        [0.1 * w * (w * t).cos(), 0.06 * w * (w * t + 1.0).cos(), 0.2 * w * (w * t + 2.0).cos()]
+    }
+
+    /// The angle between two rotations, rad.
+    fn angle_between(a: &M3, b: &M3) -> f64 {
+        log_so3(&(a * b.transpose())).norm()
+    }
+
+    #[test]
+    fn the_rotation_follows_a_smooth_attitude_to_fifth_order_in_both_orders() {
+        // the path's rotation at the communication points against R(a(t)):
+        // the fit of §7.3 on the rotation vectors, O(h⁵) as the translations
+        for order in [RotationOrder::Zyx, RotationOrder::Xyz] {
+            let vessel = Vessel { offset: V3::new(30.0, -8.0, 4.0), order };
+            let err = |h: f64| {
+                let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
+                let (points, _) = drive_rotation(&times, &vessel, &attitude, None, true);
+                (10..times.len())
+                    .map(|k| angle_between(&points[k].rotation, &order.rotation(attitude(times[k]))))
+                    .fold(0.0, f64::max)
+            };
+            let (e1, e2) = (err(0.8), err(0.4));
+            let rate = (e1 / e2).log2();
+            assert!((rate - 5.0).abs() < 0.3, "{order:?}: {e1:e} {e2:e} order {rate}");
+            assert!(e2 < 1e-6, "{order:?}: {e2:e}");
+        }
+    }
+
+    #[test]
+    fn the_hang_off_moves_as_the_point_of_the_rotating_vessel() {
+        // along the paths: the hang-off's velocity is the rate of its
+        // displacement, Ṙ = [ω]× R, the displacement is (R − I)ρ (the
+        // reference point held), and ω is continuous at communication points
+        let vessel = Vessel { offset: V3::new(30.0, -8.0, 4.0), order: RotationOrder::Zyx };
+        let times: Vec<f64> = [0.0, 0.2, 0.5, 0.6, 1.0, 1.3, 1.4, 1.45, 1.9, 2.0, 2.3].to_vec();
+        let (_, paths) = drive_rotation(&times, &vessel, &attitude, None, true);
+        for k in 0..paths.len() {
+            let (t0, t1) = (times[k], times[k + 1]);
+            let (e, s) = (1e-6, 0.5 * (t0 + t1));
+            let (a, b, m) = (paths[k].at(s - e), paths[k].at(s + e), paths[k].at(s));
+            let fd = (b.displacement - a.displacement) / (2.0 * e);
+            assert!((fd - m.velocity).norm() < 1e-7, "{k}: {fd} {}", m.velocity);
+            let rd = (b.rotation - a.rotation) / (2.0 * e);
+            assert!((rd - crate::math::skew(&m.angular_velocity) * m.rotation).norm() < 1e-9, "{k}");
+            let arm = m.rotation * vessel.offset;
+            assert!((m.displacement - (arm - vessel.offset)).norm() < 1e-13, "{k}");
+            if k + 1 < paths.len() {
+                let (l, r) = (paths[k].at(t1), paths[k + 1].at(t1));
+                assert_eq!(l.rotation, r.rotation, "{k}");
+                assert!((l.angular_velocity - r.angular_velocity).norm() < 1e-15, "{k}");
+                // the angular acceleration too (C2), by one-sided differences
+                let e = 1e-5;
+                let left = (l.angular_velocity - paths[k].at(t1 - e).angular_velocity) / e;
+                let right = (paths[k + 1].at(t1 + e).angular_velocity - r.angular_velocity) / e;
+                assert!((left - right).norm() < 1e-5 * left.norm().max(1e-3), "{k}: {left} {right}");
+            }
+        }
+        // held at a pose: the hang-off at (R − I)ρ, at rest
+        let pose = [0.05, -0.08, 0.3];
+        let times: Vec<f64> = (0..30).map(|k| k as f64 * 0.1).collect();
+        let (points, _) = drive_rotation(&times, &vessel, &|_| pose, None, true);
+        let r = vessel.order.rotation(pose);
+        for p in &points {
+            assert!((p.displacement - (r * vessel.offset - vessel.offset)).norm() < 1e-13);
+            assert!(p.velocity.norm() < 1e-13 && p.angular_velocity.norm() < 1e-15);
+            assert!((p.rotation - r).norm() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn angular_velocity_alone_is_integrated_to_fourth_order() {
+        let vessel = Vessel { offset: V3::zeros(), order: RotationOrder::Zyx };
+        // a constant rate about a fixed axis: exact
+        let w = [0.02, -0.05, 0.1];
+        let times: Vec<f64> = [0.0, 0.3, 0.5, 0.9, 1.0, 1.6, 1.7, 2.5].to_vec();
+        let (_, paths) = drive_rotation(&times, &vessel, &|_| [0.0; 3], Some(&|_| w), false);
+        assert!(paths.iter().all(|p| p.rotation_source == RateSource::Velocity));
+        for (k, p) in paths.iter().enumerate() {
+            let exact = exp_so3(&(V3::from(w) * times[k]));
+            assert!(angle_between(&p.rot, &exact) < 1e-15, "{k}");
+        }
+        // the body rates of a smooth attitude: R(a(t)) to fourth order in the step
+        let order = vessel.order;
+        let rates = |t: f64| {
+            let b = order.body_rates(attitude(t), attitude_rates(t));
+            [b.x, b.y, b.z]
+        };
+        let err = |h: f64| {
+            let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
+            let (_, paths) = drive_rotation(&times, &vessel, &attitude, Some(&rates), false);
+            (1..paths.len()).map(|k| angle_between(&paths[k].rot, &order.rotation(attitude(times[k])))).fold(0.0, f64::max)
+        };
+        let (e1, e2) = (err(0.8), err(0.4));
+        let rate = (e1 / e2).log2();
+        assert!(rate > 3.5, "{e1:e} {e2:e} order {rate}");
+    }
+
+    #[test]
+    fn the_history_with_rotations_survives_its_numbers() {
+        let vessel = Vessel { offset: V3::new(30.0, 0.0, -5.0), order: RotationOrder::Xyz };
+        let mut hist = InputHistory::new();
+        let mut at = HangOff::default();
+        for k in 0..7 {
+            let t = 0.25 * k as f64;
+            let inp = VesselInputs {
+                u: [0.1 * t, 0.2 + t, 0.3 - t * t],
+                v: [0.0, 0.0, -1.0],
+                angles: attitude(t),
+                rates: attitude_rates(t),
+            };
+            hist.note_set(0);
+            hist.note_set(6);
+            if k == 3 {
+                hist.note_set(10);
+            }
+            let path = hist.plan(Coupling::Auto, &vessel, t, 0.25, &inp, &at);
+            hist.commit(t, &inp, &path);
+            at = path.at(t + 0.25);
+        }
+        let back = InputHistory::from_values(&hist.to_values()).unwrap();
+        assert_eq!(back, hist);
+        assert_eq!(back.rotation_mode(Coupling::Auto), Coupling::Both);
+    }
 }

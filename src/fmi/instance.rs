@@ -1231,3 +1231,111 @@ mod discard_tests {
         assert!(i.get_real(vr_of("top_tension").unwrap()).unwrap().is_finite());
     }
 }
+
+#[cfg(test)]
+mod vessel_tests {
+    use super::*;
+    use crate::fmi::vars::vr_of;
+    use std::sync::{Arc, Mutex};
+
+    /// An instance logging into `messages`, with a 10-element catenary and
+    /// the hang-off 30 m ahead of the reference point, initialised.
+    fn started(messages: &Arc<Mutex<Vec<String>>>, order: &str) -> Instance {
+        let m2 = messages.clone();
+        let mut i =
+            Instance::new("t", GUID, None, Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into())), true)
+                .unwrap();
+        assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+        assert_eq!(i.set_param(vr_of("hang_off_x").unwrap(), Value::Real(30.0)), Status::Ok);
+        assert_eq!(i.set_param(vr_of("rotation_order").unwrap(), Value::String(order.into())), Status::Ok);
+        i.enter_initialization_mode();
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        i
+    }
+
+    #[test]
+    fn bad_angles_and_orders_are_errors_naming_them() {
+        let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+        for (name, x) in [("roll", f64::NAN), ("pitch", f64::INFINITY), ("yaw", 1e9), ("angular_velocity_y", f64::NAN)] {
+            let mut i = started(&messages, "zyx");
+            assert_eq!(i.set_real(vr_of(name).unwrap(), x), Status::Error, "{name}");
+            let log = messages.lock().unwrap().join("\n");
+            assert!(log.contains(&format!("{name} = ")), "{log}");
+        }
+        let mut i = started(&messages, "zyx");
+        assert_eq!(i.set_input_derivative(vr_of("yaw").unwrap(), 1, 0.1), Status::Error);
+        assert!(messages.lock().unwrap().last().unwrap().contains("derivatives of yaw are not supported"));
+        let mut i = Instance::new("t", GUID, None, Arc::new(|_, _, _: &str| {}), false).unwrap();
+        let m2 = messages.clone();
+        i.logger = Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into()));
+        assert_eq!(i.set_param(vr_of("rotation_order").unwrap(), Value::String("yxz".into())), Status::Error);
+        let log = messages.lock().unwrap().last().unwrap().clone();
+        assert!(log.contains("rotation_order") && log.contains("yxz"), "{log}");
+    }
+
+    #[test]
+    fn at_gimbal_lock_equal_rotations_give_equal_loads() {
+        // pitch 90° under z-y-x: R(φ, π/2, ψ) depends on φ − ψ alone; the FMU
+        // takes the rotation, never the angles' rates, so two angle sets of
+        // one rotation move the line alike (to the round-off of R)
+        let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        let run = |roll: f64, yaw: f64| {
+            let mut i = started(&messages, "zyx");
+            let mut out = Vec::new();
+            for k in 0..20 {
+                let t = 0.1 * k as f64;
+                // from rest to the pose by a smooth ramp over 2 s
+                let r = 0.5 * (1.0 - (std::f64::consts::PI * t / 2.0).cos());
+                for (name, x) in [("roll", roll * r), ("pitch", half_pi * r), ("yaw", yaw * r)] {
+                    assert_eq!(i.set_real(vr_of(name).unwrap(), x), Status::Ok);
+                }
+                assert_eq!(i.do_step(t, 0.1), Status::Ok, "{t}");
+            }
+            for _ in 0..5 {
+                let t = i.sim.as_ref().unwrap().state.time;
+                assert_eq!(i.do_step(t, 0.1), Status::Ok);
+                out.push(["top_force_x", "top_force_z", "top_moment_y"].map(|n| i.get_real(vr_of(n).unwrap()).unwrap()));
+            }
+            (out, i.sim.as_ref().unwrap().state.hang_off.rotation)
+        };
+        // the two paths differ on the way (different angles), the end poses agree
+        let (_, ra) = run(0.3, 0.1);
+        let (_, rb) = run(0.5, 0.3);
+        assert!((ra - rb).norm() < 1e-12, "{ra} {rb}");
+        // held there: the line's loads are finite at gimbal lock
+        let (a, _) = run(0.3, 0.1);
+        assert!(a.iter().flatten().all(|x| x.is_finite()));
+    }
+
+    #[test]
+    fn at_a_held_pose_the_moment_is_the_arm_times_the_force() {
+        // M = (Rρ) × F to round-off, global and vessel frame, both orders
+        for order in ["zyx", "xyz"] {
+            let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+            let mut i = started(&messages, order);
+            let pose = [0.04, -0.03, 0.1];
+            for k in 0..30 {
+                let t = 0.1 * k as f64;
+                let r = if t < 2.0 { 0.5 * (1.0 - (std::f64::consts::PI * t / 2.0).cos()) } else { 1.0 };
+                for (name, x) in ["roll", "pitch", "yaw"].iter().zip(pose) {
+                    assert_eq!(i.set_real(vr_of(name).unwrap(), x * r), Status::Ok);
+                }
+                assert_eq!(i.do_step(t, 0.1), Status::Ok);
+            }
+            let get = |i: &mut Instance, p: &str| {
+                V3::from_fn(|c, _| i.get_real(vr_of(&format!("{p}_{}", ["x", "y", "z"][c])).unwrap()).unwrap())
+            };
+            let (f, m, vf, vm) = (get(&mut i, "top_force"), get(&mut i, "top_moment"), get(&mut i, "vessel_force"), get(&mut i, "vessel_moment"));
+            let sim = i.sim.as_ref().unwrap();
+            let r = sim.vessel.order.rotation(pose);
+            assert!((sim.state.hang_off.rotation - r).norm() < 1e-12, "{order}");
+            let arm = r * V3::new(30.0, 0.0, 0.0);
+            assert!((m - arm.cross(&f)).norm() <= 1e-12 * m.norm(), "{order}: {m} {}", arm.cross(&f));
+            assert!((r * vf - f).norm() <= 1e-12 * f.norm() && (r * vm - m).norm() <= 1e-12 * m.norm());
+            // and the hang-off sits at (R − I)ρ from its initial position
+            let d = sim.state.hang_off.displacement;
+            assert!((d - (arm - V3::new(30.0, 0.0, 0.0))).norm() < 1e-12, "{order}: {d}");
+        }
+    }
+}
