@@ -1256,7 +1256,8 @@ mod vessel_tests {
     #[test]
     fn bad_angles_and_orders_are_errors_naming_them() {
         let messages = Arc::new(Mutex::new(Vec::<String>::new()));
-        for (name, x) in [("roll", f64::NAN), ("pitch", f64::INFINITY), ("yaw", 1e9), ("angular_velocity_y", f64::NAN)] {
+        for (name, x) in [("roll", f64::NAN), ("pitch", f64::INFINITY), ("yaw", 1e9), ("angular_velocity_y", f64::NAN)]
+        {
             let mut i = started(&messages, "zyx");
             assert_eq!(i.set_real(vr_of(name).unwrap(), x), Status::Error, "{name}");
             let log = messages.lock().unwrap().join("\n");
@@ -1283,26 +1284,31 @@ mod vessel_tests {
         let run = |roll: f64, yaw: f64| {
             let mut i = started(&messages, "zyx");
             let mut out = Vec::new();
-            for k in 0..20 {
+            for k in 0..=20 {
                 let t = 0.1 * k as f64;
-                // from rest to the pose by a smooth ramp over 2 s
-                let r = 0.5 * (1.0 - (std::f64::consts::PI * t / 2.0).cos());
+                // from rest to the pose by a smooth ramp over 2 s (r = 1 at t = 2 s)
+                let r = if k == 20 { 1.0 } else { 0.5 * (1.0 - (std::f64::consts::PI * t / 2.0).cos()) };
                 for (name, x) in [("roll", roll * r), ("pitch", half_pi * r), ("yaw", yaw * r)] {
                     assert_eq!(i.set_real(vr_of(name).unwrap(), x), Status::Ok);
                 }
                 assert_eq!(i.do_step(t, 0.1), Status::Ok, "{t}");
             }
-            for _ in 0..5 {
+            for _ in 0..30 {
                 let t = i.sim.as_ref().unwrap().state.time;
                 assert_eq!(i.do_step(t, 0.1), Status::Ok);
-                out.push(["top_force_x", "top_force_z", "top_moment_y"].map(|n| i.get_real(vr_of(n).unwrap()).unwrap()));
+                out.push(
+                    ["top_force_x", "top_force_z", "top_moment_y"].map(|n| i.get_real(vr_of(n).unwrap()).unwrap()),
+                );
             }
             (out, i.sim.as_ref().unwrap().state.hang_off.rotation)
         };
         // the two paths differ on the way (different angles), the end poses agree
+        // once the fit's window holds the held pose alone
         let (_, ra) = run(0.3, 0.1);
         let (_, rb) = run(0.5, 0.3);
         assert!((ra - rb).norm() < 1e-12, "{ra} {rb}");
+        let exact = crate::math::rigid::RotationOrder::Zyx.rotation([0.3, half_pi, 0.1]);
+        assert!((ra - exact).norm() < 1e-12);
         // held there: the line's loads are finite at gimbal lock
         let (a, _) = run(0.3, 0.1);
         assert!(a.iter().flatten().all(|x| x.is_finite()));
@@ -1315,7 +1321,7 @@ mod vessel_tests {
             let messages = Arc::new(Mutex::new(Vec::<String>::new()));
             let mut i = started(&messages, order);
             let pose = [0.04, -0.03, 0.1];
-            for k in 0..30 {
+            for k in 0..60 {
                 let t = 0.1 * k as f64;
                 let r = if t < 2.0 { 0.5 * (1.0 - (std::f64::consts::PI * t / 2.0).cos()) } else { 1.0 };
                 for (name, x) in ["roll", "pitch", "yaw"].iter().zip(pose) {
@@ -1326,7 +1332,12 @@ mod vessel_tests {
             let get = |i: &mut Instance, p: &str| {
                 V3::from_fn(|c, _| i.get_real(vr_of(&format!("{p}_{}", ["x", "y", "z"][c])).unwrap()).unwrap())
             };
-            let (f, m, vf, vm) = (get(&mut i, "top_force"), get(&mut i, "top_moment"), get(&mut i, "vessel_force"), get(&mut i, "vessel_moment"));
+            let (f, m, vf, vm) = (
+                get(&mut i, "top_force"),
+                get(&mut i, "top_moment"),
+                get(&mut i, "vessel_force"),
+                get(&mut i, "vessel_moment"),
+            );
             let sim = i.sim.as_ref().unwrap();
             let r = sim.vessel.order.rotation(pose);
             assert!((sim.state.hang_off.rotation - r).norm() < 1e-12, "{order}");

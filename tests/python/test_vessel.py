@@ -22,6 +22,7 @@ ANCHOR = ["anchor_x", "anchor_y", "anchor_z"]
 POSE = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
 LOADS = [f"{p}_{c}" for p in ("top_force", "top_moment", "vessel_force", "vessel_moment") for c in "xyz"]
 OFFSET = {"hang_off_x": RHO[0], "hang_off_y": RHO[1], "hang_off_z": RHO[2]}
+RAMP_POSE, SETTLE, AVERAGE, TOL_HELD = 60.0, 400.0, 200.0, 1e-6
 
 
 def rot(axis, a):
@@ -110,22 +111,26 @@ def test_a_clamped_end_refuses_the_rotational_derivatives(fmu_path, unzipped):
     s.freeInstance()
 
 
-def held_pose_run(fmu_path, unzipped, order, pose, settle):
-    """The FMU ramped from rest to `pose` over 10 s (the angles through the
-    input path), then held `settle` s with the line's motion damped (drag in
-    still water and structural damping change no static force)."""
+def held_pose_run(fmu_path, unzipped, order, pose, ramp, settle, average):
+    """The FMU ramped from rest to `pose` over `ramp` s (the angles through
+    the input path), then held `settle` s with the line's motion damped (drag
+    in still water and structural damping change no static force). Returns
+    the loads at the end and their mean over the last `average` s (the line's
+    slowest pendulum mode, out of the plane, still swings by a few newtons
+    under quadratic drag: its mean is the equilibrium)."""
     s, vr = started_slave(fmu_path, unzipped, strings={"rotation_order": order},
-                          reals={**OFFSET, "cd_normal": 20.0, "structural_damping": 0.05})
-    t, h = 0.0, 0.2
-    while t < 10.0 + settle - 1e-9:
-        r = 0.5 * (1.0 - np.cos(np.pi * min(t, 10.0) / 10.0))
+                          reals={**OFFSET, **STILL, "cd_normal": 5.0, "structural_damping": 2.0})
+    t, h, rows = 0.0, 0.2, []
+    while t < ramp + settle - 1e-9:
+        r = 0.5 * (1.0 - np.cos(np.pi * min(t, ramp) / ramp))
         s.setReal([vr[p] for p in POSE], list(np.asarray(pose) * r))
         s.doStep(t, h)
         t += h
-    out = dict(zip(LOADS, s.getReal([vr[n] for n in LOADS])))
+        if t > ramp + settle - average:
+            rows.append(s.getReal([vr[n] for n in LOADS]))
     s.terminate()
     s.freeInstance()
-    return out
+    return dict(zip(LOADS, rows[-1])), dict(zip(LOADS, np.mean(rows, axis=0)))
 
 
 @pytest.mark.parametrize("order", ["zyx", "xyz"])
@@ -135,22 +140,27 @@ def test_a_vessel_held_at_a_rotated_pose_has_the_statics_of_the_moved_hang_off(f
     u + (R - I) rho (pinned); the moment about the reference point is
     (R rho) x F to round-off."""
     pose = [1.0, -0.5, 0.8, 0.05, -0.04, 0.1]
-    got = held_pose_run(fmu_path, unzipped, order, pose, settle=150.0)
+    got, mean = held_pose_run(fmu_path, unzipped, order, pose, ramp=RAMP_POSE, settle=SETTLE, average=AVERAGE)
     f = np.array([got[f"top_force_{c}"] for c in "xyz"])
+    f_mean = np.array([mean[f"top_force_{c}"] for c in "xyz"])
     m = np.array([got[f"top_moment_{c}"] for c in "xyz"])
     r = rotation(order, pose[3:])
     anchor0 = np.array(statics(riser_bin, "catenary", "rod")["shape"][-1][1:4])
     ref = pose_loads(riser_bin, "catenary", "rod", anchor0, pose, order)
-    err = np.abs(f - ref[:3]).max() / np.linalg.norm(ref[:3])
-    print(f"{order}: F = {f.tolist()}, statics {ref[:3].tolist()}, |dF|/|F| = {err:.2e}")
-    assert err < 1e-4
+    err = np.abs(f_mean - ref[:3]).max() / np.linalg.norm(ref[:3])
+    print(f"{order}: F = {f_mean.tolist()} (mean), statics {ref[:3].tolist()}, max|dF|/|F| = {err:.2e}")
+    assert err < TOL_HELD
     # the moment is the arm times the FMU's own force, to round-off
     assert np.abs(m - np.cross(r @ RHO, f)).max() <= 1e-12 * np.linalg.norm(m)
     vf = np.array([got[f"vessel_force_{c}"] for c in "xyz"])
     assert np.abs(r @ vf - f).max() <= 1e-12 * np.linalg.norm(f)
 
 
-AMPLITUDES, RAMP, DURATION, WINDOW = {"roll": (0.05, 12.0), "pitch": (0.03, 10.0), "yaw": (0.1, 20.0)}, 20.0, 80.0, 40.0
+# periods as the translations' test (20 s) and longer: the hang-off's motion R(t) rho
+# holds the angles' sum frequencies too (here 11 s), which a 0.5 s communication step
+# follows as it follows a heave of that period (tests/python/test_cosim_inputs.py)
+AMPLITUDES = {"roll": (0.05, 20.0), "pitch": (0.03, 25.0), "yaw": (0.1, 30.0)}
+RAMP, DURATION, WINDOW = 20.0, 100.0, 40.0
 
 
 def angle(name, t):
@@ -185,7 +195,8 @@ def test_the_rotations_input_path_gives_the_exact_motion_loads_within_1_percent(
     """Roll, pitch and yaw at their communication points only (the hang-off
     30 m ahead): the window's min, max and mean of the top tension and the
     moments about the reference point within 1 % of `riser run` with the
-    exact angles at the same internal step, at every communication step."""
+    exact angles at the same internal step, at every communication step (1 %
+    of the largest of the three in magnitude)."""
     t = np.arange(0.0, DURATION + 1e-9, h)
     names = list(AMPLITUDES)
     sig = np.array(list(zip(t, *(angle(n, t) for n in names))),
