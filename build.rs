@@ -90,6 +90,8 @@ fn variable_range(v: &Var) -> Option<(String, String)> {
     use range_table::*;
     let r = match (v.causality.as_str(), v.name.as_str()) {
         ("input", "heave" | "surge" | "sway") => &INPUT_DISPLACEMENT,
+        ("input", "roll" | "pitch" | "yaw") => &INPUT_ANGLE,
+        ("input", name) if name.starts_with("angular_velocity") => &INPUT_ANGULAR_VELOCITY,
         ("input", _) => &INPUT_VELOCITY,
         ("parameter", name) => RANGES.iter().find(|r| r.parameter == Some(name))?,
         _ => return None,
@@ -195,6 +197,19 @@ fn main() {
                 bu.push_attribute((k, e.to_string().as_str()));
             }
         }
+        w.write_event(Event::Empty(bu)).unwrap();
+        w.write_event(Event::End(BytesEnd::new("Unit"))).unwrap();
+    }
+    // angles and angular velocities: SI's rad and rad/s, and degrees for display
+    for (name, s) in [("rad", 0), ("rad/s", -1)] {
+        let mut u = BytesStart::new("Unit");
+        u.push_attribute(("name", name));
+        w.write_event(Event::Start(u)).unwrap();
+        let mut bu = BytesStart::new("BaseUnit");
+        if s != 0 {
+            bu.push_attribute(("s", s.to_string().as_str()));
+        }
+        bu.push_attribute(("rad", "1"));
         w.write_event(Event::Empty(bu)).unwrap();
         w.write_event(Event::End(BytesEnd::new("Unit"))).unwrap();
     }

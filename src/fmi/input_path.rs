@@ -48,8 +48,10 @@
 //! O(h⁵), its slope O(h⁴) and curvature O(h³)); the unit tests below measure
 //! it. Fewer points (the first steps) give smaller designs.
 
-use crate::math::V3;
+use crate::math::rigid::{exp_so3, left_jacobian, left_jacobian_rate, log_so3};
+use crate::math::{M3, V3};
 use crate::model::HangOff;
+use crate::sim::vessel::{Vessel, VesselMotion};
 use nalgebra::{SMatrix, SVector};
 
 /// Coefficients of the predicting polynomial (degree ≤ 4).
@@ -101,11 +103,29 @@ pub fn design(h: f64) -> Design {
 /// (the interpolant of degree ≤ 3 over the last interval: fourth order).
 const QUADRATURE: usize = 4;
 
-/// Numbers per past sample in [`InputHistory::to_values`].
-const SAMPLE_VALUES: usize = 7;
+/// Numbers per past sample in [`InputHistory::to_values`]: t, u (3), v (3),
+/// the rotation (9), the angular velocity inputs (3).
+const SAMPLE_VALUES: usize = 19;
 
 /// Numbers in [`InputHistory::to_values`].
-pub const HISTORY_VALUES: usize = PAST * SAMPLE_VALUES + 11;
+pub const HISTORY_VALUES: usize = PAST * SAMPLE_VALUES + 14;
+
+/// A past rotation sample farther than this from the path's start rotation
+/// (rad) ends the rotation's window: the rotation vectors of the fit stay
+/// well inside |φ| < π, where log is one-to-one (docs/theory.md §14.7).
+const MAX_WINDOW_ROTATION: f64 = 2.0;
+
+/// The inputs of one communication point: the vessel reference point's
+/// displacement (heave, surge, sway; m) and velocity (m/s), the angles
+/// [roll, pitch, yaw] (rad) and the angular velocity in the vessel frame
+/// [p, q, r] (rad/s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct VesselInputs {
+    pub u: [f64; 3],
+    pub v: [f64; 3],
+    pub angles: [f64; 3],
+    pub rates: [f64; 3],
+}
 
 /// Inputs of one communication point, axes in input order (heave, surge, sway).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -117,6 +137,11 @@ pub struct Sample {
     pub u: [f64; 3],
     /// Velocity inputs, m/s.
     pub v: [f64; 3],
+    /// The vessel's rotation: R of the angle inputs, or the integral of the
+    /// angular velocity inputs for a rotation coupled by velocity.
+    pub rot: M3,
+    /// Angular velocity inputs, vessel frame, rad/s.
+    pub w: [f64; 3],
 }
 
 /// Which inputs drive the hang-off (the `coupling_inputs` parameter).
@@ -202,20 +227,32 @@ fn hermite(sigma: f64) -> [[f64; 3]; 3] {
     ]
 }
 
-/// The hang-off's path over one communication step [t, t + h].
+/// The path of the vessel and its hang-off over one communication step [t, t + h].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Path {
     t: f64,
     h: f64,
-    /// Per axis (heave, surge, sway): the start (p, h p', h² p'').
-    start: [[f64; 3]; 3],
+    /// Per axis (heave, surge, sway of the reference point, then the three
+    /// components of the rotation vector φ from `rot_start`): the start
+    /// (p, h p', h² p'').
+    start: [[f64; 3]; 6],
     /// Per axis: the predicted end (Q(h), h Q'(h), h² Q''(h)).
-    end: [[f64; 3]; 3],
-    /// Per axis: where the rates came from.
+    end: [[f64; 3]; 6],
+    /// Per translation axis: where the rates came from.
     pub sources: [RateSource; 3],
+    /// Where the rotation's rates came from (the angles' history or the
+    /// angular velocity inputs).
+    pub rotation_source: RateSource,
     /// Per axis: the displacement at t this path was planned from (the
     /// input, or the velocity's integral); it joins the history.
     pub u: [f64; 3],
+    /// The rotation at t this path was planned from (of the angles, or the
+    /// angular velocity's integral); it joins the history.
+    pub rot: M3,
+    /// The rotation at the step's start: R(s) = exp(φ(s)) `rot_start` (14.7).
+    rot_start: M3,
+    /// ρ, the hang-off in the vessel frame, m.
+    offset: V3,
 }
 
 /// heave → z, surge → x, sway → y: the component of V3 for each input axis.
@@ -237,7 +274,21 @@ impl Path {
         })
     }
 
-    /// Hang-off displacement and velocity at time s (clamped to the step).
+    /// The vessel's rotation and its angular velocity (global) at time s
+    /// (clamped to the step): R = exp(φ) R_start, ω = J(φ) φ̇ (14.8), exact.
+    pub fn rotation(&self, s: f64) -> (M3, V3) {
+        let (mut phi, mut dphi) = (V3::zeros(), V3::zeros());
+        for c in 0..3 {
+            let x = self.axis(3 + c, s);
+            phi[c] = x[0];
+            dphi[c] = x[1];
+        }
+        (exp_so3(&phi) * self.rot_start, left_jacobian(&phi) * dphi)
+    }
+
+    /// The hang-off's motion at time s (clamped to the step): the reference
+    /// point's (u, v) and the rotation composed as [`Vessel::hang_off`] does,
+    /// displacement u + (R − I)ρ, velocity v + ω × Rρ, and R and ω (14.3).
     pub fn at(&self, s: f64) -> HangOff {
         let mut displacement = V3::zeros();
         let mut velocity = V3::zeros();
@@ -246,10 +297,17 @@ impl Path {
             displacement[c] = x[0];
             velocity[c] = x[1];
         }
-        HangOff::translation(displacement, velocity)
+        let (rotation, angular_velocity) = self.rotation(s);
+        let arm = rotation * self.offset;
+        HangOff {
+            displacement: displacement + arm - self.offset,
+            velocity: velocity + angular_velocity.cross(&arm),
+            rotation,
+            angular_velocity,
+        }
     }
 
-    /// Hang-off acceleration at time s (clamped to the step), m/s².
+    /// The vessel reference point's acceleration at time s (clamped to the step), m/s².
     pub fn acceleration(&self, s: f64) -> V3 {
         let mut a = V3::zeros();
         for (i, &c) in COMPONENT.iter().enumerate() {
@@ -261,6 +319,17 @@ impl Path {
     /// The path's acceleration at the step's end, per input axis, m/s².
     fn end_acceleration(&self) -> [f64; 3] {
         std::array::from_fn(|i| self.end[i][2] / (self.h * self.h))
+    }
+
+    /// The angular acceleration (global) at the step's end, rad/s²:
+    /// α = J(φ) φ̈ + J̇ φ̇ (14.8), the next path's start (exact: there φ = 0).
+    fn end_angular_acceleration(&self) -> [f64; 3] {
+        let h = self.h;
+        let phi = V3::from_fn(|c, _| self.end[3 + c][0]);
+        let dphi = V3::from_fn(|c, _| self.end[3 + c][1] / h);
+        let ddphi = V3::from_fn(|c, _| self.end[3 + c][2] / (h * h));
+        let a = left_jacobian(&phi) * ddphi + left_jacobian_rate(&phi, &dphi) * dphi;
+        [a.x, a.y, a.z]
     }
 }
 
@@ -300,6 +369,12 @@ pub struct InputHistory {
     pub pending: Derivatives,
     /// The last path's acceleration at its end (the next one's start), m/s².
     end_acceleration: [f64; 3],
+    /// The master has set an angle input (roll, pitch, yaw).
+    rotation_set: bool,
+    /// The master has set an angular velocity input.
+    angular_velocity_set: bool,
+    /// The last path's angular acceleration at its end (global), rad/s².
+    end_angular_acceleration: [f64; 3],
 }
 
 impl InputHistory {
@@ -308,14 +383,23 @@ impl InputHistory {
         Self::default()
     }
 
-    /// Notes that the master set input `index` (heave, surge, sway, then
-    /// their velocities): `auto` decides from this, never from the values.
+    /// Notes that the master set input `index` (heave, surge, sway, their
+    /// velocities, roll, pitch, yaw, the angular velocities): `auto`
+    /// decides from this, never from the values.
     pub fn note_set(&mut self, index: usize) {
         match index {
             0..3 => self.displacement_set[index] = true,
             3..6 => self.velocity_set[index - 3] = true,
+            6..9 => self.rotation_set = true,
+            9..12 => self.angular_velocity_set = true,
             _ => {}
         }
+    }
+
+    /// The mode of the rotation under `coupling` (never `Auto`): one for
+    /// the three angles, which compose.
+    pub fn rotation_mode(&self, coupling: Coupling) -> Coupling {
+        coupling.resolve(self.rotation_set, self.angular_velocity_set)
     }
 
     /// The mode of each axis under `coupling` (never `Auto`).
@@ -334,6 +418,47 @@ impl InputHistory {
             // the first point: where the hang-off is (its initial position)
             return start;
         }
+        let (coef, n, span) = self.interpolant(t, vin, |s| s.v[i]);
+        let integral: f64 = (0..n).map(|j| coef[j] / (j + 1) as f64).sum();
+        self.past[0].u[i] + span * integral
+    }
+
+    /// The vessel's rotation at time t: R of the angles, or for velocity
+    /// coupling the last one times exp of the fourth-order Magnus step of
+    /// the interpolant of the body rates (`rates` at t and the last ones)
+    /// over the last interval (14.9):
+    ///   R(t) = R(t0) exp(Δ/2 (ω1 + ω2) + √3 Δ²/12 ω1 × ω2),
+    /// ω1, ω2 the interpolant at the Gauss points t0 + (½ ∓ √3/6) Δ.
+    fn rotation_sample(&self, mode: Coupling, vessel: &Vessel, t: f64, inp: &VesselInputs, start: &M3) -> M3 {
+        if mode != Coupling::Velocity {
+            return vessel.order.rotation(inp.angles);
+        }
+        if self.count == 0 {
+            return *start;
+        }
+        let r3 = 3f64.sqrt();
+        let mut w = [V3::zeros(); 2];
+        let mut span = 0.0;
+        for c in 0..3 {
+            let (coef, n, sp) = self.interpolant(t, inp.rates[c], |s| s.w[c]);
+            span = sp;
+            for (g, x) in [0.5 - r3 / 6.0, 0.5 + r3 / 6.0].into_iter().enumerate() {
+                w[g][c] = (0..n).map(|j| coef[j] * x.powi(j as i32)).sum();
+            }
+        }
+        let phi = 0.5 * span * (w[0] + w[1]) + r3 / 12.0 * span * span * w[0].cross(&w[1]);
+        self.past[0].rot * exp_so3(&phi)
+    }
+
+    /// The interpolant of degree < n ≤ 4 in s = (τ − t0)/(t − t0) through the
+    /// samples `current` at t and `value` of the last ones (s = 0 at the
+    /// newest past point t0): its coefficients, n and t − t0.
+    fn interpolant(
+        &self,
+        t: f64,
+        current: f64,
+        value: impl Fn(&Sample) -> f64,
+    ) -> (SVector<f64, QUADRATURE>, usize, f64) {
         let t0 = self.past[0].t;
         let n = (self.count + 1).min(QUADRATURE);
         // the interpolant in s = (τ − τ0)/(t − t0) through (0 at t0, ..., 1 at t)
@@ -341,7 +466,7 @@ impl InputHistory {
         let mut a = SMatrix::<f64, QUADRATURE, QUADRATURE>::identity();
         let mut b = SVector::<f64, QUADRATURE>::zeros();
         for row in 0..n {
-            let (tk, vk) = if row == 0 { (t, vin) } else { (self.past[row - 1].t, self.past[row - 1].v[i]) };
+            let (tk, vk) = if row == 0 { (t, current) } else { (self.past[row - 1].t, value(&self.past[row - 1])) };
             let s = (tk - t0) / span;
             for j in 0..QUADRATURE {
                 a[(row, j)] = if j < n { s.powi(j as i32) } else { 0.0 };
@@ -351,12 +476,11 @@ impl InputHistory {
         let coef = a.lu().solve(&b).unwrap_or_else(|| {
             // distinct times make it regular; the trapezoid otherwise
             let mut c = SVector::zeros();
-            c[0] = self.past[0].v[i];
-            c[1] = vin - self.past[0].v[i];
+            c[0] = value(&self.past[0]);
+            c[1] = current - value(&self.past[0]);
             c
         });
-        let integral: f64 = (0..n).map(|j| coef[j] / (j + 1) as f64).sum();
-        self.past[0].u[i] + span * integral
+        (coef, n, span)
     }
 
     /// The conditions (7.1) of axis `i` at time t from the displacement `u`
@@ -391,26 +515,25 @@ impl InputHistory {
         (out, source)
     }
 
-    /// (7.1) in the least-squares sense on the displacement samples of axis
-    /// `i` (`u` at t, then the past ones) with the design of the step h
-    /// ([`design`]): (Q, h Q', h² Q'') at τ = h. With n < taps samples known
-    /// (the first steps) the design shrinks: min(alt, n − 4) nuisances and
-    /// min(poly, n − nuisances) coefficients.
-    fn fit(&self, i: usize, t: f64, h: f64, u: f64) -> [f64; 3] {
+    /// (7.1) in the least-squares sense on the samples `value(k)` (k = 0 at
+    /// t, then the `known` past ones, newest first) with the design of the
+    /// step h ([`design`]): (Q, h Q', h² Q'') at τ = h. With n < taps samples
+    /// known (the first steps) the design shrinks: min(alt, n − 4) nuisances
+    /// and min(poly, n − nuisances) coefficients.
+    fn fit(&self, known: usize, t: f64, h: f64, value: impl Fn(usize) -> f64) -> [f64; 3] {
         // the smoothing designs on uniform steps (a fixed-step master); where
         // the steps change, the quartic through six points with the
         // alternation removed, whose error stays O(h⁵) at any spacing (a
         // smoothing design's larger error, smooth at uniform steps, would
         // change from step to step with the spacing and wobble the path)
-        let back = self.count.min(TAPS - 1);
+        let back = known.min(TAPS - 1);
         let uniform = (0..back).all(|k| {
             let newer = if k == 0 { t } else { self.past[k - 1].t };
             ((newer - self.past[k].t) / h - 1.0).abs() < 1e-6
         });
         let index = if uniform { DESIGNS.iter().position(|x| x.1 == design(h)).unwrap_or(2) } else { 2 };
         let d = DESIGNS[index].1;
-        let n = (self.count + 1).min(d.taps);
-        let value = |k: usize| if k == 0 { u } else { self.past[k - 1].u[i] };
+        let n = (known + 1).min(d.taps);
         if uniform && n == d.taps {
             // a fixed-step master once the window is full: the fit's fixed weights
             let w = uniform_weights(index);
@@ -489,39 +612,102 @@ impl InputHistory {
         std::array::from_fn(|i| if modes[i] == Coupling::Velocity { 0.0 } else { u[i] })
     }
 
+    /// The hang-off's motion at t0 from the inputs set before
+    /// fmi2ExitInitializationMode: the translations as
+    /// [`InputHistory::start_displacement`] and [`InputHistory::start_velocity`],
+    /// the rotation of the angles (the identity for a rotation coupled by its
+    /// velocity alone), its angular velocity that of the angular velocity
+    /// inputs when they drive (`velocity`, `both`), else zero; composed at
+    /// the offset by [`Vessel::hang_off`].
+    pub fn start(&self, coupling: Coupling, vessel: &Vessel, inp: &VesselInputs) -> HangOff {
+        let u = self.start_displacement(coupling, &inp.u);
+        let v = self.start_velocity(coupling, &inp.v);
+        let mode = self.rotation_mode(coupling);
+        let angles = if mode == Coupling::Velocity { [0.0; 3] } else { inp.angles };
+        let rates = if matches!(mode, Coupling::Velocity | Coupling::Both) { inp.rates } else { [0.0; 3] };
+        // input order heave, surge, sway → z, x, y
+        vessel.hang_off(&VesselMotion {
+            displacement: V3::new(u[1], u[2], u[0]),
+            velocity: V3::new(v[1], v[2], v[0]),
+            angles,
+            body_rates: V3::from(rates),
+        })
+    }
+
     /// Plans the path over [t, t + h] from the hang-off's current motion
-    /// `from` towards the prediction (7.1) from the inputs set for t.
-    pub fn plan(&self, coupling: Coupling, t: f64, h: f64, u: &[f64; 3], vin: &[f64; 3], from: &HangOff) -> Path {
+    /// `from` towards the prediction (7.1) from the inputs set for t: the
+    /// reference point's translations per axis as §7 says, the rotation on
+    /// rotations (§14.7): the samples R_k as rotation vectors
+    /// φ_k = log(R_k R_startᵀ) from the current rotation R_start, each
+    /// component through the same fit, and R(s) = exp(φ(s)) R_start.
+    pub fn plan(
+        &self,
+        coupling: Coupling,
+        vessel: &Vessel,
+        t: f64,
+        h: f64,
+        inp: &VesselInputs,
+        from: &HangOff,
+    ) -> Path {
+        // the reference point's motion from the hang-off's (14.3 inverted)
+        let arm = from.rotation * vessel.offset;
+        let ref_displacement = from.displacement - (arm - vessel.offset);
+        let ref_velocity = from.velocity - from.angular_velocity.cross(&arm);
         let modes = self.modes(coupling);
         let mut sources = [RateSource::History; 3];
         let mut used = [0.0; 3];
-        let end = std::array::from_fn(|i| {
-            let x = self.displacement(i, modes[i], t, u[i], vin[i], from.displacement[COMPONENT[i]]);
+        let mut end = [[0.0; 3]; 6];
+        for (i, e) in end.iter_mut().take(3).enumerate() {
+            let x = self.displacement(i, modes[i], t, inp.u[i], inp.v[i], ref_displacement[COMPONENT[i]]);
             used[i] = x;
             let (conditions, source) = self.conditions(i, modes[i], t, x);
             sources[i] = source;
-            if source == RateSource::Derivatives || conditions.iter().flatten().any(|c| c.order > 0) {
+            *e = if source == RateSource::Derivatives || conditions.iter().flatten().any(|c| c.order > 0) {
                 Self::predict(&conditions, h)
             } else {
-                self.fit(i, t, h, x)
+                self.fit(self.count, t, h, |k| if k == 0 { x } else { self.past[k - 1].u[i] })
+            };
+        }
+        // the rotation: its samples as rotation vectors from where it is
+        let mode = self.rotation_mode(coupling);
+        let r_start = from.rotation;
+        let rot = self.rotation_sample(mode, vessel, t, inp, &r_start);
+        let relative = |r: &M3| log_so3(&(r * r_start.transpose()));
+        let phi0 = relative(&rot);
+        let mut phis = [V3::zeros(); PAST];
+        let mut known = 0;
+        for (k, s) in self.past[..self.count].iter().enumerate() {
+            phis[k] = relative(&s.rot);
+            if phis[k].norm() > MAX_WINDOW_ROTATION {
+                break;
             }
-        });
-        let start = std::array::from_fn(|i| {
-            let c = COMPONENT[i];
-            [from.displacement[c], h * from.velocity[c], h * h * self.end_acceleration[i]]
-        });
-        Path { t, h, start, end, sources, u: used }
+            known = k + 1;
+        }
+        for c in 0..3 {
+            end[3 + c] = self.fit(known, t, h, |k| if k == 0 { phi0[c] } else { phis[k - 1][c] });
+        }
+        let mut start = [[0.0; 3]; 6];
+        for (i, &c) in COMPONENT.iter().enumerate() {
+            start[i] = [ref_displacement[c], h * ref_velocity[c], h * h * self.end_acceleration[i]];
+        }
+        for c in 0..3 {
+            // at φ = 0, φ̇ = ω and φ̈ = α exactly (14.8)
+            start[3 + c] = [0.0, h * from.angular_velocity[c], h * h * self.end_angular_acceleration[c]];
+        }
+        let rotation_source = if mode == Coupling::Velocity { RateSource::Velocity } else { RateSource::History };
+        Path { t, h, start, end, sources, rotation_source, u: used, rot, rot_start: r_start, offset: vessel.offset }
     }
 
     /// Records the communication point t after a successful step along
     /// `path` from it: its inputs join the history and the pending
     /// derivatives are used up.
-    pub fn commit(&mut self, t: f64, vin: &[f64; 3], path: &Path) {
+    pub fn commit(&mut self, t: f64, inp: &VesselInputs, path: &Path) {
         self.past.copy_within(0..PAST - 1, 1);
-        self.past[0] = Sample { t, u: path.u, v: *vin };
+        self.past[0] = Sample { t, u: path.u, v: inp.v, rot: path.rot, w: inp.rates };
         self.count = (self.count + 1).min(PAST);
         self.pending = Derivatives::default();
         self.end_acceleration = path.end_acceleration();
+        self.end_angular_acceleration = path.end_angular_acceleration();
     }
 
     /// The history as numbers (for the serialized FMU state).
@@ -532,6 +718,8 @@ impl InputHistory {
             out[o] = s.t;
             out[o + 1..o + 4].copy_from_slice(&s.u);
             out[o + 4..o + 7].copy_from_slice(&s.v);
+            out[o + 7..o + 16].copy_from_slice(s.rot.as_slice());
+            out[o + 16..o + 19].copy_from_slice(&s.w);
         }
         let o = PAST * SAMPLE_VALUES;
         out[o] = self.count as f64;
@@ -544,7 +732,10 @@ impl InputHistory {
             out[o + 2 + i] = self.pending.first[i].unwrap_or(0.0);
             out[o + 5 + i] = self.pending.second[i].unwrap_or(0.0);
             out[o + 8 + i] = self.end_acceleration[i];
+            out[o + 11 + i] = self.end_angular_acceleration[i];
         }
+        flags |= (self.rotation_set as u32) << 12;
+        flags |= (self.angular_velocity_set as u32) << 13;
         out[o + 1] = flags as f64;
         out
     }
@@ -561,18 +752,27 @@ impl InputHistory {
         for k in 0..PAST {
             let o = SAMPLE_VALUES * k;
             let three = |j: usize| [x[o + j], x[o + j + 1], x[o + j + 2]];
-            h.past[k] = Sample { t: x[o], u: three(1), v: three(4) };
+            h.past[k] = Sample {
+                t: x[o],
+                u: three(1),
+                v: three(4),
+                rot: M3::from_column_slice(&x[o + 7..o + 16]),
+                w: three(16),
+            };
         }
         let o = PAST * SAMPLE_VALUES;
         h.count = small_int(x[o], (PAST + 1) as f64)? as usize;
-        let flags = small_int(x[o + 1], 4096.0)?;
+        let flags = small_int(x[o + 1], 16384.0)?;
         h.displacement_set = bits(flags);
         h.velocity_set = bits(flags >> 9);
         for i in 0..3 {
             h.pending.first[i] = (flags >> (3 + i) & 1 == 1).then_some(x[o + 2 + i]);
             h.pending.second[i] = (flags >> (6 + i) & 1 == 1).then_some(x[o + 5 + i]);
             h.end_acceleration[i] = x[o + 8 + i];
+            h.end_angular_acceleration[i] = x[o + 11 + i];
         }
+        h.rotation_set = flags >> 12 & 1 == 1;
+        h.angular_velocity_set = flags >> 13 & 1 == 1;
         Some(h)
     }
 }
@@ -644,6 +844,19 @@ fn uniform_weights(index: usize) -> &'static [[f64; TAPS]; 3] {
 mod tests {
     use super::*;
 
+    /// The vessel at its reference point (the translations' tests).
+    const AT_REFERENCE: Vessel =
+        Vessel { offset: V3::new(0.0, 0.0, 0.0), order: crate::math::rigid::RotationOrder::Zyx };
+
+    /// Plans with the translation inputs alone.
+    fn plan3(hist: &InputHistory, c: Coupling, t: f64, h: f64, u: &[f64; 3], v: &[f64; 3], at: &HangOff) -> Path {
+        hist.plan(c, &AT_REFERENCE, t, h, &VesselInputs { u: *u, v: *v, ..Default::default() }, at)
+    }
+
+    fn commit3(hist: &mut InputHistory, t: f64, v: &[f64; 3], path: &Path) {
+        hist.commit(t, &VesselInputs { v: *v, ..Default::default() }, path);
+    }
+
     fn hang_off(z: f64, vz: f64) -> HangOff {
         HangOff::translation(V3::new(0.0, 0.0, z), V3::new(0.0, 0.0, vz))
     }
@@ -670,8 +883,8 @@ mod tests {
             if v.is_some() {
                 hist.note_set(3);
             }
-            let path = hist.plan(Coupling::Auto, t, h, &inp, &vin, &at);
-            hist.commit(t, &vin, &path);
+            let path = plan3(&hist, Coupling::Auto, t, h, &inp, &vin, &at);
+            commit3(&mut hist, t, &vin, &path);
             at = path.at(t + h);
             points.push(at);
             paths.push(path);
@@ -805,13 +1018,13 @@ mod tests {
         let mut hist = InputHistory::new();
         hist.note_set(0);
         let at = hang_off(0.0, 0.0);
-        let path = hist.plan(Coupling::Auto, 0.0, 0.1, &[0.0; 3], &[0.0; 3], &at);
-        hist.commit(0.0, &[0.0; 3], &path);
+        let path = plan3(&hist, Coupling::Auto, 0.0, 0.1, &[0.0; 3], &[0.0; 3], &at);
+        commit3(&mut hist, 0.0, &[0.0; 3], &path);
         // a derivative and the history: Q(0) + a = 0.2, Q'(0) = 1.5, Q''(0) = −2, Q(−0.1) − a = 0
         hist.pending.first[0] = Some(1.5);
         hist.pending.second[0] = Some(-2.0);
         let h = 0.1;
-        let path = hist.plan(Coupling::Auto, 0.1, h, &[0.2, 0.0, 0.0], &[0.0; 3], &at);
+        let path = plan3(&hist, Coupling::Auto, 0.1, h, &[0.2, 0.0, 0.0], &[0.0; 3], &at);
         assert_eq!(path.sources[0], RateSource::Derivatives);
         assert_eq!(path.sources[1], RateSource::History);
         // Q = c0 + 1.5τ − τ²: c0 + a = 0.2, c0 − 0.15 − 0.01 − a = 0
@@ -824,12 +1037,12 @@ mod tests {
         hist.note_set(2);
         assert_eq!(hist.modes(Coupling::Auto)[2], Coupling::Both);
         assert_eq!(hist.modes(Coupling::Velocity), [Coupling::Velocity; 3]);
-        let path = hist.plan(Coupling::Velocity, 0.1, h, &[0.2, 0.0, 0.0], &[0.0, 0.7, 0.0], &at);
+        let path = plan3(&hist, Coupling::Velocity, 0.1, h, &[0.2, 0.0, 0.0], &[0.0, 0.7, 0.0], &at);
         assert_eq!(path.sources[1], RateSource::Velocity);
         // velocity coupling: the displacement input is ignored, the derivatives too
         assert_eq!(path.u[0], 0.0);
         assert_eq!(path.sources[0], RateSource::Velocity);
-        hist.commit(0.1, &[0.0, 0.7, 0.0], &path);
+        commit3(&mut hist, 0.1, &[0.0, 0.7, 0.0], &path);
         assert_eq!(hist.pending, Derivatives::default());
     }
 
@@ -844,8 +1057,8 @@ mod tests {
             if k == 3 {
                 hist.note_set(5);
             }
-            let path = hist.plan(Coupling::Auto, t, 0.25, &u, &[0.0, 0.0, -1.0], &at);
-            hist.commit(t, &[0.0, 0.0, -1.0], &path);
+            let path = plan3(&hist, Coupling::Auto, t, 0.25, &u, &[0.0, 0.0, -1.0], &at);
+            commit3(&mut hist, t, &[0.0, 0.0, -1.0], &path);
         }
         hist.pending.first[1] = Some(3.0);
         hist.pending.second[2] = Some(-4.0);
@@ -855,5 +1068,194 @@ mod tests {
         bad[PAST * SAMPLE_VALUES] = 0.5;
         assert!(InputHistory::from_values(&bad).is_none());
         assert!(InputHistory::from_values(&bad[..20]).is_none());
+    }
+
+    use crate::math::rigid::RotationOrder;
+
+    /// Drives the history with the vessel's angles `angles(t)` (when
+    /// `use_angles`) and its body rates `rates(t)` (when given) under `auto`,
+    /// the hang-off at `vessel`'s offset; returns the hang-off at each
+    /// communication point and the paths.
+    fn drive_rotation(
+        times: &[f64],
+        vessel: &Vessel,
+        angles: &dyn Fn(f64) -> [f64; 3],
+        rates: Option<&dyn Fn(f64) -> [f64; 3]>,
+        use_angles: bool,
+    ) -> (Vec<HangOff>, Vec<Path>) {
+        let mut hist = InputHistory::new();
+        let inp = |t: f64| VesselInputs {
+            angles: if use_angles { angles(t) } else { [0.0; 3] },
+            rates: rates.map_or([0.0; 3], |r| r(t)),
+            ..Default::default()
+        };
+        if use_angles {
+            hist.note_set(7);
+        }
+        if rates.is_some() {
+            hist.note_set(11);
+        }
+        let mut at = hist.start(Coupling::Auto, vessel, &inp(times[0]));
+        let (mut points, mut paths) = (vec![at], vec![]);
+        for w in times.windows(2) {
+            let (t, h) = (w[0], w[1] - w[0]);
+            let path = hist.plan(Coupling::Auto, vessel, t, h, &inp(t), &at);
+            hist.commit(t, &inp(t), &path);
+            at = path.at(t + h);
+            points.push(at);
+            paths.push(path);
+        }
+        (points, paths)
+    }
+
+    /// A smooth attitude (period 20 s, angles up to 0.2 rad), its rates.
+    fn attitude(t: f64) -> [f64; 3] {
+        let w = 2.0 * std::f64::consts::PI / 20.0;
+        [
+            0.1 * (w * t).sin(),
+            0.06 * (w * t + 1.0).sin() - 0.06 * 1f64.sin(),
+            0.2 * (w * t + 2.0).sin() - 0.2 * 2f64.sin(),
+        ]
+    }
+
+    fn attitude_rates(t: f64) -> [f64; 3] {
+        let w = 2.0 * std::f64::consts::PI / 20.0;
+        [0.1 * w * (w * t).cos(), 0.06 * w * (w * t + 1.0).cos(), 0.2 * w * (w * t + 2.0).cos()]
+    }
+
+    /// The angle between two rotations, rad.
+    fn angle_between(a: &M3, b: &M3) -> f64 {
+        log_so3(&(a * b.transpose())).norm()
+    }
+
+    #[test]
+    fn the_rotation_follows_a_smooth_attitude_to_fifth_order_in_both_orders() {
+        // the path's rotation at the communication points against R(a(t)):
+        // the fit of §7.3 on the rotation vectors, O(h⁵) as the translations
+        for order in [RotationOrder::Zyx, RotationOrder::Xyz] {
+            let vessel = Vessel { offset: V3::new(30.0, -8.0, 4.0), order };
+            let err = |h: f64| {
+                let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
+                let (points, _) = drive_rotation(&times, &vessel, &attitude, None, true);
+                (10..times.len())
+                    .map(|k| angle_between(&points[k].rotation, &order.rotation(attitude(times[k]))))
+                    .fold(0.0, f64::max)
+            };
+            let (e1, e2) = (err(0.8), err(0.4));
+            let rate = (e1 / e2).log2();
+            assert!((rate - 5.0).abs() < 0.3, "{order:?}: {e1:e} {e2:e} order {rate}");
+            // and the size of the translations' error (docs/theory.md §7.3): a
+            // displacement of amplitude |a| errs by (2 sin(θ/2))⁵ |1 + 31/32 e^{−iθ}| |a|
+            let th = 2.0 * std::f64::consts::PI * 0.4 / 20.0;
+            let amplitude = (0.1f64.powi(2) + 0.06f64.powi(2) + 0.2f64.powi(2)).sqrt();
+            let closed = (2.0 * (th / 2.0).sin()).powi(5)
+                * ((1.0 + 31.0 / 32.0 * th.cos()).powi(2) + (31.0 / 32.0 * th.sin()).powi(2)).sqrt()
+                * amplitude;
+            assert!(e2 < 1.5 * closed, "{order:?}: {e2:e} against {closed:e}");
+        }
+    }
+
+    #[test]
+    fn the_hang_off_moves_as_the_point_of_the_rotating_vessel() {
+        // along the paths: the hang-off's velocity is the rate of its
+        // displacement, Ṙ = [ω]× R, the displacement is (R − I)ρ (the
+        // reference point held), and ω is continuous at communication points
+        let vessel = Vessel { offset: V3::new(30.0, -8.0, 4.0), order: RotationOrder::Zyx };
+        let times: Vec<f64> = [0.0, 0.2, 0.5, 0.6, 1.0, 1.3, 1.4, 1.45, 1.9, 2.0, 2.3].to_vec();
+        let (_, paths) = drive_rotation(&times, &vessel, &attitude, None, true);
+        for k in 0..paths.len() {
+            let (t0, t1) = (times[k], times[k + 1]);
+            let (e, s) = (1e-6, 0.5 * (t0 + t1));
+            let (a, b, m) = (paths[k].at(s - e), paths[k].at(s + e), paths[k].at(s));
+            let fd = (b.displacement - a.displacement) / (2.0 * e);
+            assert!((fd - m.velocity).norm() < 1e-7, "{k}: {fd} {}", m.velocity);
+            let rd = (b.rotation - a.rotation) / (2.0 * e);
+            assert!((rd - crate::math::skew(&m.angular_velocity) * m.rotation).norm() < 1e-9, "{k}");
+            let arm = m.rotation * vessel.offset;
+            assert!((m.displacement - (arm - vessel.offset)).norm() < 1e-13, "{k}");
+            if k + 1 < paths.len() {
+                let (l, r) = (paths[k].at(t1), paths[k + 1].at(t1));
+                assert_eq!(l.rotation, r.rotation, "{k}");
+                assert!((l.angular_velocity - r.angular_velocity).norm() < 1e-15, "{k}");
+                // the angular acceleration too (C2), by second-order one-sided differences
+                let e = 1e-5;
+                let w = |p: &Path, s: f64| p.at(s).angular_velocity;
+                let left =
+                    (3.0 * w(&paths[k], t1) - 4.0 * w(&paths[k], t1 - e) + w(&paths[k], t1 - 2.0 * e)) / (2.0 * e);
+                let right = (-3.0 * w(&paths[k + 1], t1) + 4.0 * w(&paths[k + 1], t1 + e)
+                    - w(&paths[k + 1], t1 + 2.0 * e))
+                    / (2.0 * e);
+                assert!((left - right).norm() < 1e-6 * left.norm().max(1.0), "{k}: {left} {right}");
+            }
+        }
+        // held at a pose: the hang-off at (R − I)ρ, at rest
+        let pose = [0.05, -0.08, 0.3];
+        let times: Vec<f64> = (0..30).map(|k| k as f64 * 0.1).collect();
+        let (points, _) = drive_rotation(&times, &vessel, &|_| pose, None, true);
+        let r = vessel.order.rotation(pose);
+        for p in &points {
+            assert!((p.displacement - (r * vessel.offset - vessel.offset)).norm() < 1e-13);
+            assert!(p.velocity.norm() < 1e-13 && p.angular_velocity.norm() < 1e-15);
+            assert!((p.rotation - r).norm() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn angular_velocity_alone_is_integrated_exactly_for_cubic_rates() {
+        let vessel = Vessel { offset: V3::zeros(), order: RotationOrder::Zyx };
+        // a constant rate about a fixed axis: exact
+        let w = [0.02, -0.05, 0.1];
+        let times: Vec<f64> = [0.0, 0.3, 0.5, 0.9, 1.0, 1.6, 1.7, 2.5].to_vec();
+        let (_, paths) = drive_rotation(&times, &vessel, &|_| [0.0; 3], Some(&|_| w), false);
+        assert!(paths.iter().all(|p| p.rotation_source == RateSource::Velocity));
+        for (k, p) in paths.iter().enumerate() {
+            let exact = exp_so3(&(V3::from(w) * times[k]));
+            assert!(angle_between(&p.rot, &exact) < 1e-15, "{k}");
+        }
+        // the body rates of a smooth attitude: R(a(t)) to fourth order in the step
+        let order = vessel.order;
+        let rates = |t: f64| {
+            let b = order.body_rates(attitude(t), attitude_rates(t));
+            [b.x, b.y, b.z]
+        };
+        let err = |h: f64| {
+            let times: Vec<f64> = (0..=(40.0 / h).round() as usize).map(|k| k as f64 * h).collect();
+            let (_, paths) = drive_rotation(&times, &vessel, &attitude, Some(&rates), false);
+            (1..paths.len())
+                .map(|k| angle_between(&paths[k].rot, &order.rotation(attitude(times[k]))))
+                .fold(0.0, f64::max)
+        };
+        // the integral over each interval is exact for cubic rates; over 40 s
+        // the error falls as h³ (as the translations' velocity integral)
+        let (e1, e2) = (err(0.8), err(0.4));
+        let rate = (e1 / e2).log2();
+        assert!(rate > 2.8, "{e1:e} {e2:e} order {rate}");
+    }
+
+    #[test]
+    fn the_history_with_rotations_survives_its_numbers() {
+        let vessel = Vessel { offset: V3::new(30.0, 0.0, -5.0), order: RotationOrder::Xyz };
+        let mut hist = InputHistory::new();
+        let mut at = HangOff::default();
+        for k in 0..7 {
+            let t = 0.25 * k as f64;
+            let inp = VesselInputs {
+                u: [0.1 * t, 0.2 + t, 0.3 - t * t],
+                v: [0.0, 0.0, -1.0],
+                angles: attitude(t),
+                rates: attitude_rates(t),
+            };
+            hist.note_set(0);
+            hist.note_set(6);
+            if k == 3 {
+                hist.note_set(10);
+            }
+            let path = hist.plan(Coupling::Auto, &vessel, t, 0.25, &inp, &at);
+            hist.commit(t, &inp, &path);
+            at = path.at(t + 0.25);
+        }
+        let back = InputHistory::from_values(&hist.to_values()).unwrap();
+        assert_eq!(back, hist);
+        assert_eq!(back.rotation_mode(Coupling::Auto), Coupling::Both);
     }
 }

@@ -109,6 +109,83 @@ pub fn rotation_rate(order: RotationOrder, angles: [f64; 3], rates: [f64; 3]) ->
     order.rotation(angles) * skew(&order.body_rates(angles, rates))
 }
 
+/// The coefficients of the rotation vector's maps at angle θ = |φ|:
+/// [sin θ/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³] and the derivatives of the last
+/// two divided by θ, [a'/θ, b'/θ] (series below θ = 0.1: no cancellation).
+fn so3_coefficients(theta: f64) -> ([f64; 3], [f64; 2]) {
+    let t2 = theta * theta;
+    if theta < 0.1 {
+        // truncation below 3e-16 at θ = 0.1 (the next terms are θ⁸/10!·…)
+        let s = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0)));
+        let a = 0.5 - t2 / 24.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0 * (1.0 - t2 / 90.0)));
+        let b = 1.0 / 6.0 - t2 / 120.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0 * (1.0 - t2 / 110.0)));
+        let da = -1.0 / 12.0 + t2 / 180.0 - t2 * t2 / 6720.0 + t2 * t2 * t2 / 453_600.0;
+        let db = -1.0 / 60.0 + t2 / 1260.0 - t2 * t2 / 60_480.0 + t2 * t2 * t2 / 4_989_600.0;
+        return ([s, a, b], [da, db]);
+    }
+    let sn = theta.sin();
+    let half = (0.5 * theta).sin();
+    let one_minus_cos = 2.0 * half * half;
+    let s = sn / theta;
+    let a = one_minus_cos / t2;
+    let b = (theta - sn) / (t2 * theta);
+    let da = (theta * sn - 2.0 * one_minus_cos) / (t2 * t2);
+    let db = (one_minus_cos * theta - 3.0 * (theta - sn)) / (t2 * t2 * theta);
+    ([s, a, b], [da, db])
+}
+
+/// exp of the rotation vector φ (14.7): the rotation by |φ| about φ,
+/// I + (sin θ/θ) \[φ\]× + ((1 − cos θ)/θ²) \[φ\]×² (Rodrigues); exactly I at φ = 0.
+pub fn exp_so3(phi: &V3) -> M3 {
+    let ([s, a, _], _) = so3_coefficients(phi.norm());
+    let k = skew(phi);
+    M3::identity() + s * k + a * k * k
+}
+
+/// log of a rotation R (14.7): the rotation vector φ, |φ| ∈ [0, π], with
+/// exp(φ) = R. The angle from atan2(|sin θ|, cos θ) (accurate at every
+/// angle, where acos of the trace loses half the digits near 0), the axis
+/// from the skew part, or near π from the symmetric part.
+pub fn log_so3(r: &M3) -> V3 {
+    // s = sin θ · axis, c = cos θ
+    let s = 0.5 * V3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    let c = (0.5 * (r.trace() - 1.0)).clamp(-1.0, 1.0);
+    let sn = s.norm();
+    let theta = sn.atan2(c);
+    if c > -0.5 {
+        // θ < 2π/3: s/|s| is well conditioned; θ/sin θ by its series near 0
+        let ([sinc, _, _], _) = so3_coefficients(theta);
+        return s / sinc;
+    }
+    // near π: (R + Rᵀ)/2 − c I = (1 − c) a aᵀ; the column of the largest diagonal
+    let b = 0.5 * (r + r.transpose()) - c * M3::identity();
+    let j = (0..3).max_by(|&i, &k| b[(i, i)].total_cmp(&b[(k, k)])).unwrap_or(0);
+    let mut axis = b.column(j).into_owned() / (b[(j, j)] * (1.0 - c)).sqrt();
+    if axis.dot(&s) < 0.0 {
+        axis = -axis;
+    }
+    theta * axis.normalize()
+}
+
+/// The left Jacobian J(φ) of exp: for R(t) = exp(φ(t)) R₀ the angular
+/// velocity (global, Ṙ = \[ω\]× R) is ω = J(φ) φ̇, with
+/// J = I + ((1 − cos θ)/θ²) \[φ\]× + ((θ − sin θ)/θ³) \[φ\]×² (14.8).
+pub fn left_jacobian(phi: &V3) -> M3 {
+    let ([_, a, b], _) = so3_coefficients(phi.norm());
+    let k = skew(phi);
+    M3::identity() + a * k + b * k * k
+}
+
+/// d/dt J(φ(t)) at φ with rate φ̇ (for the angular acceleration
+/// α = J φ̈ + J̇ φ̇, 14.8).
+pub fn left_jacobian_rate(phi: &V3, dphi: &V3) -> M3 {
+    let ([_, a, b], [da, db]) = so3_coefficients(phi.norm());
+    // θ̇ a'(θ) = (a'/θ)(φ·φ̇)
+    let dot = phi.dot(dphi);
+    let (k, dk) = (skew(phi), skew(dphi));
+    da * dot * k + a * dk + db * dot * k * k + b * (dk * k + k * dk)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -207,5 +284,44 @@ mod tests {
         assert_eq!(mom, V3::new(0.0, 3e6, 0.0));
         // a positive moment about y is a positive pitch: bow down
         assert!((RotationOrder::Zyx.rotation([0.0, 1e-3, 0.0]) * V3::x()).z < 0.0);
+    }
+
+    /// exp and log are inverse at small, general and near-π angles; J φ̇
+    /// and J̇ φ̇ + J φ̈ are the angular velocity and acceleration of
+    /// exp(φ(t)) R₀ (central differences), on both sides of the series' switch.
+    #[test]
+    fn exp_log_and_the_left_jacobian() {
+        let axis = V3::new(0.3, -0.5, 0.8).normalize();
+        for theta in [0.0, 1e-9, 1e-4, 0.0999, 0.1001, 1.0, 2.5, std::f64::consts::PI - 1e-7] {
+            let phi = axis * theta;
+            let r = exp_so3(&phi);
+            assert!((r.transpose() * r - M3::identity()).norm() < 1e-15, "{theta}");
+            let back = log_so3(&r);
+            assert!(
+                (back - phi).norm() <= 4e-16 * theta.max(1.0) + 1e-16 / (std::f64::consts::PI - theta),
+                "{theta}: {back} {phi}"
+            );
+            // Rodrigues' closed form
+            let k = skew(&axis);
+            let rod = M3::identity() + theta.sin() * k + (1.0 - theta.cos()) * k * k;
+            assert!((r - rod).norm() < 1e-15, "{theta}");
+        }
+        let r0 = RotationOrder::Zyx.rotation([0.2, -0.1, 0.4]);
+        for scale in [1e-3, 0.05, 0.09, 0.11, 0.8] {
+            let phi = |t: f64| V3::new(0.3 + t, -0.2 * t * t, 0.5 - 0.4 * t) * scale;
+            let dphi = |t: f64| V3::new(1.0, -0.4 * t, -0.4) * scale;
+            let ddphi = V3::new(0.0, -0.4, 0.0) * scale;
+            let rot = |t: f64| exp_so3(&phi(t)) * r0;
+            let (t, e) = (0.3, 1e-5);
+            let rdot = (rot(t + e) - rot(t - e)) / (2.0 * e);
+            let omega = left_jacobian(&phi(t)) * dphi(t);
+            let err = (rdot - skew(&omega) * rot(t)).norm();
+            assert!(err < 1e-9, "{scale}: {err:e}");
+            let om = |t: f64| left_jacobian(&phi(t)) * dphi(t);
+            let alpha = left_jacobian(&phi(t)) * ddphi + left_jacobian_rate(&phi(t), &dphi(t)) * dphi(t);
+            let fd = (om(t + e) - om(t - e)) / (2.0 * e);
+            let err = (fd - alpha).norm();
+            assert!(err < 1e-9, "{scale}: {err:e} {fd} {alpha}");
+        }
     }
 }

@@ -609,6 +609,27 @@ pub const INPUT_VELOCITY: Range = Range {
     reason: "ten times the fastest vessel motion",
 };
 
+/// The vessel's angle inputs of the FMU (roll, pitch, yaw), rad: any angle
+/// gives a rotation; the bound keeps sin and cos of it exact to 1e-14.
+pub const INPUT_ANGLE: Range = Range {
+    field: "vessel angle",
+    parameter: None,
+    unit: "rad",
+    min: -100.0,
+    max: 100.0,
+    reason: "16 turns: the rotation is periodic, and beyond, the angle's round-off grows past 1e-14 rad",
+};
+
+/// The vessel's angular velocity inputs of the FMU (vessel frame), rad/s.
+pub const INPUT_ANGULAR_VELOCITY: Range = Range {
+    field: "vessel angular velocity",
+    parameter: None,
+    unit: "rad/s",
+    min: -10.0,
+    max: 10.0,
+    reason: "fifty times a vessel's fastest roll rate",
+};
+
 /// The hang-off accelerations a master may give as input derivatives, m/s².
 pub const INPUT_ACCELERATION: Range = Range {
     field: "hang-off acceleration",
