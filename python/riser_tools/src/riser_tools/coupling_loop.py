@@ -127,16 +127,17 @@ def reference(fmu_path: str, two: dict, h_ref: float = 0.01, duration: float | N
                    start_values={"time_step": h_ref})
 
 
-def build_vessel_fmu(dest) -> str:
-    """osp/vessel/Vessel.py built into an FMU with pythonfmu (requirements.txt) in `dest`."""
+def build_vessel_fmu(dest, name: str = "Vessel") -> str:
+    """osp/vessel/<name>.py built into an FMU with pythonfmu (requirements.txt) in `dest`: `Vessel`, the
+    heave-only body of issue 29, or `Vessel6`, the vessel in six degrees of freedom (issue 30)."""
     import subprocess
     import sys
     from pathlib import Path
 
-    src = Path(__file__).resolve().parents[4] / "osp" / "vessel" / "Vessel.py"
+    src = Path(__file__).resolve().parents[4] / "osp" / "vessel" / f"{name}.py"
     subprocess.run([sys.executable, "-m", "pythonfmu", "build", "-f", str(src), "-d", str(dest)], check=True,
                    capture_output=True)
-    return str(Path(dest) / "Vessel.fmu")
+    return str(Path(dest) / f"{name}.fmu")
 
 
 def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
