@@ -246,3 +246,12 @@ def main(argv=None):
                   f"heave {np.ptp(two['heave'][two['t'] >= start]) / 2:.3f} m", flush=True)
             rows.append((body.name, h, a, b))
     return 0
+
+
+def rotation(roll, pitch, yaw):
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (z-y-x, docs/theory.md (14.1)): vessel frame to global."""
+    cf, sf, ct, st, cp, sp = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    rx = np.array([[1, 0, 0], [0, cf, -sf], [0, sf, cf]])
+    ry = np.array([[ct, 0, st], [0, 1, 0], [-st, 0, ct]])
+    rz = np.array([[cp, -sp, 0], [sp, cp, 0], [0, 0, 1]])
+    return rz @ ry @ rx
