@@ -16,8 +16,9 @@ diagonal:
     (m + A_i) dν_i/dt = τ_i − B_i ν_i − C_i η_i            i = 1..6
     ν = (u, v, w, p, q, r),  η = (x, y, z, φ, θ, ψ)
 
-with τ = (F, Rᵀ M) + wave excitation, F and M the riser's force and its moment about the reference
-point (global, riser's top_force_* and top_moment_*), less their values at the start when
+with τ = (F, Rᵀ M + M_b) + wave excitation, F and M the riser's force and its moment about the
+reference point (global: inputs top_force_*, top_moment_*; or M_b in the vessel frame: inputs
+vessel_moment_*, the angular port's torque), less their values at the start when
 `balance_initial_load` (the vessel trimmed and moored for the line as it hangs at t = 0: the
 riser's weight on its ballast, its horizontal pull on the moorings' pre-tension). Restoring:
 C33 = ρ g A_wp, C44 = ρ g ∇ GM_T, C55 = ρ g ∇ GM_L (hydrostatics), C11, C22, C66 station-keeping
@@ -37,8 +38,9 @@ for t < ramp, 1 after.
 
 Integrator: classical RK4 at sub-steps of at most `max_substep` (5 ms) inside each communication
 step, the inputs held over the step. Besides the pose and velocities, the FMU reports `work`:
-the work of the riser's held force and moment on the vessel, F·Δr + M·Δθ over each step (Δθ the
-integral of the global angular velocity R ω_b over the step, integrated with the rest), and
+the work of the riser's held force and moment on the vessel, F·Δr + M·Δθ + M_b·Δθ_b over each
+step (Δθ, Δθ_b the integrals of the angular velocity over the step, global R ω_b and vessel-frame
+ω_b, integrated with the rest), and
 `work_magnitude`, the sum of the magnitudes of each step's work (for ECCO's energy check).
 
 Defaults: a 100 m supply-type vessel, L 100 m, B 20 m, T 6 m, C_B 0.70, C_WP 0.80:
@@ -98,7 +100,11 @@ INITIAL = ["initial_" + d for d in DOFS]  # the pose at t = 0 (free decay)
 OUT_POSE = DOFS
 OUT_VEL = ["surge_velocity", "sway_velocity", "heave_velocity",
            "angular_velocity_x", "angular_velocity_y", "angular_velocity_z"]
-INPUTS = ["force_x", "force_y", "force_z", "moment_x", "moment_y", "moment_z"]
+# riser's output names: its force on the vessel (global), its moment about the reference point in the
+# global frame (top_moment_*) or in the vessel frame (vessel_moment_*: the angular port's torque,
+# whose power with p, q, r is M·ω); both moments are applied, connect one of them
+INPUTS = ["top_force_x", "top_force_y", "top_force_z", "top_moment_x", "top_moment_y", "top_moment_z",
+          "vessel_moment_x", "vessel_moment_y", "vessel_moment_z"]
 
 
 def rotation(phi, theta, psi):
@@ -136,8 +142,8 @@ class Vessel6(Fmi2Slave):
         self._load0 = None
         self._started = False
 
-    # state: pose (6), velocities (6: global translational, vessel-frame angular), the integral of
-    # the global angular velocity (3)
+    # state: pose (6), velocities (6: global translational, vessel-frame angular), the integrals of
+    # the angular velocity in the global frame (3) and in the vessel frame (3), for the work
     def _rates(self, t, s, load):
         phi, theta, psi = s[3], s[4], s[5]
         p, q, r = s[9], s[10], s[11]
@@ -146,15 +152,15 @@ class Vessel6(Fmi2Slave):
         rt = 1.0 if t >= ramp or ramp <= 0 else 0.5 * (1.0 - math.cos(math.pi * t / ramp))
         wt = 2.0 * math.pi * t / self.wave_period
         exc = [a * rt * math.sin(wt + ph) for a, ph in zip(self._wave_amp, self._wave_phase)]
-        f, m = load[:3], load[3:]
-        mb = [R[0][i] * m[0] + R[1][i] * m[1] + R[2][i] * m[2] for i in range(3)]  # Rᵀ M
+        f, m = load[:3], load[3:6]
+        mb = [R[0][i] * m[0] + R[1][i] * m[1] + R[2][i] * m[2] + load[6 + i] for i in range(3)]  # Rᵀ M + M_b
         tau = [f[0], f[1], f[2], mb[0], mb[1], mb[2]]
         acc = [(tau[i] + exc[i] - self._b[i] * s[6 + i] - self._c[i] * s[i]) / self._m[i] for i in range(6)]
         sf, cf, ct = math.sin(phi), math.cos(phi), math.cos(theta)
         qr = q * sf + r * cf
         ang = [p + qr * math.tan(theta), q * cf - r * sf, qr / ct]
         wg = [R[i][0] * p + R[i][1] * q + R[i][2] * r for i in range(3)]
-        return s[6:9] + ang + acc + wg
+        return s[6:9] + ang + acc + wg + [p, q, r]
 
     def _start(self):
         self._m = [self.mass] * 3 + [self.inertia_xx, self.inertia_yy, self.inertia_zz]
@@ -167,7 +173,7 @@ class Vessel6(Fmi2Slave):
                             self.wave_phase_roll, self.wave_phase_pitch, self.wave_phase_yaw]
         if abs(self.initial_pitch) >= 0.5 * math.pi or self.max_substep <= 0 or self.wave_period <= 0:
             raise ValueError("Vessel6: |initial_pitch| < pi/2, max_substep > 0 and wave_period > 0 are required")
-        self._state = [getattr(self, n) for n in INITIAL] + [0.0] * 9
+        self._state = [getattr(self, n) for n in INITIAL] + [0.0] * 12
         self._started = True
 
     def exit_initialization_mode(self):
@@ -183,7 +189,7 @@ class Vessel6(Fmi2Slave):
             self._start()
         load = [getattr(self, n) for n in INPUTS]
         if self._load0 is None:
-            self._load0 = list(load) if self.balance_initial_load else [0.0] * 6
+            self._load0 = list(load) if self.balance_initial_load else [0.0] * 9
         load = [a - b for a, b in zip(load, self._load0)]
         n = max(1, int(math.ceil(dt / self.max_substep - 1e-9)))
         h = dt / n
@@ -200,8 +206,8 @@ class Vessel6(Fmi2Slave):
             return False  # diverged, or pitched to the z-y-x gimbal lock
         # the riser's whole held force and moment on the vessel's displacement and rotation
         full = [getattr(self, n) for n in INPUTS]
-        w = sum(full[i] * (s[i] - s0[i]) for i in range(3)) + sum(full[3 + i] * (s[12 + i] - s0[12 + i])
-                                                                 for i in range(3))
+        w = sum(full[i] * (s[i] - s0[i]) + full[3 + i] * (s[12 + i] - s0[12 + i])
+                + full[6 + i] * (s[15 + i] - s0[15 + i]) for i in range(3))
         self.work += w
         self.work_magnitude += abs(w)
         self._state = s

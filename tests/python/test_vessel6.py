@@ -4,7 +4,7 @@ C44 = ρ g ∇ GM_T, C55 = ρ g ∇ GM_L); free decay in heave, roll and pitch a
 oscillator (M + A) x'' + B x' + C x = 0 (damped period 2π/(ω_n √(1 − ζ²)), logarithmic decrement
 2π ζ/√(1 − ζ²), ω_n = √(C/(M + A)), ζ = B/(2 √((M + A) C))); and the static offset under a constant
 force and moment (x = F/C; a moment about one axis alone turns the vessel by M/C exactly, combined
-moments satisfy C Θ = Rᵀ(Θ) M)."""
+moments satisfy C Θ = Rᵀ(Θ) M + M_b, M global, M_b in the vessel frame)."""
 import math
 
 import numpy as np
@@ -107,25 +107,27 @@ def test_a_constant_force_and_moment_offset_the_vessel_by_load_over_stiffness(ve
     c = np.array([defaults["stiffness_" + k] for k in IDX])
     force = np.array([1.0e5, -2.0e5, 1.5e6])
     moment = np.array([5.0e6, -2.0e7, 1.0e6])
-    loads = dict(zip(["force_x", "force_y", "force_z", "moment_x", "moment_y", "moment_z"],
+    loads = dict(zip(["top_force_x", "top_force_y", "top_force_z", "top_moment_x", "top_moment_y", "top_moment_z"],
                      np.concatenate([force, moment]).tolist()))
+    body = np.array([1.0e6, 0.0, -5.0e5])  # and a moment in the vessel frame (the angular port's torque)
+    loads.update(dict(zip(["vessel_moment_x", "vessel_moment_y", "vessel_moment_z"], body.tolist())))
     pose = settle(vessel6_fmu, defaults, loads)
     print("pose", pose, "load / stiffness", np.concatenate([force, moment]) / c[:6])
     # translations: x = F/C exactly (global frame, no coupling)
     assert np.all(np.abs(pose[:3] - force / c[:3]) <= 1e-9 * np.abs(force / c[:3]))
     # rotations: the moment (global) reaches the vessel in its own frame, C Θ = Rᵀ(Θ) M (z-y-x), to
-    # round-off. M/C holds to first order only: a global pitch moment on a rolled vessel has a part
+    # round-off (plus the vessel-frame moment M_b as it is). M/C holds to first order only: a global pitch moment on a rolled vessel has a part
     # about its yaw axis (here 2e7 N m x 0.021 rad against the 1e6 N m yaw moment, yaw 0.071 rad
     # instead of M_z/C66 = 0.050 with the soft yaw spring); each axis alone is exact (next test)
     theta = pose[3:]
-    resid = c[3:] * theta - rotation(*theta).T @ moment
+    resid = c[3:] * theta - rotation(*theta).T @ moment - body
     print("C Θ − Rᵀ M", resid, "Θ", theta, "M/C", moment / c[3:])
     assert np.max(np.abs(resid)) <= 1e-9 * np.max(np.abs(moment)), resid
 
 
 @pytest.mark.parametrize("axis", [3, 4, 5])
 def test_a_moment_about_one_axis_turns_the_vessel_by_moment_over_stiffness(vessel6_fmu, defaults, axis):
-    name = ["moment_x", "moment_y", "moment_z"][axis - 3]
+    name = ["top_moment_x", "top_moment_y", "top_moment_z"][axis - 3]
     value = [5.0e6, -2.0e8, 1.0e6][axis - 3]
     pose = settle(vessel6_fmu, defaults, {name: value})
     want = value / defaults["stiffness_" + IDX[axis]]
