@@ -127,16 +127,17 @@ def reference(fmu_path: str, two: dict, h_ref: float = 0.01, duration: float | N
                    start_values={"time_step": h_ref})
 
 
-def build_vessel_fmu(dest) -> str:
-    """osp/vessel/Vessel.py built into an FMU with pythonfmu (requirements.txt) in `dest`."""
+def build_vessel_fmu(dest, name: str = "Vessel") -> str:
+    """osp/vessel/<name>.py built into an FMU with pythonfmu (requirements.txt) in `dest`: `Vessel`, the
+    heave-only body of issue 29, or `Vessel6`, the vessel in six degrees of freedom (issue 30)."""
     import subprocess
     import sys
     from pathlib import Path
 
-    src = Path(__file__).resolve().parents[4] / "osp" / "vessel" / "Vessel.py"
+    src = Path(__file__).resolve().parents[4] / "osp" / "vessel" / f"{name}.py"
     subprocess.run([sys.executable, "-m", "pythonfmu", "build", "-f", str(src), "-d", str(dest)], check=True,
                    capture_output=True)
-    return str(Path(dest) / "Vessel.fmu")
+    return str(Path(dest) / f"{name}.fmu")
 
 
 def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
@@ -245,3 +246,203 @@ def main(argv=None):
                   f"heave {np.ptp(two['heave'][two['t'] >= start]) / 2:.3f} m", flush=True)
             rows.append((body.name, h, a, b))
     return 0
+
+
+def rotation(roll, pitch, yaw):
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (z-y-x, docs/theory.md (14.1)): vessel frame to global."""
+    cf, sf, ct, st, cp, sp = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    rx = np.array([[1, 0, 0], [0, cf, -sf], [0, sf, cf]])
+    ry = np.array([[ct, 0, st], [0, 1, 0], [-st, 0, ct]])
+    rz = np.array([[cp, -sp, 0], [sp, cp, 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+# --- the vessel in six degrees of freedom (issue 30; osp/vessel/Vessel6.py) -----------------------
+
+POSE = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+VELOCITY = ["surge_velocity", "sway_velocity", "heave_velocity",
+            "angular_velocity_x", "angular_velocity_y", "angular_velocity_z"]
+FORCE = ["top_force_x", "top_force_y", "top_force_z"]
+MOMENT = ["top_moment_x", "top_moment_y", "top_moment_z"]
+VESSEL_MOMENT = ["vessel_moment_x", "vessel_moment_y", "vessel_moment_z"]
+RISER_OUT = ["top_tension"] + FORCE + MOMENT + VESSEL_MOMENT + ["work_top", "shape[0].x", "shape[0].y",
+                                                                "shape[0].z"]
+
+
+def euler_rates(roll, pitch, yaw, p, q, r):
+    """z-y-x Euler angle rates from the vessel-frame angular velocity (docs/theory.md (14.2) inverted;
+    singular at pitch ±90°)."""
+    sf, cf = np.sin(roll), np.cos(roll)
+    qr = q * sf + r * cf
+    return p + qr * np.tan(pitch), q * cf - r * sf, qr / np.cos(pitch)
+
+
+def body_rates(roll, pitch, yaw, droll, dpitch, dyaw):
+    """(p, q, r) from the z-y-x angle rates: ω_b = φ' x + Rxᵀ(φ) (θ' y + Ryᵀ(θ) ψ' z) (14.2)."""
+    sf, cf, st, ct = np.sin(roll), np.cos(roll), np.sin(pitch), np.cos(pitch)
+    return droll - st * dyaw, cf * dpitch + sf * ct * dyaw, -sf * dpitch + cf * ct * dyaw
+
+
+def _initial(ex, idx, refs, values):
+    for k, x in (values or {}).items():
+        if isinstance(x, str):
+            ex.string_initial_value(idx, refs[k], x)
+        elif isinstance(x, bool):
+            ex.boolean_initial_value(idx, refs[k], x)
+        else:
+            ex.real_initial_value(idx, refs[k], float(x))
+
+
+def _execution(algorithm, riser_fmu, vessel_fmu, riser, vessel):
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.WARNING)
+    ex = algorithm()
+    r = ex.add_local_slave(CosimLocalSlave(fmu_path=riser_fmu, instance_name="riser"))
+    v = ex.add_local_slave(CosimLocalSlave(fmu_path=vessel_fmu, instance_name="vessel"))
+    rr = {x.name.decode(): x.reference for x in ex.slave_variables(r)}
+    vr = {x.name.decode(): x.reference for x in ex.slave_variables(v)}
+    _initial(ex, r, rr, riser)
+    _initial(ex, v, vr, vessel)
+    return ex, r, v, rr, vr
+
+
+def _record(ex, r, v, rr, vr, duration, step_size=None):
+    from libcosimpy.CosimObserver import CosimObserver
+
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(observer=obs)
+    vnames = POSE + VELOCITY + ["work", "work_magnitude"]
+    rows = []
+    k = 0
+    while True:
+        if not ex.step():
+            raise RuntimeError(f"libcosim stopped at t = {ex.status().current_time / 1e9} s")
+        k += 1
+        t = k * step_size if step_size else ex.status().current_time / 1e9
+        rows.append([t] + list(obs.last_real_values(v, [vr[n] for n in vnames]))
+                    + list(obs.last_real_values(r, [rr[n] for n in RISER_OUT])))
+        if t >= duration - 1e-9:
+            break
+    a = np.array(rows)
+    out = {n: a[:, i] for i, n in enumerate(["t"] + vnames + RISER_OUT)}
+    out["rotations"] = "roll" in rr
+    return out
+
+
+def fixed_step6(riser_fmu: str, vessel_fmu: str, h: float, duration: float, riser: dict | None = None,
+                vessel: dict | None = None):
+    """libcosim's fixed-step algorithm (Jacobi) on riser and the six-degree-of-freedom vessel
+    (osp/vessel/Vessel6.py): the vessel's pose and velocities → riser's inputs of the same names
+    (the rotations only if the riser FMU has them), riser's top_force_* and top_moment_* (global) →
+    the vessel's inputs of the same names. `riser`, `vessel`: initial values (str, bool or real).
+    Returns the columns t, the vessel's pose, velocities, work, work_magnitude and riser's
+    RISER_OUT after every step, and `rotations` (whether the riser took the vessel's rotation)."""
+    from libcosimpy.CosimExecution import CosimExecution
+
+    ex, r, v, rr, vr = _execution(lambda: CosimExecution.from_step_size(step_size=int(round(h * 1e9))),
+                                  riser_fmu, vessel_fmu, {"time_step": min(0.05, h), **(riser or {})}, vessel)
+    for name in POSE + VELOCITY:
+        if name in rr:
+            ex.connect_real_variables(v, vr[name], r, rr[name])
+    for name in FORCE + MOMENT:
+        ex.connect_real_variables(r, rr[name], v, vr[name])
+    return _record(ex, r, v, rr, vr, duration, step_size=h)
+
+
+def ecco6(riser_fmu: str, vessel_fmu: str, duration: float, riser: dict | None = None, vessel: dict | None = None,
+          **params):
+    """libcosim's ECCO on riser and the six-degree-of-freedom vessel through the two ports of
+    osp/riser_OspModelDescription.xml, one power bond per axis: the LinearMechanicalPort (riser's
+    top_force_* out, *_velocity in; the vessel's *_velocity out, top_force_* in) and the
+    AngularMechanicalPort (riser's vessel_moment_* out, angular_velocity_* in, both in the vessel
+    frame; the vessel's angular_velocity_* out, vessel_moment_* in). No displacement is connected:
+    riser integrates the velocities (`auto`). Returns what fixed_step6 returns, after each of ECCO's
+    steps."""
+    from libcosimpy.CosimAlgorithm import CosimAlgorithm, EccoParams
+    from libcosimpy.CosimExecution import CosimExecution
+
+    algo = CosimAlgorithm.create_ecco_algorithm(EccoParams(**params))
+    ex, r, v, rr, vr = _execution(lambda: CosimExecution.from_algorithm(algo), riser_fmu, vessel_fmu, riser, vessel)
+    bonds = list(zip(FORCE, VELOCITY[:3]))
+    if "angular_velocity_x" in rr:
+        bonds += list(zip(VESSEL_MOMENT, VELOCITY[3:]))
+    for effort, flow in bonds:
+        ex.connect_real_variables(v, vr[flow], r, rr[flow])
+        ex.connect_real_variables(r, rr[effort], v, vr[effort])
+        if algo.add_power_bond(r, rr[effort], rr[flow], v, vr[flow], vr[effort]) != 0:
+            raise RuntimeError(f"libcosim refused the power bond {effort}/{flow}")
+    return _record(ex, r, v, rr, vr, duration)
+
+
+def reference6(riser_fmu: str, two: dict, h_ref: float = 0.025, riser: dict | None = None):
+    """One way: riser alone at fixed steps h_ref driven by the vessel motion recorded in a two-way run
+    (`two`, with t = 0 at rest prepended), each translation Hermite-interpolated with its velocity and
+    each Euler angle with its rate from p, q, r (z-y-x kinematics), p, q, r back from the
+    interpolated angles and rates. The rotations only if two["rotations"]. Returns t, the prescribed
+    pose, and RISER_OUT at each step's end."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+
+    t = np.concatenate([[0.0], two["t"]])
+    col = {n: np.concatenate([[0.0], two[n]]) for n in POSE + VELOCITY}
+    rates = euler_rates(col["roll"], col["pitch"], col["yaw"], col["angular_velocity_x"],
+                        col["angular_velocity_y"], col["angular_velocity_z"])
+    fine = np.arange(0.0, t[-1] + 1e-9, h_ref)
+    motion = {}
+    for i, name in enumerate(POSE[:3]):
+        motion[name], motion[VELOCITY[i]] = hermite_motion(fine, t, col[name], col[VELOCITY[i]])
+    angles, arates = [], []
+    for i, name in enumerate(POSE[3:]):
+        a, da = hermite_motion(fine, t, col[name], rates[i])
+        motion[name] = a
+        angles.append(a)
+        arates.append(da)
+    for name, w in zip(VELOCITY[3:], body_rates(*angles, *arates)):
+        motion[name] = w
+    names = POSE + VELOCITY if two.get("rotations", False) else POSE[:3] + VELOCITY[:3]
+
+    md = read_model_description(riser_fmu, validate=False)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(riser_fmu), modelIdentifier="riser", instanceName="one_way")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for k, x in {"time_step": h_ref, **(riser or {})}.items():
+        if isinstance(x, str):
+            s.setString([vr[k]], [x])
+        elif isinstance(x, bool):
+            s.setBoolean([vr[k]], [x])
+        else:
+            s.setReal([vr[k]], [float(x)])
+    s.exitInitializationMode()
+    rows = []
+    try:
+        for k in range(len(fine) - 1):
+            s.setReal([vr[n] for n in names], [float(motion[n][k]) for n in names])
+            s.doStep(fine[k], fine[k + 1] - fine[k])
+            rows.append([fine[k + 1]] + [motion[n][k + 1] for n in POSE] + s.getReal([vr[n] for n in RISER_OUT]))
+    finally:
+        s.terminate()
+        s.freeInstance()
+    a = np.array(rows)
+    return {n: a[:, i] for i, n in enumerate(["t"] + POSE + RISER_OUT)}
+
+
+def window6(res, start: float, name: str = "top_tension"):
+    m = res["t"] >= start - 1e-9
+    x = res[name][m]
+    return np.array([x.min(), x.max(), x.mean()])
+
+
+IDX6 = ["11", "22", "33", "44", "55", "66"]
+
+
+def vessel6_defaults(vessel_fmu: str) -> dict:
+    """The Real parameters of the Vessel6 FMU and their defaults."""
+    from fmpy import read_model_description
+
+    md = read_model_description(vessel_fmu)
+    return {v.name: float(v.start) for v in md.modelVariables if v.causality == "parameter" and v.type == "Real"}
