@@ -10,6 +10,8 @@ hang-off by +d), the moment about the reference point M = (R rho) x F, and
 
 import json
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -98,17 +100,47 @@ def test_the_6x6_directional_derivative_is_the_statics_of_the_moved_and_rotated_
     print(f"{scene} ({model}): worst block max|J - FD|/max|FD| = {worst:.2e}")
 
 
-def test_a_clamped_end_refuses_the_rotational_derivatives(fmu_path, unzipped):
-    s, vr = started_slave(fmu_path, unzipped, scene="steel_catenary", strings={"hang_off_end": "clamped"},
-                          reals=OFFSET)
-    assert s.getDirectionalDerivative([vr["top_force_z"]], [vr["heave"]], [1.0])[0] < 0.0
-    for unknown, known in [("top_moment_y", "heave"), ("top_force_z", "pitch")]:
-        with pytest.raises(FMICallException):
-            s.getDirectionalDerivative([vr[unknown]], [vr[known]], [1.0])
-        s.reset()
-        s, vr = started_slave(fmu_path, unzipped, scene="steel_catenary", strings={"hang_off_end": "clamped"},
-                              reals=OFFSET)
+# in a child process: an fmi2Error is logged through fmpy's logger proxy, which is process-wide and
+# may point at a callback an earlier test's slave freed (as in test_waves.py, test_parameter_ranges.py)
+CLAMPED_CHILD = r"""
+import json, sys
+sys.path.insert(0, sys.argv[3])
+from fmpy.fmi1 import FMICallException
+from slaves import started_slave
+fmu_path, unzipped, offset = sys.argv[1], sys.argv[2], json.loads(sys.argv[4])
+out = []
+for end in ["clamped", "flex_joint"]:
+    strings = {"hang_off_end": end}
+    reals = {**offset, **({"flex_joint_stiffness": 1e6} if end == "flex_joint" else {})}
+    s, vr = started_slave(fmu_path, unzipped, scene="steel_catenary", strings=strings, reals=reals)
+    row = {"end": end, "dfz_dheave": s.getDirectionalDerivative([vr["top_force_z"]], [vr["heave"]], [1.0])[0]}
     s.freeInstance()
+    for unknown, known in [("top_moment_y", "heave"), ("top_force_z", "pitch")]:
+        s, vr = started_slave(fmu_path, unzipped, scene="steel_catenary", strings=strings, reals=reals)
+        try:
+            s.getDirectionalDerivative([vr[unknown]], [vr[known]], [1.0])
+            row[unknown + "/" + known] = "ok"
+        except FMICallException as e:
+            row[unknown + "/" + known] = e.status
+        s.freeInstance()
+    out.append(row)
+print("@@result " + json.dumps(out), flush=True)
+"""
+
+
+def test_a_clamped_end_refuses_the_rotational_derivatives(fmu_path, unzipped):
+    """A clamp and a flex joint: the forces' derivatives against the translations are given (the
+    stiffness pulls the vessel back: dF_z/dheave < 0), a moment row or a rotation column is fmi2Error
+    (the end's rotational stiffness is not condensed)."""
+    here = str(Path(__file__).parent)
+    p = subprocess.run([sys.executable, "-c", CLAMPED_CHILD, fmu_path, unzipped, here, json.dumps(OFFSET)],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    rows = json.loads(p.stdout.split("@@result ")[1])
+    assert [r["end"] for r in rows] == ["clamped", "flex_joint"]
+    for r in rows:
+        assert r["dfz_dheave"] < 0.0, r
+        assert r["top_moment_y/heave"] == 3 and r["top_force_z/pitch"] == 3, r
 
 
 def held_pose_run(fmu_path, unzipped, order, pose, ramp, settle, average):
@@ -213,16 +245,43 @@ def test_the_rotations_input_path_gives_the_exact_motion_loads_within_1_percent(
         assert np.all(np.abs(got - r) <= 0.01 * scale), (h, n, got, r)
 
 
-def test_bad_rotation_inputs_are_errors(fmu_path, unzipped):
+BAD_CHILD = r"""
+import json, sys
+sys.path.insert(0, sys.argv[3])
+from fmpy.fmi1 import FMICallException
+from slaves import started_slave
+fmu_path, unzipped = sys.argv[1], sys.argv[2]
+out = []
+for name, x in [("roll", float("nan")), ("yaw", float("inf")), ("angular_velocity_z", float("nan"))]:
     s, vr = started_slave(fmu_path, unzipped)
-    for name, x in [("roll", float("nan")), ("yaw", float("inf")), ("angular_velocity_z", float("nan"))]:
-        with pytest.raises(FMICallException):
-            s.setReal([vr[name]], [x])
-        s.reset()
-        s, vr = started_slave(fmu_path, unzipped)
+    try:
+        s.setReal([vr[name]], [x])
+        out.append([name, 0])
+    except FMICallException as e:
+        out.append([name, e.status])
     s.freeInstance()
-    with pytest.raises(FMICallException):
-        started_slave(fmu_path, unzipped, strings={"rotation_order": "yxz"})
+try:
+    started_slave(fmu_path, unzipped, strings={"rotation_order": "yxz"})
+    out.append(["rotation_order", 0])
+except FMICallException as e:
+    out.append(["rotation_order", e.status])
+print("@@result " + json.dumps(out), flush=True)
+"""
+
+
+def test_bad_rotation_inputs_are_errors(fmu_path, unzipped):
+    """Non-finite angles and angular velocities, and a rotation order that is neither zyx nor xyz,
+    are fmi2Error (in a child process: the logger proxy, see CLAMPED_CHILD); the log names them
+    (tests/python/test_waves.py's pattern checks messages; here the statuses)."""
+    here = str(Path(__file__).parent)
+    p = subprocess.run([sys.executable, "-c", BAD_CHILD, fmu_path, unzipped, here], capture_output=True, text=True,
+                       timeout=300)
+    assert p.returncode == 0, p.stderr
+    rows = json.loads(p.stdout.split("@@result ")[1])
+    assert [r[0] for r in rows] == ["roll", "yaw", "angular_velocity_z", "rotation_order"]
+    assert all(r[1] == 3 for r in rows), rows
+    for name in ["roll", "yaw", "angular_velocity_z", "rotation_order"]:
+        assert name in p.stdout + p.stderr, (name, p.stdout, p.stderr)
 
 
 def test_state_save_restore_with_rotations_is_bit_for_bit(fmu_path, unzipped):
