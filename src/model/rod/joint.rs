@@ -195,7 +195,7 @@ impl FlexJoint {
     /// moment row on the line, ∂V/∂θ), N m, and its derivative along a
     /// spatial rotation w of d:
     ///   m = Ψ'(s) f3 × d3 + k_t τ b,  b = ½(d1 × f2 − d2 × f1),
-    ///   ∂m/∂w = Ψ'' a aᵀ − Ψ' [f3]×[d3]× + k_t (b bᵀ + ½ τ ([f2]×[d1]× − [f1]×[d2]×)),  a = f3 × d3.
+    ///   ∂m/∂w = Ψ'' a aᵀ − Ψ' \[f3\]×\[d3\]× + k_t (b bᵀ + ½ τ (\[f2\]×\[d1\]× − \[f1\]×\[d2\]×)),  a = f3 × d3.
     pub fn static_moment(&self, d: &M3, f: &M3) -> (V3, M3) {
         let phi = Self::angle(d, f);
         let (d1, d2, d3) = (col(d, 0), col(d, 1), col(d, 2));
