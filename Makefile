@@ -26,13 +26,15 @@ venv: $(VENV)/.installed
 
 # The main job on the built-in default scene: the static equilibrium of
 # `catenary` (CSV and PNG), then the paper's catenary case through the FMU
-# with fmpy (100 s of heave 2.5 m / 20 s, current 0.8 m/s), all in out/demo/.
+# with fmpy (100 s of heave 2.5 m / 20 s, current 0.8 m/s), then the same line
+# hanging from the six-degree-of-freedom vessel FMU (osp/vessel/Vessel6.py),
+# coupled both ways in libcosim (60 s at 0.05 s steps), all in out/demo/.
 demo: build venv fmu
 	mkdir -p $(DEMO_DIR)
 	$(BIN) statics catenary --out $(DEMO_DIR)
 	$(TOOLS) plot-statics $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png
 	$(TOOLS) demo --fmu fmu/riser.fmu --out $(DEMO_DIR)
-	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png"
+	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png, vessel_coupling.csv, vessel_coupling.png"
 
 # The seed paper's runs: docs/paper_runs.md, docs/paper_runs_damped.md
 # and docs/figures/paper_*.png (a few minutes).

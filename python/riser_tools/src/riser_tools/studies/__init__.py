@@ -19,7 +19,8 @@ not because there are many; a sweep on a cluster is what riser-sweep is for.
 """
 
 COMMANDS = {
-    "demo": ("riser_tools.studies.demo", "the paper's catenary case through the FMU (make demo)"),
+    "demo": ("riser_tools.studies.demo", "the paper's catenary case through the FMU, then on the 6-DOF vessel "
+                                        "FMU in libcosim (make demo)"),
     "plot-statics": ("riser_tools.plots", "plot shape.csv of `riser statics --out` (make demo)"),
     "paper": ("riser_tools.studies.paper", "the seed paper's runs (make paper)"),
     "study": ("riser_tools.studies.speed_accuracy", "speed against accuracy (make study)"),

@@ -10,6 +10,16 @@ the last period, as the paper's Fig. 4) and out/demo/tension_energy.png.
 Structural damping 2 ms (docs/theory.md §5.9) damps the axial waves that an abrupt start rings; `--damping 0` runs the paper's conserving scheme. The inputs are the displacement and its
 velocity: the FMU interpolates the motion smoothly (cubic Hermite) across a communication step;
 with the displacement alone it is piecewise linear, and its velocity kinks ring the axial waves.
+
+Then, shorter (issue 30): the same catenary hanging 30 m forward of the reference point of the
+six-degree-of-freedom vessel osp/vessel/Vessel6.py (built with pythonfmu), coupled both ways in
+libcosim's fixed-step algorithm at 0.05 s for 60 s in the vessel's default wave (10 s, grown over
+20 s): the vessel's pose and velocities to riser, riser's top force and its moment about the
+reference point (global) to the vessel (riser_tools.coupling_loop.fixed_step6; docs/coupling.md).
+Prints the vessel's heave, roll and pitch amplitudes and the top tension's min/mean/max over the
+steady window (one wave period after the ramp to the end), the moment's amplitude, the check
+M = (R ρ) × F at the vessel's pose and the wall time; writes out/demo/vessel_coupling.csv and
+out/demo/vessel_coupling.png. `--vessel-duration 0` leaves it out.
 """
 
 from __future__ import annotations
@@ -27,6 +37,10 @@ OUTPUTS = ["top_tension", "top_force_x", "top_force_z", "bottom_tension", "min_t
            "kinetic_energy", "strain_energy", "potential_energy", "work_top", "work_hydro", "dissipated_energy",
            "algorithmic_dissipation"]
 SHAPE = [f"shape[{k}].{c}" for k in range(21) for c in "xz"]
+# the vessel coupling's CSV: the vessel's pose (m, rad), riser's top tension, force and moment (N, N m)
+VESSEL_COLUMNS = ["t", "surge", "sway", "heave", "roll", "pitch", "yaw", "top_tension", "top_force_x",
+                  "top_force_y", "top_force_z", "top_moment_x", "top_moment_y", "top_moment_z"]
+HANG_OFF = np.array([30.0, 0.0, 0.0])  # the hang-off in the vessel frame, ρ (m)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -34,6 +48,8 @@ def main(argv: Sequence[str] | None = None) -> None:
     ap.add_argument("--damping", type=float, default=0.002)
     ap.add_argument("--duration", type=float, default=100.0)
     ap.add_argument("--ramp", type=float, default=20.0, help="s; 0 is the paper's abrupt start (default one period)")
+    ap.add_argument("--vessel-duration", type=float, default=60.0,
+                    help="s of the coupling with the six-degree-of-freedom vessel (0 leaves it out)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -86,3 +102,98 @@ def main(argv: Sequence[str] | None = None) -> None:
     fig.savefig(out / "tension_energy.png", dpi=110)
     plt.close(fig)
     print(f"  wrote {out}/fmu_timeseries.csv, shapes.png, tension_energy.png")
+    if args.vessel_duration > 0:
+        vessel_coupling(args.fmu, out, args.vessel_duration)
+
+
+def moment_error(res) -> float:
+    """max |M − (R ρ) × F| over the run at the vessel's recorded pose, relative to |ρ| max |F|
+    (tests/python/test_coupling6.py's moment_error; R = I if riser did not take the rotation)."""
+    from ..coupling_loop import rotation
+
+    f = np.stack([res[f"top_force_{c}"] for c in "xyz"], axis=1)
+    m = np.stack([res[f"top_moment_{c}"] for c in "xyz"], axis=1)
+    if res.get("rotations", True):
+        arm = np.array([rotation(a, b, c) @ HANG_OFF for a, b, c in zip(res["roll"], res["pitch"], res["yaw"])])
+    else:
+        arm = np.tile(HANG_OFF, (len(res["t"]), 1))
+    scale = np.linalg.norm(HANG_OFF) * np.max(np.linalg.norm(f, axis=1))
+    return float(np.max(np.abs(m - np.cross(arm, f))) / scale)
+
+
+def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: float = 0.05) -> dict:
+    """The catenary hanging HANG_OFF from the reference point of osp/vessel/Vessel6.py, both ways in
+    libcosim's fixed-step algorithm at step `h` for `duration` s in the vessel's default wave.
+    Prints the summary, writes `out`/vessel_coupling.csv (VESSEL_COLUMNS) and vessel_coupling.png;
+    returns fixed_step6's columns with "wall" (s, the coupled run) and "moment_error"."""
+    import subprocess
+    import tempfile
+    import time
+
+    from ..coupling_loop import build_vessel_fmu, fixed_step6
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="riser_demo_vessel6_") as tmp:
+        try:
+            vessel_fmu = build_vessel_fmu(tmp, "Vessel6")
+        except subprocess.CalledProcessError as e:  # say why (pythonfmu missing, a bad Vessel6.py)
+            raise RuntimeError(f"pythonfmu could not build osp/vessel/Vessel6.py:\n{e.stderr.decode(errors='replace')}"
+                               f"{e.stdout.decode(errors='replace')}") from e
+        w0 = time.perf_counter()
+        res = fixed_step6(fmu_path, vessel_fmu, h, duration, riser={"hang_off_x": float(HANG_OFF[0])})
+        wall = time.perf_counter() - w0
+    res["wall"], res["moment_error"] = wall, moment_error(res)
+    t = res["t"]
+    if not np.all(np.isfinite(np.stack([res[n] for n in VESSEL_COLUMNS]))):
+        raise RuntimeError("the coupled run with the vessel gave non-finite values")
+    t0 = min(30.0, 0.5 * duration)  # one wave period (10 s) after the wave's 20 s ramp
+    win = t >= t0 - 1e-9
+    amp = {n: np.ptp(res[n][win]) / 2 for n in VESSEL_COLUMNS[1:]}
+    tt = res["top_tension"][win]
+    print(f"riser on the six-degree-of-freedom vessel (osp/vessel/Vessel6.py): hang-off {HANG_OFF[0]:g} m forward "
+          f"of its reference point, libcosim fixed step {h:g} s, {duration:g} s in its default wave (10 s, grown "
+          f"over 20 s); rotations to riser: {res['rotations']}")
+    print(f"  steady window {t0:g} to {duration:g} s:")
+    print(f"    vessel amplitudes      heave {amp['heave']:.3f} m, roll {np.degrees(amp['roll']):.2f}° "
+          f"({amp['roll']:.4f} rad), pitch {np.degrees(amp['pitch']):.2f}° ({amp['pitch']:.4f} rad)")
+    print(f"    top tension            min {tt.min() / 1e3:.3f} / mean {tt.mean() / 1e3:.3f} / "
+          f"max {tt.max() / 1e3:.3f} kN")
+    print(f"    moment about the reference point (global), amplitude x {amp['top_moment_x'] / 1e3:.1f} / "
+          f"y {amp['top_moment_y'] / 1e3:.1f} / z {amp['top_moment_z'] / 1e3:.1f} kN m "
+          f"(mean y {res['top_moment_y'][win].mean() / 1e3:.0f} kN m)")
+    print(f"  |M − (Rρ)×F| / (|ρ| max|F|) at the vessel's pose: {res['moment_error']:.1e} (whole run)")
+    print(f"  wall time                {wall:.2f} s (real-time factor {duration / wall:.1f}, libcosim with both "
+          f"FMUs)")
+    with open(out / "vessel_coupling.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(VESSEL_COLUMNS)
+        for row in zip(*(res[n] for n in VESSEL_COLUMNS)):
+            w.writerow([repr(float(x)) for x in row])
+    import matplotlib.pyplot as plt
+    fig, (a1, a2, a3, a4) = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
+    for n in ["surge", "sway", "heave"]:
+        a1.plot(t, res[n], lw=0.8, label=n)
+    a1.set_ylabel("translation (m)")
+    for n in ["roll", "pitch", "yaw"]:
+        a2.plot(t, np.degrees(res[n]), lw=0.8, label=n)
+    a2.set_ylabel("rotation (°)")
+    a3.plot(t, res["top_tension"] / 1e3, lw=0.8)
+    a3.set_ylabel("top tension (kN)")
+    for c in "xyz":
+        m = res[f"top_moment_{c}"]
+        a4.plot(t, (m - m[0]) / 1e3, lw=0.8, label=f"top_moment_{c} − {m[0] / 1e3:.0f} kN m")
+    a4.set_ylabel("moment about the\nreference point − M(0) (kN m)")
+    a4.set_xlabel("t (s)")
+    for a in (a1, a2, a3, a4):
+        a.grid(True, alpha=0.3)
+        a.axvline(t0, color="k", lw=0.5, ls=":")
+    for a in (a1, a2, a4):
+        a.legend(fontsize=8)
+    a1.set_title(f"riser {HANG_OFF[0]:g} m forward of the vessel's reference point, both ways in libcosim "
+                 f"(fixed step {h:g} s)")
+    fig.tight_layout()
+    fig.savefig(out / "vessel_coupling.png", dpi=110)
+    plt.close(fig)
+    print(f"  wrote {out}/vessel_coupling.csv, vessel_coupling.png")
+    return res
