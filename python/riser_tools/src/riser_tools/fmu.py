@@ -17,6 +17,9 @@ import numpy as np
 from .cases import AXES, Motion
 
 INPUTS = ("heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_velocity")
+# the vessel's rotation inputs, given as zeros where a motion has none (fmpy warns of every input
+# the table leaves out; zero angles and rates leave the hang-off's motion as the translations make it)
+ROTATION_INPUTS = ("roll", "pitch", "yaw", "angular_velocity_x", "angular_velocity_y", "angular_velocity_z")
 DEFAULT_FMU = Path("fmu") / "riser.fmu"
 
 
@@ -32,14 +35,15 @@ class FmuRun:
 def input_table(motion: Motion | None, duration: float, interval: float, velocity: str | None = "exact",
                 t: np.ndarray | None = None) -> np.ndarray:
     """fmpy's input table at t = k * interval: with `velocity` ("exact", or "difference" for
-    central differences of 1e-6 s) all six inputs (the other axes 0); with velocity None only
-    the motion's displacement (the FMU then interpolates it piecewise linearly)."""
+    central differences of 1e-6 s) all six translation inputs (the other axes 0) and the rotation
+    inputs at 0; with velocity None only the motion's displacement (the FMU then interpolates it
+    piecewise linearly)."""
     if t is None:
         t = np.arange(int(round(duration / interval)) + 1) * interval
     if motion is None:
-        names: Sequence[str] = INPUTS
+        names: Sequence[str] = INPUTS + ROTATION_INPUTS
     else:
-        names = INPUTS if velocity else (motion.axis,)
+        names = INPUTS + ROTATION_INPUTS if velocity else (motion.axis,)
     sig = np.zeros(len(t), dtype=[("time", np.float64)] + [(n, np.float64) for n in names])
     sig["time"] = t
     if motion is not None:
