@@ -21,9 +21,10 @@ use riser::sim::{Engine, Simulation};
 use riser::solve::eigen::{hang_off_stiffness, hang_off_stiffness6};
 
 /// Newton with backtracking from `q` to the round-off floor (as
-/// tests/hang_off_stiffness.rs), the supports held where `q` has them;
+/// tests/hang_off_stiffness.rs) of R_free(q) = `target` (the dead loads of a
+/// frozen state; zero at a static state), the supports held where `q` has them;
 /// converged: the free residual's largest within 1e-9 of the reaction.
-fn solve_static(p: &StaticProblem, mut q: RodConfig) -> RodConfig {
+fn solve_static(p: &StaticProblem, mut q: RodConfig, target: &[f64]) -> RodConfig {
     let n = p.n_dof();
     let mut sys = p.new_system().unwrap();
     let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
@@ -33,8 +34,12 @@ fn solve_static(p: &StaticProblem, mut q: RodConfig) -> RodConfig {
     fixed.sort_unstable();
     let off_balance = |q: &RodConfig, r: &mut [f64], sys: Option<&mut riser::math::band::BandedSystem>| {
         p.residual(q, r, sys);
+        for (ri, ti) in r.iter_mut().zip(target) {
+            *ri -= ti;
+        }
         let free = (0..n).filter(|i| fixed.binary_search(i).is_err()).fold(0.0f64, |a, i| a.max(r[i].abs()));
-        free / V3::new(r[0], r[1], r[2]).norm()
+        let reaction = V3::from_fn(|c, _| r[c] + target.get(c).unwrap_or(&0.0));
+        free / reaction.norm()
     };
     let mut rel = off_balance(&q, &mut r, Some(&mut sys));
     for _ in 0..60 {
@@ -65,9 +70,14 @@ fn solve_static(p: &StaticProblem, mut q: RodConfig) -> RodConfig {
 
 /// The support's force and end moment on the line at the static solution of
 /// `model` from `q`.
-fn support_loads(model: &RodModel, loads: &riser::model::rod::statics::StaticLoads, q: RodConfig) -> [f64; 6] {
+fn support_loads(
+    model: &RodModel,
+    loads: &riser::model::rod::statics::StaticLoads,
+    q: RodConfig,
+    target: &[f64],
+) -> [f64; 6] {
     let p = StaticProblem::new(&model.rod, loads);
-    let q = solve_static(&p, q);
+    let q = solve_static(&p, q, target);
     let mut r = vec![0.0; p.n_dof()];
     p.residual(&q, &mut r, None);
     let it = Rod::theta_dof(0);
@@ -84,6 +94,7 @@ fn finite_difference(
     model: &RodModel,
     loads: &riser::model::rod::statics::StaticLoads,
     q: &RodConfig,
+    target: &[f64],
     delta: f64,
     eps: f64,
 ) -> M6 {
@@ -105,7 +116,7 @@ fn finite_difference(
                     None => qm.d[0] = turn * qm.d[0],
                 }
             }
-            let l = support_loads(&mm, loads, qm);
+            let l = support_loads(&mm, loads, qm, target);
             for i in 0..6 {
                 col[i] += sign * l[i];
             }
@@ -186,15 +197,15 @@ fn case(what: &str, scene: &Scene, turn: Option<f64>, delta: f64) -> M6 {
                 Some(j) => j.frame = Some(rot_y(a) * j.frame.unwrap()),
                 None => cfg.d[0] = rot_y(a) * cfg.d[0],
             }
-            cfg = solve_static(&StaticProblem::new(&model.rod, &loads), cfg);
-            let l = support_loads(&model, &loads, cfg.clone());
+            cfg = solve_static(&StaticProblem::new(&model.rod, &loads), cfg, &[]);
+            let l = support_loads(&model, &loads, cfg.clone(), &[]);
             eprintln!("{what}: end moment of the support {:.4e} N m", V3::new(l[3], l[4], l[5]).norm());
             let s = hang_off_stiffness6(&RodLinearized::new(&model, &loads), &cfg).unwrap();
             assert_eq!(block(&s, 0, 0), hang_off_stiffness(&RodLinearized::new(&model, &loads), &cfg).unwrap());
             s
         }
     };
-    let fd = finite_difference(&model, &loads, &cfg, delta, 1e-4);
+    let fd = finite_difference(&model, &loads, &cfg, &[], delta, 1e-4);
     let worst = compare(what, &s, &fd, 1e-5);
     eprintln!("{what}: worst block {worst:.2e}");
     s
@@ -244,6 +255,53 @@ fn flex_joint_taut_line_6x6_is_the_derivative_of_the_statics() {
     eprintln!("taut, flex joint: S_yy of the rotation {:.5e} against 1/(1/k + 1/K_b) {series:.5e}", s[(4, 4)]);
     assert!((s[(4, 4)] / series - 1.0).abs() < 5e-5 && (s[(3, 3)] / series - 1.0).abs() < 5e-5);
     case("taut, flex joint 1e6 N m/rad, turned 0.01 rad", &taut(&JOINT), Some(0.01), 3e-5);
+}
+
+/// During a run (heave 2.5 m / 10 s, pitch 0.02 rad / 8 s, 6 s in): the
+/// state frozen, the interior's out-of-balance forces held as dead loads
+/// (the meaning of the stiffness at the current state, theory §8.3), the
+/// clamp's frame R D_static and the joint's vessel frame R D_static turned
+/// by ±1e-4 rad, the hang-off moved by ±1 mm.
+fn dynamic_case(what: &str, scene: &Scene) {
+    let mut sim = Simulation::from_scene(scene).unwrap();
+    let (w1, w2) = (2.0 * std::f64::consts::PI / 10.0, 2.0 * std::f64::consts::PI / 8.0);
+    let motion = move |t: f64| riser::model::HangOff {
+        displacement: V3::new(0.0, 0.0, 2.5 * (w1 * t).sin()),
+        velocity: V3::new(0.0, 0.0, 2.5 * w1 * (w1 * t).cos()),
+        rotation: rot_y(0.02 * (w2 * t).sin()),
+        angular_velocity: V3::new(0.0, 0.02 * w2 * (w2 * t).cos(), 0.0),
+    };
+    sim.start(motion(0.0));
+    while sim.state.time < 6.0 - 1e-9 {
+        let t = sim.state.time + 0.1;
+        sim.advance_to(t, &motion).unwrap();
+    }
+    let s = sim.hang_off_stiffness6().unwrap();
+    let loads = scene_static_loads(scene);
+    let Engine::Rod(i) = &sim.integrator else { panic!("rod") };
+    let mut model = i.model.clone();
+    if let Some(f) = model.joint_frame(&sim.state.hang_off.rotation) {
+        model.rod.flex_joint.as_mut().unwrap().frame = Some(f);
+    }
+    let cfg = sim.state.config.clone();
+    let p = StaticProblem::new(&model.rod, &loads);
+    let mut target = vec![0.0; p.n_dof()];
+    p.residual(&cfg, &mut target, None);
+    let out_of_balance = target.iter().skip(12).fold(0.0f64, |a, v| a.max(v.abs()));
+    let m = support_loads(&model, &loads, cfg.clone(), &target);
+    eprintln!(
+        "{what}: out-of-balance {out_of_balance:.3e} N, end moment of the support {:.4e} N m",
+        V3::new(m[3], m[4], m[5]).norm()
+    );
+    assert!(out_of_balance > 1.0, "the state must be off the static equilibrium");
+    let fd = finite_difference(&model, &loads, &cfg, &target, 1e-3, 1e-4);
+    compare(what, &s, &fd, 1e-5);
+}
+
+#[test]
+fn clamped_and_flex_joint_6x6_during_a_run_are_the_frozen_state_derivatives() {
+    dynamic_case("catenary, clamped, t = 6 s", &catenary(&["hang_off_end=clamped"]));
+    dynamic_case("catenary, flex joint, t = 6 s", &catenary(&JOINT));
 }
 
 /// A pinned end: the rotation columns and the moment rows are zero, the
