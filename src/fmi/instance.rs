@@ -731,13 +731,14 @@ impl Instance {
     /// with respect to the vessel's pose — `surge`, `sway`, `heave`, `roll`,
     /// `pitch`, `yaw` — at the current state (docs/theory.md §8.3, §14.10):
     /// a pose change moves the hang-off by δx = δu + δθ × Rρ (δθ the global
-    /// rotation of the angles' change, 14.2), the force changes by
-    /// δF = −S δx (S the line's tangent stiffness at the hang-off), the
-    /// moment about the reference point by δM = (δθ × Rρ) × F + Rρ × δF, and
-    /// the vessel-frame loads by Rᵀ(δF − δθ × F), Rᵀ(δM − δθ × M). For a
-    /// clamped end or a flex joint the moments and the rotations' columns are
-    /// not provided (its rotational stiffness is not condensed): an error says so. Any
-    /// other variable is an error naming it.
+    /// rotation of the angles' change, 14.2), the force and the end moment
+    /// change by [δF; δM_e] = −S₆ [δx; δθ] (S₆ the line's 6×6 tangent
+    /// stiffness at the hang-off, 8.7: a clamped end turns with the vessel, a
+    /// flex joint's spring is in series with the line, a pinned end has no
+    /// moment), the moment about the reference point by
+    /// δM = (δθ × Rρ) × F + Rρ × δF + δM_e, and the vessel-frame loads by
+    /// Rᵀ(δF − δθ × F), Rᵀ(δM − δθ × M). Any other variable is an error
+    /// naming it.
     pub fn directional_derivative(
         &mut self,
         unknowns: &[u32],
@@ -793,27 +794,11 @@ impl Instance {
                 return st;
             }
         }
-        // a clamp or a flex joint: the end's moment stiffness is not condensed
-        let end = self.scene.as_ref().map(|s| s.hang_off.end).filter(|e| *e != crate::scene::HangOffEnd::Pinned);
-        if let Some(end) = end
-            && let Some(name) = rows
-                .iter()
-                .filter(|&&a| a % 6 >= 3)
-                .map(|&a| UNKNOWNS[a])
-                .chain(cols.iter().filter(|&&b| b >= 3).map(|&b| KNOWNS[b]))
-                .next()
-        {
-            return self.fail(&format!(
-                "{F}: '{name}': with hang_off_end = {} only the forces' derivatives with respect to surge, \
-                 sway, heave are provided (the end's rotational stiffness is not condensed)",
-                end.name()
-            ));
-        }
         let (stiffness, rotation, offset, order, force, moment) = match &self.sim {
             Some(sim) => {
                 let o = self.outputs.as_ref();
                 (
-                    sim.hang_off_stiffness(),
+                    sim.hang_off_stiffness6(),
                     sim.state.hang_off.rotation,
                     sim.vessel.offset,
                     sim.vessel.order,
@@ -842,8 +827,11 @@ impl Instance {
         }
         let arm = rotation * offset;
         let dx = du + dtheta.cross(&arm);
-        let df = -(s * dx);
-        let dm = dtheta.cross(&arm).cross(&force) + arm.cross(&df);
+        // the support's force and end moment on the line change by S₆ [δx; δθ] (8.7); the vessel's by minus that
+        let ds = s * nalgebra::Vector6::new(dx.x, dx.y, dx.z, dtheta.x, dtheta.y, dtheta.z);
+        let df = -V3::new(ds[0], ds[1], ds[2]);
+        let d_end = -V3::new(ds[3], ds[4], ds[5]);
+        let dm = dtheta.cross(&arm).cross(&force) + arm.cross(&df) + d_end;
         let rt = rotation.transpose();
         let (dvf, dvm) = (rt * (df - dtheta.cross(&force)), rt * (dm - dtheta.cross(&moment)));
         let value = |a: usize| [df, dm, dvf, dvm][a / 3][a % 3];

@@ -7,10 +7,11 @@ pub mod band;
 pub mod rigid;
 pub mod shape;
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix6, Vector3};
 
 pub type V3 = Vector3<f64>;
 pub type M3 = Matrix3<f64>;
+pub type M6 = Matrix6<f64>;
 
 /// Skew-symmetric matrix `[a]×` with `[a]× b = a × b`.
 #[inline]

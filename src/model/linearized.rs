@@ -4,8 +4,8 @@
 //! (with the water's added mass) and how a vector of its unknowns moves the
 //! line; the solvers in `solve::eigen` never name the model.
 
-use crate::math::V3;
 use crate::math::band::{BandedSystem, LinearSolveError};
+use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 /// The direction a mode moves the line in, from the split of its kinetic
@@ -85,4 +85,26 @@ pub trait Linearized {
     /// How the unknowns `phi` move the line at `cfg`; `normal` is the unit
     /// normal of the line's vertical plane (out-of-plane direction).
     fn motion(&self, cfg: &RodConfig, phi: &[f64], normal: &V3) -> ModeMotion;
+    /// How the line's end at the hang-off turns with the vessel at `cfg`
+    /// (docs/theory.md §8.3): pinned unless the model says otherwise.
+    fn hang_off_end(&self, _cfg: &RodConfig) -> EndRotation {
+        EndRotation::Pinned
+    }
+}
+
+/// The end's rotational coupling to the vessel at the hang-off, for the
+/// 6×6 stiffness (docs/theory.md §8.3, §15): which rows carry the end's
+/// rotation (spatial components, as the vessel's small rotation δθ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EndRotation {
+    /// Free to turn: no end moment; the vessel's turn does not reach the line.
+    Pinned,
+    /// Held by the supports and turned with the vessel: δθ prescribes the
+    /// rotation unknowns `rows`, whose residuals are the moment of the
+    /// support on the line.
+    Clamped { rows: [usize; 3] },
+    /// A spring between the vessel's frame and the free rotation unknowns
+    /// `rows`: its moment m on the vessel (the line's residual there has +m)
+    /// changes by `k_end` θ_end + `k_vessel` δθ.
+    Joint { rows: [usize; 3], k_end: M3, k_vessel: M3 },
 }

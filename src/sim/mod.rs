@@ -10,7 +10,7 @@ pub mod report;
 pub mod vessel;
 
 use crate::loads::waves::{Sea, sea_of};
-use crate::math::{M3, V3};
+use crate::math::{M3, M6, V3};
 use crate::model::cable::CableModel;
 use crate::model::cable::linearized::CableLinearized;
 use crate::model::rod::RodModel;
@@ -19,7 +19,7 @@ use crate::model::rod::statics::StaticLoads;
 use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
 use crate::scene::{Model, Scene, SceneError};
 use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
-use crate::solve::eigen::hang_off_stiffness;
+use crate::solve::eigen::hang_off_stiffness6;
 use crate::solve::{Integrator, SolverLog, StepInfo};
 use error::RiserError;
 use vessel::Vessel;
@@ -305,8 +305,21 @@ impl Simulation {
     /// The line's tangent stiffness at the hang-off at the current state
     /// (docs/theory.md §8.3): the change of the force of the support on the
     /// line per metre of hang-off displacement, N/m; the force on the vessel
-    /// (`top_force_*`) changes by minus this.
+    /// (`top_force_*`) changes by minus this. The translation block of
+    /// [`Simulation::hang_off_stiffness6`].
     pub fn hang_off_stiffness(&self) -> Result<M3, RiserError> {
+        Ok(self.hang_off_stiffness6()?.fixed_view::<3, 3>(0, 0).into_owned())
+    }
+
+    /// The line's 6×6 tangent stiffness at the hang-off at the current state
+    /// (docs/theory.md §8.3, eq. 8.7): [δF; δM] = S₆ [δx; δθ], the force and
+    /// end moment of the support on the line against the hang-off's
+    /// translation and a small rotation δθ (global) of the vessel's frame;
+    /// a clamped end turns with the vessel, a flex joint holds its spring
+    /// about the vessel's frame at the state; a pinned end (and the cable)
+    /// has zero rotation columns and moment rows. The loads on the vessel
+    /// (`top_force_*`, the end moment in `top_moment_*`) change by minus this.
+    pub fn hang_off_stiffness6(&self) -> Result<M6, RiserError> {
         let cfg = &self.state.config;
         let s = match &self.integrator {
             Engine::Rod(i) => {
@@ -319,10 +332,10 @@ impl Simulation {
                     m
                 });
                 let model = turned.as_ref().unwrap_or(&i.model);
-                hang_off_stiffness(&RodLinearized::new(model, &self.static_loads), cfg)
+                hang_off_stiffness6(&RodLinearized::new(model, &self.static_loads), cfg)
             }
             Engine::Cable(i) => {
-                hang_off_stiffness(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg)
+                hang_off_stiffness6(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg)
             }
         };
         Ok(s?)

@@ -4,13 +4,14 @@
 //!   with faer's dense Cholesky and eigen-solvers (the lines of this project
 //!   have at most a few thousand unknowns, where a dense solve takes seconds:
 //!   docs/performance.md gives the cost) and the band LU for K − σM;
-//! - the line's stiffness at the hang-off, the 3×3 Schur complement of the
-//!   static tangent on the hang-off's position (eq. 8.6), with the band LU.
+//! - the line's stiffness at the hang-off, the Schur complement of the
+//!   static tangent on the hang-off's position (3×3, eq. 8.6) and with the
+//!   end's rotation (6×6, eq. 8.7), with the band LU.
 
-use crate::math::M3;
 use crate::math::band::LinearSolveError;
+use crate::math::{M3, M6, V3};
 use crate::model::RodConfig;
-use crate::model::linearized::Linearized;
+use crate::model::linearized::{EndRotation, Linearized};
 use faer::{Mat, Side};
 
 /// Why the linear analysis failed.
@@ -219,25 +220,65 @@ pub fn lowest_modes<L: Linearized>(line: &L, cfg: &RodConfig, count: usize) -> R
 /// The line's tangent stiffness at the hang-off about `cfg` (eq. 8.6):
 /// S = K_bb − K_bi K_ii⁻¹ K_ib, the change of the support's reaction on the
 /// line per unit displacement of the hang-off with the other unknowns in
-/// equilibrium (the rest of the supports held), N/m. The force the line
-/// exerts on the vessel changes by −S δ.
+/// equilibrium (the rest of the supports held, a clamped end's rotation and
+/// a flex joint's vessel frame among them), N/m: the translation block of
+/// [`hang_off_stiffness6`]. The force the line exerts on the vessel changes
+/// by −S δ.
 pub fn hang_off_stiffness<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M3, EigenError> {
+    Ok(hang_off_stiffness6(line, cfg)?.fixed_view::<3, 3>(0, 0).into_owned())
+}
+
+/// The line's 6×6 tangent stiffness at the hang-off about `cfg` (eq. 8.7):
+/// [δF; δM] = S₆ [δx; δθ], δF and δM the change of the force and of the end
+/// moment of the support on the line (N, N m), δx the hang-off's translation
+/// (m) and δθ a small rotation of the vessel's frame (rad, global), the
+/// interior unknowns condensed (in equilibrium, the other supports held):
+/// - pinned end: the rotation columns and the moment rows are zero;
+/// - clamped end: δθ prescribes the end director node's rotation; the
+///   moment rows are the residual's rows there (the reactions' moment);
+/// - flex joint: the joint's moment m changes by k_end θ_end + k_vessel δθ,
+///   in series with the line; the support's moment on the line is −m.
+pub fn hang_off_stiffness6<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M6, EigenError> {
     let n = line.n_dof();
     let fixed = line.fixed_dofs();
     let b = line.hang_off_rows();
     if b.iter().any(|i| fixed.binary_search(i).is_err()) {
         return Err(EigenError::HangOffFree);
     }
+    let end = line.hang_off_end(cfg);
+    // the prescribed unknowns whose columns are driven: the position, and a clamp's rotation
+    let mut driven: Vec<usize> = b.to_vec();
+    if let EndRotation::Clamped { rows } = end {
+        if rows.iter().any(|i| fixed.binary_search(i).is_err()) {
+            return Err(EigenError::HangOffFree);
+        }
+        driven.extend(rows);
+    }
     let mut sys = line.new_system().map_err(EigenError::Linear)?;
     let mut r = vec![0.0; n];
     line.static_tangent(cfg, &mut r, &mut sys);
     let is_fixed = |i: usize| fixed.binary_search(&i).is_ok();
-    // K_bb, the rows K_b· and the columns K_·b before the supports are imposed
-    let mut s = M3::from_fn(|i, j| sys.get(b[i], b[j]));
-    let rows: Vec<Vec<f64>> = b.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
-    let cols: Vec<Vec<f64>> =
-        b.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
-    if !s.iter().all(|v| v.is_finite()) {
+    // the output rows that read the tangent: the force, and a clamp's moment
+    let mut s = M6::zeros();
+    let rows: Vec<Vec<f64>> = driven.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
+    for (i, &bi) in driven.iter().enumerate() {
+        for (j, &bj) in driven.iter().enumerate() {
+            s[(i, j)] = sys.get(bi, bj);
+        }
+    }
+    // right-hand sides −K_ib e_j of the six columns (zero: the column is not driven)
+    let mut cols: Vec<Vec<f64>> =
+        driven.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
+    if let EndRotation::Joint { rows: jr, k_vessel, .. } = end {
+        for j in 0..3 {
+            let mut c = vec![0.0; n];
+            for (a, &ia) in jr.iter().enumerate() {
+                c[ia] = -k_vessel[(a, j)];
+            }
+            cols.push(c);
+        }
+    }
+    if !s.iter().chain(rows.iter().flatten()).all(|v| v.is_finite()) {
         return Err(EigenError::NotFinite);
     }
     for &i in &fixed {
@@ -255,6 +296,17 @@ pub fn hang_off_stiffness<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M3
                 }
             }
             s[(i, j)] += v;
+        }
+        if let EndRotation::Joint { rows: jr, k_end, k_vessel } = end {
+            // the support's moment on the line, −δm
+            let th = V3::new(dq[jr[0]], dq[jr[1]], dq[jr[2]]);
+            let mut dm = k_end * th;
+            if j >= 3 {
+                dm += k_vessel.column(j - 3);
+            }
+            for a in 0..3 {
+                s[(3 + a, j)] = -dm[a];
+            }
         }
     }
     if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }

@@ -9,7 +9,7 @@ use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::shape::{GAUSS4, hermite, hermite_ds, lagrange};
 use crate::math::{M3, V3, skew};
 use crate::model::RodConfig;
-use crate::model::linearized::{Linearized, ModeMotion};
+use crate::model::linearized::{EndRotation, Linearized, ModeMotion};
 
 /// The rod of a dynamic model with the loads of its statics.
 pub struct RodLinearized<'a> {
@@ -115,6 +115,26 @@ impl Linearized for RodLinearized<'_> {
 
     fn static_tangent(&self, cfg: &RodConfig, r: &mut [f64], k: &mut BandedSystem) {
         self.statics.residual(cfg, r, Some(k));
+    }
+
+    /// A clamp holds the end's rotation (spatial unknowns: the end is not a
+    /// local-basis node); a flex joint's moment m(d, f) is objective,
+    /// m(Q d, Q f) = Q m, so its derivative along the vessel frame's turn is
+    /// ∂m/∂θ_f = −\[m\]× − ∂m/∂θ_d (docs/theory.md §15).
+    fn hang_off_end(&self, cfg: &RodConfig) -> EndRotation {
+        let rod = &self.model.rod;
+        let i = Rod::theta_dof(0);
+        let rows = [i, i + 1, i + 2];
+        if rod.ends[0].rotation == super::RotationBc::Clamped {
+            return EndRotation::Clamped { rows };
+        }
+        match &rod.flex_joint {
+            Some(joint) if joint.frame.is_some() && rod.ends[0].rotation == super::RotationBc::Free => {
+                let (m, k_end) = joint.static_moment(&cfg.d[0], &joint.frame.unwrap_or_else(M3::identity));
+                EndRotation::Joint { rows, k_end, k_vessel: -skew(&m) - k_end }
+            }
+            _ => EndRotation::Pinned,
+        }
     }
 
     fn mass_matrix(&self, cfg: &RodConfig, m: &mut BandedSystem) {
