@@ -253,7 +253,7 @@ impl Sea {
         // four lanes instead of two), chosen at run time by pulp, the SIMD
         // layer faer already brings (no unsafe here); the same operations in
         // the same order on every path: the same bits
-        pulp::Arch::new().dispatch(|| self.water_points(r, dr, points, out, scratch));
+        pulp::Arch::new().dispatch(WaterPoints { sea: self, r, dr, points, out, scratch });
     }
 
     /// The body of [`Sea::water_batch`] at ramp `r`, rate `dr`, with ω t in
@@ -355,6 +355,26 @@ impl Sea {
             gradient: grad * r,
             deep: false,
         }
+    }
+}
+
+/// [`Sea::water_batch`]'s loop as pulp's operation: `with_simd` is
+/// compiled inside pulp's target-feature function for each instruction set.
+struct WaterPoints<'a> {
+    sea: &'a Sea,
+    r: f64,
+    dr: f64,
+    points: &'a [V3],
+    out: &'a mut [WaterPoint],
+    scratch: &'a mut WaveScratch,
+}
+
+impl pulp::WithSimd for WaterPoints<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        self.sea.water_points(self.r, self.dr, self.points, self.out, self.scratch);
     }
 }
 
