@@ -103,7 +103,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     plt.close(fig)
     print(f"  wrote {out}/fmu_timeseries.csv, shapes.png, tension_energy.png")
     if args.vessel_duration > 0:
-        vessel_coupling(args.fmu, out, args.vessel_duration)
+        vessel_coupling(args.fmu, out, args.vessel_duration, damping=args.damping)
 
 
 def moment_error(res) -> float:
@@ -121,9 +121,12 @@ def moment_error(res) -> float:
     return float(np.max(np.abs(m - np.cross(arm, f))) / scale)
 
 
-def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: float = 0.05) -> dict:
+def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: float = 0.05,
+                    damping: float = 0.002) -> dict:
     """The catenary hanging HANG_OFF from the reference point of osp/vessel/Vessel6.py, both ways in
-    libcosim's fixed-step algorithm at step `h` for `duration` s in the vessel's default wave.
+    libcosim's fixed-step algorithm at step `h` for `duration` s in the vessel's default wave, with
+    the structural damping `damping` s of the first part (the scene's current starts at t = 0 and
+    rings the axial waves, as the first part's abrupt start would).
     Prints the summary, writes `out`/vessel_coupling.csv (VESSEL_COLUMNS) and vessel_coupling.png;
     returns fixed_step6's columns with "wall" (s, the coupled run) and "moment_error"."""
     import subprocess
@@ -141,7 +144,8 @@ def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: f
             raise RuntimeError(f"pythonfmu could not build osp/vessel/Vessel6.py:\n{e.stderr.decode(errors='replace')}"
                                f"{e.stdout.decode(errors='replace')}") from e
         w0 = time.perf_counter()
-        res = fixed_step6(fmu_path, vessel_fmu, h, duration, riser={"hang_off_x": float(HANG_OFF[0])})
+        riser = {"hang_off_x": float(HANG_OFF[0]), "structural_damping": damping}
+        res = fixed_step6(fmu_path, vessel_fmu, h, duration, riser=riser)
         wall = time.perf_counter() - w0
     res["wall"], res["moment_error"] = wall, moment_error(res)
     t = res["t"]
