@@ -5,6 +5,8 @@
 //! series with that boundary layer; the energy balance of a clamped line and
 //! of a flex joint in motion; the cable refuses both; bad joint tables.
 
+mod common;
+
 use riser::math::V3;
 use riser::model::State;
 use riser::model::rod::statics::StaticProblem;
@@ -15,22 +17,6 @@ use riser::sim::report::{scene_static_loads, solve_scene};
 use riser::sim::{Heave, Simulation};
 use riser::solve::statics::solve;
 
-/// A neutrally buoyant vertical line (the catenary's D with its displaced
-/// mass, 81.0 kg/m) stretched 1 cm between its ends: T = EA δL/L = 79.6 kN
-/// along it; EI 1e6 N m² gives a bending length λ = √(EI/T) = 3.5 m.
-fn taut(sets: &[&str]) -> Scene {
-    let mass = 1025.0 * std::f64::consts::PI * 0.3172f64.powi(2) / 4.0;
-    let mut all = vec![
-        format!("mass_per_length={mass}"),
-        "bending_stiffness=1e6".into(),
-        "anchor_x=0".into(),
-        "anchor_z=-100.01".into(),
-        "n_elements=200".into(),
-    ];
-    all.extend(sets.iter().map(|s| s.to_string()));
-    Scene::builtin("catenary").unwrap().with_overrides(&all).unwrap()
-}
-
 /// The clamp turned by δ = 0.01 rad about y from the pinned line's static
 /// orientation. The tensioned beam EI w⁗ − T w″ = 0 with w(0) = 0, w′(0) = δ
 /// and the far end pinned, w(L) = 0, has w = A (e^{−s/λ} − 1) + A s/L to
@@ -40,7 +26,7 @@ fn taut(sets: &[&str]) -> Scene {
 /// the same at δ = 0.001); the pinned line (its end free to turn) carries none.
 #[test]
 fn a_clamped_end_turned_by_delta_carries_delta_sqrt_ei_t() {
-    let sc = taut(&["hang_off_end=clamped"]);
+    let sc = common::taut_vertical_line(&["hang_off_end=clamped"]);
     let pinned = solve_scene(&sc).unwrap();
     let model = RodModel::from_scene(&sc);
     assert_eq!(model.rod.ends[0], EndBc::CLAMPED);
@@ -130,7 +116,7 @@ fn a_flex_joint_is_a_spring_in_series_with_the_boundary_layer() {
         let ei = 1e6;
         let kb_of = |t: f64, l: f64| (ei * t).sqrt() / (1.0 - (ei / t).sqrt() / l);
         let k = if k < 0.0 { kb_of(t_ref, 100.01) } else { k };
-        let sc = taut(&["hang_off_end=flex_joint", &format!("flex_joint_stiffness={k}")]);
+        let sc = common::taut_vertical_line(&["hang_off_end=flex_joint", &format!("flex_joint_stiffness={k}")]);
         let pinned = solve_scene(&sc).unwrap();
         let mut model = RodModel::from_scene(&sc);
         assert_eq!(model.rod.ends[0], EndBc::PINNED, "a flex joint's end turns");

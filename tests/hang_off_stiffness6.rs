@@ -8,6 +8,8 @@
 //! residual's rows at the hang-off's position and, for the clamp, at its
 //! rotation; for the joint, minus the joint's moment on the vessel.
 
+mod common;
+
 use riser::math::rigid::rot_y;
 use riser::math::{M3, M6, V3, cayley};
 use riser::model::RodConfig;
@@ -153,21 +155,6 @@ fn compare(what: &str, s: &M6, fd: &M6, tol: f64) -> f64 {
     worst
 }
 
-/// The taut neutrally buoyant vertical line of tests/hang_off_end.rs (T 79.6 kN,
-/// λ = √(EI/T) = 3.5 m).
-fn taut(sets: &[&str]) -> Scene {
-    let mass = 1025.0 * std::f64::consts::PI * 0.3172f64.powi(2) / 4.0;
-    let mut all = vec![
-        format!("mass_per_length={mass}"),
-        "bending_stiffness=1e6".into(),
-        "anchor_x=0".into(),
-        "anchor_z=-100.01".into(),
-        "n_elements=200".into(),
-    ];
-    all.extend(sets.iter().map(|s| s.to_string()));
-    Scene::builtin("catenary").unwrap().with_overrides(&all).unwrap()
-}
-
 fn catenary(sets: &[&str]) -> Scene {
     Scene::builtin("catenary").unwrap().with_overrides(sets).unwrap()
 }
@@ -237,24 +224,24 @@ fn flex_joint_catenary_6x6_is_the_derivative_of_the_statics() {
 
 #[test]
 fn clamped_taut_line_6x6_is_the_derivative_of_the_statics() {
-    let s = case("taut, clamped", &taut(&["hang_off_end=clamped"]), None, 3e-5);
+    let s = case("taut, clamped", &common::taut_vertical_line(&["hang_off_end=clamped"]), None, 3e-5);
     // the clamp's boundary layer: δM = δθ √(EI T)/(1 − λ/L) about a transverse axis
     // (measured within 3e-6, held to 5e-5 as (15.5) in tests/hang_off_end.rs)
-    let kb = boundary_layer(&taut(&["hang_off_end=clamped"]));
+    let kb = boundary_layer(&common::taut_vertical_line(&["hang_off_end=clamped"]));
     eprintln!("taut, clamped: S_yy of the rotation {:.5e} against K_b {kb:.5e}", s[(4, 4)]);
     assert!((s[(4, 4)] / kb - 1.0).abs() < 5e-5 && (s[(3, 3)] / kb - 1.0).abs() < 5e-5);
-    case("taut, clamped, turned 0.01 rad", &taut(&["hang_off_end=clamped"]), Some(0.01), 3e-5);
+    case("taut, clamped, turned 0.01 rad", &common::taut_vertical_line(&["hang_off_end=clamped"]), Some(0.01), 3e-5);
 }
 
 #[test]
 fn flex_joint_taut_line_6x6_is_the_derivative_of_the_statics() {
-    let s = case("taut, flex joint 1e6 N m/rad", &taut(&JOINT), None, 3e-5);
+    let s = case("taut, flex joint 1e6 N m/rad", &common::taut_vertical_line(&JOINT), None, 3e-5);
     // the joint in series with the boundary layer (15.5)
-    let kb = boundary_layer(&taut(&JOINT));
+    let kb = boundary_layer(&common::taut_vertical_line(&JOINT));
     let series = 1.0 / (1.0 / 1e6 + 1.0 / kb);
     eprintln!("taut, flex joint: S_yy of the rotation {:.5e} against 1/(1/k + 1/K_b) {series:.5e}", s[(4, 4)]);
     assert!((s[(4, 4)] / series - 1.0).abs() < 5e-5 && (s[(3, 3)] / series - 1.0).abs() < 5e-5);
-    case("taut, flex joint 1e6 N m/rad, turned 0.01 rad", &taut(&JOINT), Some(0.01), 3e-5);
+    case("taut, flex joint 1e6 N m/rad, turned 0.01 rad", &common::taut_vertical_line(&JOINT), Some(0.01), 3e-5);
 }
 
 /// During a run (heave 2.5 m / 10 s, pitch 0.02 rad / 8 s, 6 s in): the

@@ -3,8 +3,25 @@
 //! the conserving scheme (ρ∞ = 1) and the default dissipation, while the
 //! line's top goes through the moving surface in every wave.
 
+use riser::model::HangOff;
 use riser::scene::Scene;
-use riser::sim::{Heave, Simulation};
+use riser::sim::Simulation;
+
+/// The Lowe & Langley jumper (docs/cases/lowe_langley_jumper.toml) with
+/// `sets` and a regular wave of `height` m, 10 s, travelling at 30°, the
+/// vessel held still, started: the simulation (the waves' ramp one period).
+fn jumper_in_a_wave(sets: &[String], height: f64) -> Simulation {
+    let mut all = sets.to_vec();
+    all.extend(
+        ["wave_kind=airy", &format!("wave_height={height}"), "wave_period=10", "wave_direction=30"].map(String::from),
+    );
+    let all: Vec<&str> = all.iter().map(String::as_str).collect();
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let sc = Scene::load(&format!("{dir}/docs/cases/lowe_langley_jumper.toml")).unwrap().with_overrides(&all).unwrap();
+    let mut sim = Simulation::from_scene(&sc).unwrap();
+    sim.start(HangOff::default());
+    sim
+}
 
 /// The Lowe & Langley jumper (hang-off 5 m under the mean level) in a
 /// regular 14 m, 10 s wave grown over one period: every trough uncovers its
@@ -13,27 +30,11 @@ use riser::sim::{Heave, Simulation};
 /// tolerance's share of what was exchanged.
 #[test]
 fn the_energy_balance_closes_in_waves_through_the_moving_surface() {
-    let dir = env!("CARGO_MANIFEST_DIR");
     for model in ["rod", "cable"] {
         for rho in ["1", "0.8"] {
-            let sets = [
-                format!("model={model}"),
-                format!("rho_infinity={rho}"),
-                "newton_tolerance=1e-10".to_string(),
-                "wave_kind=airy".to_string(),
-                "wave_height=14".to_string(),
-                "wave_period=10".to_string(),
-                "wave_direction=30".to_string(),
-            ];
-            let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
-            let sc = Scene::load(&format!("{dir}/docs/cases/lowe_langley_jumper.toml"))
-                .unwrap()
-                .with_overrides(&sets)
-                .unwrap();
-            let mut sim = Simulation::from_scene(&sc).unwrap();
-            let still = Heave { amplitude: 0.0, period: 10.0, until: None, ramp: 0.0 };
-            let motion = move |t: f64| still.at(t);
-            sim.start(motion(0.0));
+            let sets = [format!("model={model}"), format!("rho_infinity={rho}"), "newton_tolerance=1e-10".into()];
+            let mut sim = jumper_in_a_wave(&sets, 14.0);
+            let motion = |_t: f64| HangOff::default();
             let e0 = sim.initial_energy;
             let (mut worst, mut exchanged, mut emerged) = (0.0f64, 0.0f64, 0usize);
             let top = sim.state.config.x[0];
@@ -45,7 +46,7 @@ fn the_energy_balance_closes_in_waves_through_the_moving_surface() {
                 worst = worst.max(o.energy_balance_residual(e0).abs());
                 exchanged = exchanged
                     .max(o.work_top.abs() + o.work_hydro.abs() + o.dissipated_energy + o.algorithmic_dissipation);
-                emerged += usize::from(sea.ramped_elevation(top.x, top.y, t) < top.z - sc.environment.water_surface_z);
+                emerged += usize::from(sea.ramped_elevation(top.x, top.y, t) < top.z - sea.settings().surface_z);
             }
             println!(
                 "{model}, rho_infinity {rho}: balance residual {worst:.3e} J of {exchanged:.3e} J exchanged; top out of the water at {emerged} of 800 steps"
@@ -64,7 +65,6 @@ fn the_energy_balance_closes_in_waves_through_the_moving_surface() {
 /// scheme (`dynamics_convergence.rs`).
 #[test]
 fn the_shape_in_waves_converges_at_second_order_in_the_step() {
-    let dir = env!("CARGO_MANIFEST_DIR");
     for model in ["rod", "cable"] {
         for rho in [1.0, 0.8] {
             let run = |dt: f64| -> Vec<riser::math::V3> {
@@ -72,22 +72,11 @@ fn the_shape_in_waves_converges_at_second_order_in_the_step() {
                     format!("model={model}"),
                     format!("time_step={dt}"),
                     format!("rho_infinity={rho}"),
-                    "n_elements=20".to_string(),
-                    "newton_tolerance=1e-11".to_string(),
-                    "wave_kind=airy".to_string(),
-                    "wave_height=6".to_string(),
-                    "wave_period=10".to_string(),
-                    "wave_direction=30".to_string(),
+                    "n_elements=20".into(),
+                    "newton_tolerance=1e-11".into(),
                 ];
-                let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
-                let sc = Scene::load(&format!("{dir}/docs/cases/lowe_langley_jumper.toml"))
-                    .unwrap()
-                    .with_overrides(&sets)
-                    .unwrap();
-                let mut sim = Simulation::from_scene(&sc).unwrap();
-                let still = Heave { amplitude: 0.0, period: 10.0, until: None, ramp: 0.0 };
-                let motion = move |t: f64| still.at(t);
-                sim.start(motion(0.0));
+                let mut sim = jumper_in_a_wave(&sets, 6.0);
+                let motion = |_t: f64| HangOff::default();
                 for k in 1..=(12.0 / dt).round() as usize {
                     sim.advance_to(k as f64 * dt, &motion).unwrap();
                 }

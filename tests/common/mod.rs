@@ -14,11 +14,12 @@ use riser::solve::Integrator;
 
 /// The cable's step tangent against central differences of the step
 /// residual, from the static state of `scene` (a cable) given a moving,
-/// out-of-plane velocity and a generic trial configuration: the largest
-/// error relative to each row's largest entry.
+/// out-of-plane velocity and a generic trial configuration, in the scene's
+/// waves if it has any (at full height from t = 0 with `wave_ramp=0`): the
+/// largest error relative to each row's largest entry.
 pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
     let rep = riser::sim::report::solve_scene(scene).unwrap();
-    let model = CableModel::from_scene(scene);
+    let model = CableModel::from_scene(scene).with_sea(riser::loads::waves::sea_of(scene, 0.0).unwrap());
     let opts = DynamicOptions { time_step: 0.05, ..Default::default() };
     let mut integ = Integrator::new(model, opts, scene.hang_off()).unwrap();
     let mut prev = State::at_rest(rep.solution.config.clone(), 0.0);
@@ -62,6 +63,24 @@ pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
         }
     }
     worst
+}
+
+/// A neutrally buoyant vertical line (the catenary's D with its displaced
+/// mass, 81.0 kg/m) stretched 1 cm between its ends: T = EA δL/L = 79.6 kN
+/// along it; EI 1e6 N m² gives a bending length λ = √(EI/T) = 3.5 m; 200
+/// elements (h = λ/7); `sets` overrides on top (tests/hang_off_end.rs,
+/// tests/hang_off_stiffness6.rs).
+pub fn taut_vertical_line(sets: &[&str]) -> Scene {
+    let mass = 1025.0 * std::f64::consts::PI * 0.3172f64.powi(2) / 4.0;
+    let mut all = vec![
+        format!("mass_per_length={mass}"),
+        "bending_stiffness=1e6".into(),
+        "anchor_x=0".into(),
+        "anchor_z=-100.01".into(),
+        "n_elements=200".into(),
+    ];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    Scene::builtin("catenary").unwrap().with_overrides(&all).unwrap()
 }
 
 /// The transverse natural frequencies (Hz, both planes, ascending) among

@@ -452,7 +452,8 @@ impl StepEquations for RodModel {
             // the free surface: the buoyancy of the emerged part taken off, as
             // the discrete gradient of its potential (§10)
             if let Some(fs) = &fluid.surface
-                && !(fs.lowered(sweep).hermite_below(&eln.c, rod.h) && fs.lowered(sweep).hermite_below(&el1.c, rod.h))
+                && let band = fs.lowered(sweep)
+                && !(band.hermite_below(&eln.c, rod.h) && band.hermite_below(&el1.c, rod.h))
             {
                 let mut fsv = [V3::zeros(); 4];
                 let mut kb = [[M3::zeros(); 4]; 4];
