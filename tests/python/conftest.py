@@ -10,14 +10,15 @@ ROOT = Path(__file__).resolve().parents[2]
 # `make check` points them at its fasttest build with RISER_FMU and RISER_BIN.
 @pytest.fixture(scope="session")
 def fmu_path():
-    p = Path(os.environ.get("RISER_FMU", ROOT / "fmu" / "riser.fmu"))
+    # absolute: some tests hand the path to tools run in a temporary directory
+    p = Path(os.environ.get("RISER_FMU", ROOT / "fmu" / "riser.fmu")).resolve()
     assert p.exists(), f"build it first: make fmu ({p})"
     return str(p)
 
 
 @pytest.fixture(scope="session")
 def riser_bin():
-    return str(os.environ.get("RISER_BIN", ROOT / "target" / "release" / "riser"))
+    return str(Path(os.environ.get("RISER_BIN", ROOT / "target" / "release" / "riser")).resolve())
 
 
 @pytest.fixture(scope="session")

@@ -41,12 +41,11 @@ def moment_error(res, rotations):
     return np.max(np.abs(m - want)) / (np.linalg.norm(RHO) * np.max(np.linalg.norm(f, axis=1)))
 
 
-# 0.25 s and 0.5 s miss the 1 % (1.76 %, 1.34 %) while 0.35 s passes (0.06 %): not the loop but
-# riser's one-way answer at that step (the test below): the input path's step-periodic curvature
-# error at 1/h and its harmonics lands on the line's resonance near 4 Hz (at the internal step
-# 0.05 s) and the communication points see it aliased at the wave frequency (docs/coupling.md,
-# "Why the fixed step misses 1 %"): a step to avoid for this line, not a bug
-@pytest.mark.parametrize("h", [0.05, 0.2])
+# 0.25 s and 0.5 s missed the 1 % (1.76 %, 1.34 %) with the displacement design alone: its
+# step-periodic curvature error at 1/h and its harmonics lands on the line's resonance near 4 Hz (at
+# the internal step 0.05 s); with the velocities in the fit (docs/theory.md §7.4) they pass (the
+# test after this one)
+@pytest.mark.parametrize("h", [0.05, 0.2, 0.25, 0.5])
 def test_six_degree_of_freedom_vessel_fixed_step_gives_the_one_way_tension_within_1_percent(
         fmu_path, vessel6_fmu, h):
     two = fixed_step6(fmu_path, vessel6_fmu, h, 50.0, riser=RISER)
@@ -67,23 +66,26 @@ def test_six_degree_of_freedom_vessel_fixed_step_gives_the_one_way_tension_withi
     assert e_two <= 1e-3
 
 
-def test_the_fixed_step_miss_at_0_25_s_is_riser_one_way_at_that_step_not_the_loop(fmu_path, vessel6_fmu):
-    # riser alone fed the poses the loop recorded, at the loop's communication step and its internal
-    # step (min(0.05, h)), gives the loop's tension: riser got the vessel's pose of t_n for the step
-    # from t_n and nothing else (the velocities do not change it), so the 1.76 % is one way. At the
-    # internal step 0.25 s (what the earlier diagnostic ran) the 4 Hz bump is never resolved: 0.07 %
+def test_at_0_25_s_the_loop_is_riser_one_way_at_that_step_and_the_velocities_bring_it_within_1_percent(
+        fmu_path, vessel6_fmu):
+    # riser alone fed the poses and velocities the loop recorded, at the loop's communication step
+    # and its internal step (min(0.05, h)), gives the loop's tension: riser got the vessel's motion
+    # of t_n for the step from t_n and nothing else, so what the window misses is riser's one-way
+    # answer at that step. Fed the poses alone (velocities unset: the displacement design), it
+    # misses by 1.76 %: the design's curvature error rings the line's 4 Hz resonance; with the
+    # velocities, the five-point design of both (§7.4) leaves a quarter of that
     h = 0.25
     two = fixed_step6(fmu_path, vessel6_fmu, h, 50.0, riser=RISER)
     same = reference6(fmu_path, two, h_ref=h, riser={**RISER, "time_step": 0.05})
-    still = {**two, **{n: np.zeros_like(two[n]) for n in ("surge_velocity", "sway_velocity", "heave_velocity")}}
-    poses = reference6(fmu_path, still, h_ref=h, riser={**RISER, "time_step": 0.05})
+    poses = reference6(fmu_path, two, h_ref=h, riser={**RISER, "time_step": 0.05}, velocities=False)
     one = reference6(fmu_path, two, h_ref=0.025, riser=RISER)
     gap = np.max(np.abs(same["top_tension"] - two["top_tension"]))
     miss = lambda r: np.max(np.abs(window6(r, 30.0) - window6(one, 30.0)) / window6(one, 30.0))
     print(f"h {h}: max |T_one-way − T_loop| {gap:.2e} N; miss loop {miss(two):.4f}, one way at the loop's "
           f"steps {miss(same):.4f}, poses only {miss(poses):.4f}")
     assert gap <= 1e-3
-    assert abs(miss(same) - miss(two)) <= 1e-5 and abs(miss(poses) - miss(two)) <= 5e-4
+    assert abs(miss(same) - miss(two)) <= 1e-5
+    assert miss(two) <= 0.01 and miss(poses) >= 2.0 * miss(two)
 
 
 def test_six_degree_of_freedom_vessel_under_ecco_through_both_ports(fmu_path, vessel6_fmu):

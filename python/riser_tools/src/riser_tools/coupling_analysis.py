@@ -107,6 +107,49 @@ CANDIDATES = [
 ]
 
 
+@dataclass(frozen=True)
+class BothPredictor:
+    """The design of `both` at uniform steps h ≥ 0.21 s (src/fmi/input_path.rs VELOCITY_DESIGN,
+    docs/theory.md §7.4): the last `n` displacements and velocities written, in the least-squares
+    sense, as a quintic Q and its slope plus an alternating nuisance in each."""
+    name: str = "both: quintic, 5 points of displacement and velocity, two nuisances"
+    n: int = 5
+    min_h: float = 0.21
+
+
+BOTH = BothPredictor()
+
+
+def both_weights(p: BothPredictor = BOTH):
+    """(Wu, Wv), each 3 × n: the end state (Q, h Q', h² Q'') at σ = 1 is Wu x + Wv (h v), samples
+    newest first at σ_k = −k."""
+    rows = []
+    for k in range(p.n):
+        s = -float(k)
+        rows.append([s ** j for j in range(6)] + [(-1.0) ** k, 0.0])
+    for k in range(p.n):
+        s = -float(k)
+        rows.append([j * s ** (j - 1) if j else 0.0 for j in range(6)] + [0.0, (-1.0) ** k])
+    inv = np.linalg.pinv(np.array(rows))[:6]
+    j = np.arange(6)
+    w = np.array([np.ones(6), j * 1.0, j * (j - 1.0)]) @ inv
+    return w[:, : p.n], w[:, p.n:]
+
+
+def both_fir(g: np.ndarray, h: float, p: BothPredictor = BOTH):
+    """(r_u, r_v): the force at t_n per unit x_{n−1−k} and per unit v_{n−1−k} (riser alone)."""
+    wu, wv = both_weights(p)
+    return riser_fir(g, wu), riser_fir(g, wv * h)
+
+
+def both_end_state_response(theta, p: BothPredictor = BOTH) -> np.ndarray:
+    """E_j(θ) of the `both` design for a sampled e^{iθn} with its exact velocity (h v = iθ x)."""
+    wu, wv = both_weights(p)
+    theta = np.atleast_1d(theta)
+    return (wu + 0j) @ np.exp(-1j * np.outer(np.arange(p.n), theta)) + \
+        (wv @ np.exp(-1j * np.outer(np.arange(p.n), theta))) * (1j * theta)
+
+
 def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
     """W (3 × taps): the end state (P, h P', h² P'') at σ = 1 from the samples at σ = τ_k/h
     (newest first; default the uniform τ_k = −k h)."""
@@ -235,6 +278,59 @@ def loop_gain(body: Body, h: float, r: np.ndarray, n: int = 2000) -> np.ndarray:
     return np.abs(rz * g / z)
 
 
+def loop_gain_both(body: Body, h: float, ru: np.ndarray, rv: np.ndarray, n: int = 2000) -> np.ndarray:
+    """|L(θ)| of (7.9) when the riser reads the body's velocity too: L = z⁻¹ (R_u(z) G_x(z) +
+    R_v(z) G_v(z)), G_x, G_v the body's position and velocity per unit held force."""
+    phi, gam = body_zoh(body, h)
+    theta = np.linspace(np.pi / n, np.pi, n)
+    z = np.exp(1j * theta)
+    ru_z = np.exp(-1j * np.outer(theta, np.arange(len(ru)))) @ ru
+    rv_z = np.exp(-1j * np.outer(theta, np.arange(len(rv)))) @ rv
+    det = (z - phi[0, 0]) * (z - phi[1, 1]) - phi[0, 1] * phi[1, 0]
+    gx = ((z - phi[1, 1]) * gam[0] + phi[0, 1] * gam[1]) / det
+    gv = ((z - phi[0, 0]) * gam[1] + phi[1, 0] * gam[0]) / det
+    return np.abs((ru_z * gx + rv_z * gv) / z)
+
+
+def spectral_radius_both(body: Body, h: float, ru: np.ndarray, rv: np.ndarray) -> float:
+    """The loop's spectral radius with the velocity read too: state (x_n, v_n, x_{n−1..n−L},
+    v_{n−1..n−L})."""
+    phi, gam = body_zoh(body, h)
+    big = max(np.abs(ru).max(), np.abs(rv).max())
+    keep = np.nonzero((np.abs(ru) > 1e-7 * big) | (np.abs(rv) > 1e-7 * big))[0]
+    n = keep[-1] + 1 if len(keep) else 1
+    ru, rv = ru[:n], rv[:n]
+    a = np.zeros((2 + 2 * n, 2 + 2 * n))
+    a[:2, :2] = phi
+    for k in range(n):
+        a[:2, 2 + k] += gam * ru[k]
+        a[:2, 2 + n + k] += gam * rv[k]
+    a[2, 0] = a[2 + n, 1] = 1.0
+    for i in range(1, n):
+        a[2 + i, 1 + i] = a[2 + n + i, 1 + n + i] = 1.0
+    return float(np.abs(np.linalg.eigvals(a)).max())
+
+
+def analyse_both(resp: dict[float, np.ndarray], bodies=(VESSEL, BUOY), amplitude=2.5, period=20.0):
+    """The rows of the `both` design at the steps it is used at (h ≥ 0.21 s)."""
+    rows = []
+    for h, g in sorted(resp.items()):
+        if h < BOTH.min_h:
+            continue
+        ru, rv = both_fir(g, h)
+        theta = 2 * np.pi * h / period
+        e = both_end_state_response(theta)[:, 0] - exact_end_state(theta)[:, 0]
+        one_way = abs((line_transfer(g, theta)[:, 0] * e).sum()) * amplitude
+        # a ±1e-5 m alternation of the displacement alone (the velocity input steady)
+        e_pi = both_weights()[0] @ (-1.0) ** np.arange(BOTH.n)
+        rows.append(dict(predictor=BOTH.name, h=h, onset=float("nan"),
+                         rho={b.name: spectral_radius_both(b, h, ru, rv) for b in bodies},
+                         gain={b.name: float(loop_gain_both(b, h, ru, rv)[HIGH_BAND].max()) for b in bodies},
+                         rho_gs={b.name: float("nan") for b in bodies}, hang_off=abs(e_pi[0]) * 1e-5,
+                         swing=2.0 * abs((line_transfer(g, np.pi)[:, 0] * e_pi).sum()) * 1e-5, one_way=one_way))
+    return rows
+
+
 def measure(hs, out: Path, scene="catenary", profile="fasttest") -> None:
     """Runs examples/hang_off_response.rs for every h and writes its CSV."""
     subprocess.run(["cargo", "build", "--profile", profile, "--example", "hang_off_response"], cwd=ROOT, check=True)
@@ -321,6 +417,8 @@ def plot(rows, resp, path: Path, predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
     ax = axes[0]
     for p in [q for q in predictors if q is not AFTER] + [q for _, q in DESIGNS]:
         ax.semilogy(theta / np.pi, np.abs(end_state_response(predictor_weights(p), theta)[0]), label=p.name)
+    ax.semilogy(theta / np.pi, np.abs(both_end_state_response(theta)[0]), "k", lw=2,
+                label=BOTH.name + " (velocity exact)")
     ax.set_ylim(1e-2, 100.0)
     ax.set_xlabel("θ = ωh / π")
     ax.set_ylabel("|E₀(θ)|: end value per unit input")
@@ -328,9 +426,10 @@ def plot(rows, resp, path: Path, predictors=CANDIDATES, bodies=(VESSEL, BUOY)):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     for ax, b in zip(axes[1:], bodies):
-        for p in predictors:
+        for p in list(predictors) + [BOTH]:
             hs = [r["h"] for r in rows if r["predictor"] == p.name]
-            ax.loglog(hs, [r["gain"][b.name] for r in rows if r["predictor"] == p.name], "o-", ms=3, label=p.name)
+            ax.loglog(hs, [r["gain"][b.name] for r in rows if r["predictor"] == p.name], "o-", ms=3, label=p.name,
+                      **({"color": "k", "lw": 2} if p is BOTH else {}))
         ax.axhline(1.0, color="k", lw=0.8)
         ax.set_xlabel("communication step h (s)")
         ax.set_ylabel("loop gain max |L(θ)|, θ ≥ π/2 (Jacobi)")
@@ -352,7 +451,7 @@ def main(argv=None):
     if args.measure or not path.exists():
         measure(STEPS, path)
     resp = read_response(path)
-    rows = analyse(resp)
+    rows = analyse(resp) + analyse_both(resp)
     lines = ["# The input path in a coupling loop (issue 29)", "",
              "Made by `riser-tools coupling` (riser_tools.coupling_analysis; docs/theory.md §7.3). The linear "
              "vessel–riser loop of one heave axis at uniform communication steps h: the body's heave integrated "
@@ -389,7 +488,11 @@ def main(argv=None):
     from . import report
     lines += report.table(head, body_rows)
     lines += ["", "![stable region](figures/coupling_stability.png)", ""]
-    (Path(args.docs) / "coupling.md").write_text("\n".join(lines) + "\n")
+    # the generated part ends where the hand-written sections (## …) begin: keep those
+    doc = Path(args.docs) / "coupling.md"
+    old = doc.read_text() if doc.exists() else ""
+    tail = old[old.index("\n## ") + 1:] if "\n## " in old else ""
+    doc.write_text("\n".join(lines) + "\n\n" + tail)
     plot(rows, resp, Path(args.docs) / "figures" / "coupling_stability.png")
     return 0
 

@@ -377,11 +377,13 @@ def ecco6(riser_fmu: str, vessel_fmu: str, duration: float, riser: dict | None =
     return _record(ex, r, v, rr, vr, duration)
 
 
-def reference6(riser_fmu: str, two: dict, h_ref: float = 0.025, riser: dict | None = None):
+def reference6(riser_fmu: str, two: dict, h_ref: float = 0.025, riser: dict | None = None,
+               velocities: bool = True):
     """One way: riser alone at fixed steps h_ref driven by the vessel motion recorded in a two-way run
     (`two`, with t = 0 at rest prepended), each translation Hermite-interpolated with its velocity and
     each Euler angle with its rate from p, q, r (z-y-x kinematics), p, q, r back from the
-    interpolated angles and rates. The rotations only if two["rotations"]. Returns t, the prescribed
+    interpolated angles and rates. The rotations only if two["rotations"]; the velocities only if
+    `velocities` (else the poses alone, displacement coupling). Returns t, the prescribed
     pose, and RISER_OUT at each step's end."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
@@ -403,6 +405,8 @@ def reference6(riser_fmu: str, two: dict, h_ref: float = 0.025, riser: dict | No
     for name, w in zip(VELOCITY[3:], body_rates(*angles, *arates)):
         motion[name] = w
     names = POSE + VELOCITY if two.get("rotations", False) else POSE[:3] + VELOCITY[:3]
+    if not velocities:
+        names = [n for n in names if n not in VELOCITY]
 
     md = read_model_description(riser_fmu, validate=False)
     vr = {v.name: v.valueReference for v in md.modelVariables}
