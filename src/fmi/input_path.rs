@@ -103,7 +103,7 @@ pub fn design(h: f64) -> Design {
 
 /// The design where the master gives both the displacement and the
 /// velocity (`both`) on uniform steps of at least this many seconds
-/// (docs/theory.md §7.4, (7.10)): the last [`VELOCITY_TAPS`] displacements and
+/// (docs/theory.md §7.4, (7.10)): the last five displacements and
 /// velocities written, in the least-squares sense, as a quintic Q and its
 /// slope plus an alternating nuisance in each, a (−1)^k and b (−1)^k. Its
 /// end state is O(h⁶) in value and O(h⁴) in curvature over a span of 4h
