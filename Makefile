@@ -8,7 +8,7 @@ TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test check rust-test lint venv clean doc paper fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
+.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
 
 all: build
 
@@ -98,6 +98,11 @@ doc:
 fmu: build venv
 	$(TOOLS) package-fmu
 
+# The six-degree-of-freedom vessel FMU (pythonfmu) beside
+# osp/vessel6/OspSystemStructure.xml, which couples it to riser both ways.
+vessel-fmu: venv
+	$(PY) -m pythonfmu build -f osp/vessel/Vessel6.py -d osp/vessel6
+
 # The FMU as fmpy drives it (tests/python).
 fmu-test: fmu
 	$(PY) -m pytest -q tests/python
@@ -122,7 +127,7 @@ check-fmu:
 
 clean:
 	$(CARGO) clean
-	rm -rf out $(VENV) fmu/riser.fmu
+	rm -rf out $(VENV) fmu/riser.fmu osp/vessel6/Vessel6.fmu
 
 # The long fuzz run of the FMU's C ABI (robustness issue): 5000 seeded random
 # FMI call sequences, each in a child process; the result in docs/fuzz.md

@@ -151,3 +151,35 @@ def test_the_vessel_settles_in_a_current_at_the_static_force_over_its_stiffness(
     print(f"mean pose {got}\nstatics   {eta}\nforce {f}")
     assert abs(got[0] - eta[0]) <= 0.01 * abs(eta[0])  # surge: the current's pull on the moorings
     assert np.all(np.abs(got - eta) <= 0.01 * np.abs(eta) + np.array([1e-4] * 3 + [1e-6] * 3))
+
+
+def test_the_osp_system_structure_couples_the_vessel_as_the_python_loop_does(fmu_path, vessel6_fmu, tmp_path):
+    # osp/vessel6/OspSystemStructure.xml, loaded by libcosim itself (its sources pointed at the FMUs
+    # of this test): the same connections and initial values as fixed_step6 at 0.05 s, so the same
+    # top tension to round-off after 10 s of the loop
+    import re
+    import shutil
+    from pathlib import Path
+
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+
+    xml = (Path(__file__).resolve().parents[2] / "osp" / "vessel6" / "OspSystemStructure.xml").read_text()
+    shutil.copy(fmu_path, tmp_path / "riser.fmu")
+    shutil.copy(vessel6_fmu, tmp_path / "Vessel6.fmu")
+    xml = re.sub(r'source="[^"]*riser\.fmu"', 'source="riser.fmu"', xml)
+    (tmp_path / "OspSystemStructure.xml").write_text(xml)
+    ex = CosimExecution.from_osp_config_file(osp_path=str(tmp_path / "OspSystemStructure.xml"))
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(observer=obs)
+    idx = {s.name.decode(): s.index for s in ex.slave_infos()}
+    refs = {v.name.decode(): v.reference for v in ex.slave_variables(idx["riser"])}
+    tension = []
+    for _ in range(200):
+        assert ex.step()
+        tension.append(obs.last_real_values(idx["riser"], [refs["top_tension"]])[0])
+    loop = fixed_step6(fmu_path, vessel6_fmu, 0.05, 10.0, riser=RISER)
+    print(f"OSP structure against the Python loop: max |ΔT| {np.max(np.abs(np.array(tension) - loop['top_tension'])):.2e} N")
+    assert np.allclose(tension, loop["top_tension"], rtol=0, atol=1e-6 * np.max(loop["top_tension"]))
+    # and the vessel moved: the loop is closed
+    assert np.ptp(tension) > 1e3
