@@ -45,7 +45,7 @@ def moment_error(res, rotations):
 # step-periodic curvature error at 1/h and its harmonics lands on the line's resonance near 4 Hz (at
 # the internal step 0.05 s); with the velocities in the fit (docs/theory.md §7.4) they pass (the
 # test after this one)
-@pytest.mark.parametrize("h", [0.05, 0.2, 0.25, 0.5])
+@pytest.mark.parametrize("h", [0.05, 0.1, 0.2, 0.25, 0.5])
 def test_six_degree_of_freedom_vessel_fixed_step_gives_the_one_way_tension_within_1_percent(
         fmu_path, vessel6_fmu, h):
     two = fixed_step6(fmu_path, vessel6_fmu, h, 50.0, riser=RISER)
