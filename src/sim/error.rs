@@ -21,6 +21,8 @@ pub enum RiserError {
     /// An output that is not a finite number at `time` s (the step that gave
     /// it is discarded).
     NonFinite { name: &'static str, time: f64 },
+    /// The `accuracy` knob refused the scene (docs/theory.md §16).
+    Accuracy(super::accuracy::AccuracyError),
 }
 
 impl std::fmt::Display for RiserError {
@@ -31,6 +33,7 @@ impl std::fmt::Display for RiserError {
             RiserError::Dynamics(e) => e.fmt(f),
             RiserError::Linearized(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
+            RiserError::Accuracy(e) => e.fmt(f),
             RiserError::NonFinite { name, time } => write!(
                 f,
                 "the state at t = {time:.6} s gives a non-finite {name}; the step is discarded and the state kept \
@@ -63,5 +66,11 @@ impl From<DynamicsError> for RiserError {
 impl From<EigenError> for RiserError {
     fn from(e: EigenError) -> Self {
         RiserError::Linearized(e)
+    }
+}
+
+impl From<super::accuracy::AccuracyError> for RiserError {
+    fn from(e: super::accuracy::AccuracyError) -> Self {
+        RiserError::Accuracy(e)
     }
 }
