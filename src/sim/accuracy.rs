@@ -27,7 +27,7 @@ pub const C_CURVATURE: f64 = 7e-4;
 /// The seabed constant C_c of C_c (h/λ)².
 pub const C_CONTACT: f64 = 8e-3;
 /// The temporal constant C_t of C_t (A/A₀) (ω Δt)^{3/2}.
-pub const C_TIME: f64 = 0.13;
+pub const C_TIME: f64 = 0.3;
 /// The amplitude A₀ of the temporal term, m (the study's largest).
 pub const AMPLITUDE_SCALE: f64 = 10.0;
 /// The factor between the predicted error the choice allows and the target.
