@@ -410,11 +410,7 @@ impl Instance {
         // motion (the master's is not known yet), those the master set kept;
         // read back through n_elements, time_step and newton_tolerance
         let pinned = crate::sim::accuracy::Pinned::of_names(
-            self.params
-                .iter()
-                .zip(VARIABLES.iter())
-                .filter(|(p, _)| matches!(p, Some((_, true))))
-                .map(|(_, v)| v.name),
+            self.params.iter().zip(VARIABLES.iter()).filter(|(p, _)| matches!(p, Some((_, true)))).map(|(_, v)| v.name),
         );
         let scene = match crate::sim::accuracy::apply(scene, None, pinned) {
             Ok((scene, choice)) => {

@@ -192,9 +192,10 @@ impl Choice {
             self.scales.curvature_s,
             self.scales
                 .touchdown_bending_length
-                .map(|l| format!(", h/lambda = {:.3} with sqrt(EI/T) = {l:.2} m at the touchdown", self.scales.length
-                    / self.n_elements as f64
-                    / l))
+                .map(|l| format!(
+                    ", h/lambda = {:.3} with sqrt(EI/T) = {l:.2} m at the touchdown",
+                    self.scales.length / self.n_elements as f64 / l
+                ))
                 .unwrap_or_default(),
             self.predicted_time,
             self.scales.omega * self.time_step,

@@ -269,7 +269,8 @@ impl Motions {
     /// hang-off held still).
     fn excitation(&self) -> Option<riser::sim::accuracy::Excitation> {
         let period = self.all().into_iter().flatten().map(|m| m.1).reduce(f64::min)?;
-        let amplitude = [self.heave, self.surge, self.sway].into_iter().flatten().map(|m| m.0.abs()).fold(0.0, f64::max);
+        let amplitude =
+            [self.heave, self.surge, self.sway].into_iter().flatten().map(|m| m.0.abs()).fold(0.0, f64::max);
         Some(riser::sim::accuracy::Excitation { period, amplitude })
     }
 
