@@ -299,7 +299,7 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
     }
     coverage(scene)?;
     let excitation = excitation.unwrap_or(DESIGN_EXCITATION);
-    if !(excitation.period >= MIN_PERIOD) {
+    if excitation.period.is_nan() || excitation.period < MIN_PERIOD {
         return Err(AccuracyError::Motion {
             message: format!(
                 "a hang-off motion of period {} s is shorter than the {MIN_PERIOD} s the error model covers",
@@ -308,7 +308,7 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
         }
         .into());
     }
-    if !(excitation.amplitude <= MAX_AMPLITUDE) {
+    if excitation.amplitude.is_nan() || excitation.amplitude > MAX_AMPLITUDE {
         return Err(AccuracyError::Motion {
             message: format!(
                 "a hang-off motion of amplitude {} m is larger than the {MAX_AMPLITUDE} m the error model covers",
