@@ -142,10 +142,19 @@ def verify(binary, path, rows):
             one(binary, path, rows, case, "accuracy", "", "", "", acc)
 
 
-def write_doc(rows, docs):
+def predicted(binary, case, target):
+    """The error model's prediction for a case and target (a 0.2 s run reports the choice)."""
+    scene, amp, period, _ = CASES[case]
+    p = subprocess.run([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json", "--set",
+                        f"accuracy={target}"], capture_output=True, text=True)
+    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
+    return json.loads(line)["accuracy"]["predicted_error"] if line else None
+
+
+def write_doc(rows, docs, binary):
     lines = ["# The accuracy knob: calibration grid and check", "",
              "Made by `riser-tools accuracy` (riser_tools.studies.accuracy; the model is in "
-             "[theory.md](theory.md#the-accuracy-knob)). Each run: `riser run SCENE --heave A,T --duration 4T` "
+             "[theory.md](theory.md) §16). Each run: `riser run SCENE --heave A,T --duration 4T` "
              "(ramp one period, steady window 2T to 4T); error e = the largest of the steady window's min, mean "
              "and max top tension's differences from the reference's, over the reference's max. Cost: the work, "
              "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
@@ -175,21 +184,23 @@ def write_doc(rows, docs):
             lines.append(f"| {n} | " + " | ".join(cells) + " |")
         acc_rows = [r for r in mine if r["kind"] == "accuracy"]
         if acc_rows:
-            lines += ["", "| accuracy | chosen n, dt, tol | error | work (wall) | cheapest grid cell reaching it | "
-                      "its work | cost ratio |", "|---|---|---|---|---|---|---|"]
+            lines += ["", "| accuracy | chosen n, dt, tol | predicted | error | work (wall) | cheapest grid cell "
+                      "reaching it | its work | cost ratio |", "|---|---|---|---|---|---|---|---|"]
             grid_ok = [r for r in mine if r["kind"] == "grid" and r["completed"] == "True"]
             for r in acc_rows:
                 target = float(r["accuracy"])
                 ok = [g for g in grid_ok if error(g, ref) <= target]
                 best = min(ok, key=work) if ok else None
                 if r["completed"] != "True":
-                    lines.append(f"| {target:g} | refused | | | | | |")
+                    lines.append(f"| {target:g} | refused | | | | | | |")
                     continue
                 e = error(r, ref)
+                pe = predicted(binary, case, target)
+                pe = f"{pe:.1e}" if pe is not None else "?"
                 b = (f"{best['n_elements']} el., dt {best['time_step']} s (e {error(best, ref):.1e})",
                      f"{work(best):.3g}", f"{work(r) / work(best):.2f}") if best else ("none", "", "")
                 lines.append(f"| {target:g} | {r['n_elements']}, {r['time_step']} s, {float(r['newton_tolerance']):g} "
-                             f"| {e:.1e} {'ok' if e <= target else 'ABOVE TARGET'} | {work(r):.3g} "
+                             f"| {pe} | {e:.1e} {'ok' if e <= target else 'ABOVE TARGET'} | {work(r):.3g} "
                              f"({float(r['wall_s']):.2f} s) | {b[0]} | {b[1]} | {b[2]} |")
         lines.append("")
     (docs / "accuracy.md").write_text("\n".join(lines) + "\n")
@@ -217,7 +228,7 @@ def main(argv=None):
     if args.phase in ("verify", "all"):
         verify(args.bin, path, rows)
     shutil.copy(path, docs / "accuracy_runs.csv")
-    write_doc(rows, docs)
+    write_doc(rows, docs, args.bin)
 
 
 if __name__ == "__main__":
