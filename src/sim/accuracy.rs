@@ -16,6 +16,7 @@
 //! target. What the model was not calibrated on is refused
 //! ([`AccuracyError`]), not run with a guess.
 
+pub use super::error::AccuracyError;
 use super::error::RiserError;
 use super::report::solve_scene;
 use super::{Engine, design::Design};
@@ -91,44 +92,6 @@ impl Pinned {
             }
         }
         p
-    }
-}
-
-/// What the model did not cover or cannot reach.
-#[derive(Debug, Clone, PartialEq)]
-pub enum AccuracyError {
-    /// The scene has a feature the error model was not calibrated on.
-    NotCovered { feature: String, reason: String },
-    /// A target below [`MIN_TARGET`].
-    TargetTooSmall { target: f64 },
-    /// A hang-off motion outside the calibrated range.
-    Motion { message: String },
-    /// No numerics on the ladders reach the target.
-    Unreachable { target: f64 },
-}
-
-impl std::fmt::Display for AccuracyError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            AccuracyError::NotCovered { feature, reason } => write!(
-                f,
-                "accuracy: the error model does not cover {feature}: {reason}; set n_elements, time_step and \
-                 newton_tolerance yourself (and leave accuracy at 0)"
-            ),
-            AccuracyError::TargetTooSmall { target } => write!(
-                f,
-                "accuracy = {target:e} is below {MIN_TARGET:e}, the smallest error the model is calibrated for (its \
-                 references are converged to about 2e-5); set the numerics yourself"
-            ),
-            AccuracyError::Motion { message } => write!(f, "accuracy: {message}"),
-            AccuracyError::Unreachable { target } => write!(
-                f,
-                "accuracy = {target:e}: no mesh of at most {} elements and step of at least {} s reaches it by the \
-                 error model",
-                ELEMENT_LADDER[ELEMENT_LADDER.len() - 1],
-                STEP_LADDER[STEP_LADDER.len() - 1]
-            ),
-        }
     }
 }
 
@@ -295,7 +258,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
 pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> Result<Choice, RiserError> {
     let target = scene.analysis.accuracy;
     if target < MIN_TARGET {
-        return Err(AccuracyError::TargetTooSmall { target }.into());
+        return Err(AccuracyError::TargetTooSmall { target, min: MIN_TARGET }.into());
     }
     coverage(scene)?;
     let excitation = excitation.unwrap_or(DESIGN_EXCITATION);
@@ -339,7 +302,14 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
             if pinned.n_elements { an.n_elements } else { ELEMENT_LADDER[ELEMENT_LADDER.len() - 1] },
             if pinned.time_step { an.time_step } else { STEP_LADDER[STEP_LADDER.len() - 1] },
         ),
-        None => return Err(AccuracyError::Unreachable { target }.into()),
+        None => {
+            return Err(AccuracyError::Unreachable {
+                target,
+                max_elements: ELEMENT_LADDER[ELEMENT_LADDER.len() - 1],
+                min_step: STEP_LADDER[STEP_LADDER.len() - 1],
+            }
+            .into());
+        }
     };
     let tol = if pinned.newton_tolerance {
         an.newton_tolerance
