@@ -2,7 +2,7 @@
 //! of the top tension the user accepts, the numerics that reach it at the
 //! least cost by riser's own error model,
 //!
-//!   e(h, Δt) = C_κ (h κ)⁴ + C_c (h/λ)⁴ + C_t (A/A₀) (ω Δt)^{3/2},
+//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_t (A/A₀) (ω Δt)^{3/2},
 //!
 //! h = L/n the element length, κ the largest curvature of the static line
 //! (the sharpest bend the elements must follow: a sag or hog bend), λ =
@@ -25,8 +25,11 @@ use crate::scene::{HangOffEnd, Model, Scene};
 
 /// The curvature constant C_κ of C_κ (h κ)⁴ (docs/theory.md §16.2).
 pub const C_CURVATURE: f64 = 7e-4;
-/// The seabed constant C_c of C_c (h/λ)⁴.
+/// The seabed constant C_c of C_c (h/λ)⁴ (the bound of the fine meshes).
 pub const C_CONTACT: f64 = 0.17;
+/// The seabed constant C_c2 of C_c2 (h/λ)² (the bound of the coarse meshes;
+/// each bound holds at every grid point, the smaller is taken).
+pub const C_CONTACT2: f64 = 7.6e-3;
 /// The temporal constant C_t of C_t (A/A₀) (ω Δt)^{3/2}.
 pub const C_TIME: f64 = 0.3;
 /// The amplitude A₀ of the temporal term, m (the study's largest).
@@ -171,7 +174,8 @@ impl Choice {
 /// The spatial error of `n` elements (docs/theory.md 16.2).
 pub fn space_error(s: &Scales, n: usize) -> f64 {
     let h = s.length / n as f64;
-    let contact = s.touchdown_bending_length.map_or(0.0, |l| C_CONTACT * (h / l).powi(4));
+    let contact =
+        s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
     C_CURVATURE * (h * s.curvature).powi(4) + contact
 }
 
