@@ -144,8 +144,11 @@ fn without_accuracy_nothing_changes() {
 
 #[test]
 fn what_the_model_does_not_cover_is_refused_naming_why() {
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 8] = [
         (&["--set", "model=cable"], "does not cover the cable model"),
+        (&["--set", "rho_infinity=1"], "does not cover rho_infinity = 1"),
+        // the catenary's low point (z = -70.4 m) is 3.2 m above a seabed at -73.6 m: a heave of 2.5 m may touch it
+        (&["--set", "seabed_z=-73.6", "--heave", "2.5,20"], "may touch the seabed only during the motion"),
         (&["--set", "wave_kind=airy", "--set", "wave_height=2", "--set", "wave_period=12"], "does not cover waves"),
         (&["--set", "hang_off_end=clamped"], "does not cover a clamped hang-off"),
         (&["--set", "hang_off_x=5"], "does not cover a hang-off offset"),

@@ -220,6 +220,13 @@ fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
             "the study's hang-offs are pinned; a clamped end or flex joint adds a bending boundary layer",
         );
     }
+    if scene.analysis.rho_infinity != crate::scene::DEFAULT_RHO_INFINITY {
+        return not(
+            &format!("rho_infinity = {}", scene.analysis.rho_infinity),
+            "the study ran at the default 0.8, whose dissipation of the start's transient is part of the step's \
+             error (docs/theory.md §16.2)",
+        );
+    }
     if scene.hang_off.offset != [0.0; 3] {
         return not("a hang-off offset from the vessel's reference point", "the study moves the hang-off itself");
     }
@@ -237,6 +244,22 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     let state = State::at_rest(rep.solution.config.clone(), 0.0);
     let touchdown = engine.outputs(&state).touchdown_s;
     let d = Design::new(&fine).numbers(&engine, &state, touchdown);
+    // a line clear of its seabed in the statics that the motion may bring
+    // down onto it: the seabed term is calibrated on a line resting on it
+    if let (None, Some(bed)) = (d.touchdown_s, scene.seabed.as_ref()) {
+        let clearance = rep.shape.iter().map(|r| r.z - bed.height_at(r.x, r.y)).fold(f64::INFINITY, f64::min);
+        if clearance < 2.0 * excitation.amplitude + scene.line.outer_diameter {
+            return Err(AccuracyError::NotCovered {
+                feature: "a line that may touch the seabed only during the motion".to_string(),
+                reason: format!(
+                    "the static line is {clearance:.2} m above the seabed, within twice the motion's amplitude \
+                     ({} m): the study's lines rest on their seabed or stay clear of it",
+                    excitation.amplitude
+                ),
+            }
+            .into());
+        }
+    }
     // the tension at the touchdown: the shape's rows interpolated
     let touchdown_bending_length = d.touchdown_s.and_then(|s_td| {
         let rows = &rep.shape;
