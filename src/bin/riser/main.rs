@@ -347,6 +347,7 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
             "predicted_time_error": c.predicted_time,
             "max_curvature": c.scales.curvature,
             "max_curvature_s": c.scales.curvature_s,
+            "touchdown_bending_length": c.scales.touchdown_bending_length,
             "motion_period": c.excitation.period,
             "motion_amplitude": c.excitation.amplitude,
         }),
