@@ -8,7 +8,7 @@ TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley fuzz valgrind
+.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
 
 all: build
 
@@ -66,6 +66,12 @@ moordyn-seabed: build venv fmu
 # paper's digitised tensions (docs/lowe_langley.md, a few seconds).
 lowe-langley: build venv
 	$(TOOLS) lowe-langley
+
+# The accuracy knob (issue 28): the calibration grid of its error model and
+# the check of its choices, docs/accuracy.md and docs/accuracy_runs.csv
+# (about 10 minutes; a rerun reuses out/accuracy/grid.csv).
+accuracy: build venv
+	$(TOOLS) accuracy --bin $(BIN)
 
 # The stability matrix (issue 5): docs/stability.md (several minutes).
 stability: build venv

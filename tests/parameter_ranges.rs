@@ -81,6 +81,12 @@ fn assert_runs(parameter: &str, value: f64, model: &str) {
     }
     let out = run(parameter, value, &extra);
     let stderr = String::from_utf8_lossy(&out.stderr);
+    // the accuracy knob's error model covers the rod only: with the cable a
+    // target is refused by the model (tests/accuracy.rs), not by the range
+    if parameter == "accuracy" && value > 0.0 && model == "cable" {
+        assert!(!out.status.success() && stderr.contains("does not cover the cable model"), "{stderr}");
+        return;
+    }
     assert!(out.status.success(), "{parameter} = {value} ({model}) at its bound does not run: {stderr}");
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(json["completed"], true, "{parameter} = {value} ({model}): {json}");

@@ -406,6 +406,24 @@ impl Instance {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
+        // the accuracy knob (docs/theory.md §16): the numerics for the design
+        // motion (the master's is not known yet), those the master set kept;
+        // read back through n_elements, time_step and newton_tolerance
+        let pinned = crate::sim::accuracy::Pinned::of_names(
+            self.params.iter().zip(VARIABLES.iter()).filter(|(p, _)| matches!(p, Some((_, true)))).map(|(_, v)| v.name),
+        );
+        let scene = match crate::sim::accuracy::apply(scene, None, pinned) {
+            Ok((scene, choice)) => {
+                if let Some(c) = choice {
+                    self.log(Status::Ok, Category::Events, &c.describe());
+                    if let Some(w) = crate::sim::accuracy::warning(&c) {
+                        self.log(Status::Warning, Category::Warning, &w);
+                    }
+                }
+                scene
+            }
+            Err(e) => return self.fail(&format!("initialisation failed: {e}")),
+        };
         self.scene = Some(scene.clone());
         let mut sim = match Simulation::from_scene(&scene) {
             Ok(s) => s,

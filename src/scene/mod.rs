@@ -280,6 +280,17 @@ pub struct Analysis {
     /// ones are kept to second order (docs/theory.md §5.10).
     #[serde(default = "default_rho_infinity")]
     pub rho_infinity: f64,
+    /// The relative error of the top tension the user accepts (issue 28,
+    /// docs/theory.md §16); 0: unset, the numerics above are used as given.
+    /// When set, `sim::accuracy` chooses `n_elements`, `time_step` and
+    /// `newton_tolerance` (those of this block are then defaults it replaces;
+    /// a `--set`/FMU value of one of them wins over its choice).
+    #[serde(default, skip_serializing_if = "is_unset")]
+    pub accuracy: f64,
+}
+
+fn is_unset(v: &f64) -> bool {
+    *v == 0.0
 }
 
 fn default_model() -> Model {
@@ -310,6 +321,7 @@ impl Default for Analysis {
             static_current: false,
             structural_damping: 0.0,
             rho_infinity: default_rho_infinity(),
+            accuracy: 0.0,
         }
     }
 }

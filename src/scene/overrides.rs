@@ -5,7 +5,7 @@ use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpe
 use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 53] = [
+pub const PARAMETER_NAMES: [(&str, &str); 54] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -59,6 +59,7 @@ pub const PARAMETER_NAMES: [(&str, &str); 53] = [
     ("hang_off_y", "m"),
     ("hang_off_z", "m"),
     ("rotation_order", "zyx | xyz"),
+    ("accuracy", "-"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -197,6 +198,7 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "newton_tolerance" => s.analysis.newton_tolerance = num()?,
         "structural_damping" => s.analysis.structural_damping = num()?,
         "rho_infinity" => s.analysis.rho_infinity = num()?,
+        "accuracy" => s.analysis.accuracy = num()?,
         "static_current" => {
             s.analysis.static_current = match value {
                 "true" | "1" => true,
@@ -296,6 +298,7 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "static_current" => Some(s.analysis.static_current.to_string()),
         "structural_damping" => num(s.analysis.structural_damping),
         "rho_infinity" => num(s.analysis.rho_infinity),
+        "accuracy" => num(s.analysis.accuracy),
         "length" => num(s.line.length),
         "mass_per_length" => num(s.line.mass_per_length),
         "outer_diameter" => num(s.line.outer_diameter),

@@ -148,6 +148,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.newton_tolerance", an.newton_tolerance);
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
+    c.range("analysis.accuracy", an.accuracy);
     let end = s.hang_off.end;
     if end != super::HangOffEnd::Pinned && an.model == super::Model::Cable {
         c.err(

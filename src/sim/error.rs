@@ -21,6 +21,8 @@ pub enum RiserError {
     /// An output that is not a finite number at `time` s (the step that gave
     /// it is discarded).
     NonFinite { name: &'static str, time: f64 },
+    /// The `accuracy` knob refused the scene (docs/theory.md §16).
+    Accuracy(AccuracyError),
 }
 
 impl std::fmt::Display for RiserError {
@@ -31,6 +33,7 @@ impl std::fmt::Display for RiserError {
             RiserError::Dynamics(e) => e.fmt(f),
             RiserError::Linearized(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
+            RiserError::Accuracy(e) => e.fmt(f),
             RiserError::NonFinite { name, time } => write!(
                 f,
                 "the state at t = {time:.6} s gives a non-finite {name}; the step is discarded and the state kept \
@@ -63,5 +66,49 @@ impl From<DynamicsError> for RiserError {
 impl From<EigenError> for RiserError {
     fn from(e: EigenError) -> Self {
         RiserError::Linearized(e)
+    }
+}
+
+impl From<AccuracyError> for RiserError {
+    fn from(e: AccuracyError) -> Self {
+        RiserError::Accuracy(e)
+    }
+}
+
+/// What the accuracy knob's error model (sim::accuracy, docs/theory.md §16)
+/// did not cover or cannot reach.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AccuracyError {
+    /// The scene has a feature the error model was not calibrated on.
+    NotCovered { feature: String, reason: String },
+    /// A target below the smallest covered, `min`.
+    TargetTooSmall { target: f64, min: f64 },
+    /// A hang-off motion outside the calibrated range.
+    Motion { message: String },
+    /// No numerics on the ladders (at most `max_elements`, at least
+    /// `min_step` s) reach the target.
+    Unreachable { target: f64, max_elements: usize, min_step: f64 },
+}
+
+impl std::fmt::Display for AccuracyError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AccuracyError::NotCovered { feature, reason } => write!(
+                f,
+                "accuracy: the error model does not cover {feature}: {reason}; set n_elements, time_step and \
+                 newton_tolerance yourself (and leave accuracy at 0)"
+            ),
+            AccuracyError::TargetTooSmall { target, min } => write!(
+                f,
+                "accuracy = {target:e} is below {min:e}, the smallest error the model is calibrated for (its \
+                 references are converged to about 2e-5); set the numerics yourself"
+            ),
+            AccuracyError::Motion { message } => write!(f, "accuracy: {message}"),
+            AccuracyError::Unreachable { target, max_elements, min_step } => write!(
+                f,
+                "accuracy = {target:e}: no mesh of at most {max_elements} elements and step of at least {min_step} s \
+                 reaches it by the error model"
+            ),
+        }
     }
 }

@@ -3,6 +3,7 @@
 //! the scene's settings, and hang-off motions; the typed top-level
 //! [`error::RiserError`].
 
+pub mod accuracy;
 pub mod design;
 pub mod error;
 pub mod modes;

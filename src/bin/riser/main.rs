@@ -264,6 +264,16 @@ impl Motions {
         if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
     }
 
+    /// The motion the accuracy knob chooses for: the shortest period of
+    /// every motion and the largest amplitude of the translations (None: the
+    /// hang-off held still).
+    fn excitation(&self) -> Option<riser::sim::accuracy::Excitation> {
+        let period = self.all().into_iter().flatten().map(|m| m.1).reduce(f64::min)?;
+        let amplitude =
+            [self.heave, self.surge, self.sway].into_iter().flatten().map(|m| m.0.abs()).fold(0.0, f64::max);
+        Some(riser::sim::accuracy::Excitation { period, amplitude })
+    }
+
     fn all(&self) -> [Option<(f64, f64)>; 6] {
         [self.heave, self.surge, self.sway, self.roll, self.pitch, self.yaw]
     }
@@ -295,6 +305,68 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
             Ok((t0, t1))
         }
         _ => Err(format!("expected T0,T1 (s), got '{s}'")),
+    }
+}
+
+/// The scene with the numerics its `accuracy` chooses (docs/theory.md §16;
+/// the scene itself when it has none), the numerics given by `--set` kept;
+/// the choice is printed on stderr.
+fn choose_numerics(
+    scene: Scene,
+    set: &[String],
+    excitation: Option<riser::sim::accuracy::Excitation>,
+) -> Result<(Scene, Option<riser::sim::accuracy::Choice>), String> {
+    use riser::sim::accuracy;
+    let pinned = accuracy::Pinned::of_names(set.iter().map(|s| s.as_str()));
+    let (scene, choice) = accuracy::apply(scene, excitation, pinned).map_err(|e| e.to_string())?;
+    if let Some(c) = &choice {
+        eprintln!("riser: {}", c.describe());
+        if let Some(w) = accuracy::warning(c) {
+            eprintln!("riser: warning: {w}");
+        }
+    }
+    Ok((scene, choice))
+}
+
+/// The choice of the accuracy knob under the JSON key `accuracy` (null when unset).
+fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Value {
+    match choice {
+        None => serde_json::Value::Null,
+        Some(c) => serde_json::json!({
+            "target": c.target,
+            "n_elements": c.n_elements,
+            "time_step": c.time_step,
+            "newton_tolerance": c.newton_tolerance,
+            "set_by_user": {
+                "n_elements": c.pinned.n_elements,
+                "time_step": c.pinned.time_step,
+                "newton_tolerance": c.pinned.newton_tolerance,
+            },
+            "predicted_error": c.predicted(),
+            "predicted_space_error": c.predicted_space,
+            "predicted_time_error": c.predicted_time,
+            "max_curvature": c.scales.curvature,
+            "max_curvature_s": c.scales.curvature_s,
+            "touchdown_bending_length": c.scales.touchdown_bending_length,
+            "motion_period": c.excitation.period,
+            "motion_amplitude": c.excitation.amplitude,
+        }),
+    }
+}
+
+/// The choice of the accuracy knob as a line of the text summary.
+fn choice_text(choice: &Option<riser::sim::accuracy::Choice>) {
+    if let Some(c) = choice {
+        outln!(
+            "  accuracy {:e}: chose n_elements {}, time_step {} s, newton_tolerance {:e} (predicted error {:.1e}; \
+             for a motion of period {} s)",
+            c.target,
+            c.n_elements,
+            c.time_step,
+            c.newton_tolerance,
+            c.predicted(),
+            c.excitation.period
+        );
     }
 }
 
@@ -384,6 +456,7 @@ fn warn_all(warnings: &[String]) {
 
 fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene, set).map_err(|e| e.to_string())?;
+    let (scene, choice) = choose_numerics(scene, set, None)?;
     let t0 = std::time::Instant::now();
     let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
@@ -399,6 +472,9 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
         let mut v = serde_json::json!({
             "scene": scene.name,
             "n_elements": scene.analysis.n_elements,
+            "time_step": scene.analysis.time_step,
+            "newton_tolerance": scene.analysis.newton_tolerance,
+            "accuracy": choice_json(&choice),
             "top_tension": rep.top_tension,
             "bottom_tension": rep.bottom_tension,
             "top_force": [rep.top_force.x, rep.top_force.y, rep.top_force.z],
@@ -422,6 +498,7 @@ fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Res
             n => format!("{n} sections"),
         };
         outln!("riser statics: scene '{}' ({} elements, {line})", scene.name, scene.analysis.n_elements);
+        choice_text(&choice);
         outln!(
             "  Newton: {} iterations, {} continuation step(s), relative residual {:.2e}, {:.1} ms",
             rep.iterations,
@@ -568,6 +645,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         return Err(format!("--window {t0},{t1} must lie within the run, 0 to {duration} s (--duration)"));
     }
     let scene = load(scene, set).map_err(|e| e.to_string())?;
+    // the accuracy knob: the numerics for the motion asked for (issue 28)
+    let excitation = motions.excitation();
+    let (scene, choice) = choose_numerics(scene, set, excitation)?;
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
     let wall0 = std::time::Instant::now();
@@ -735,6 +815,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             "scene": scene.name,
             "n_elements": scene.analysis.n_elements,
             "time_step": dt,
+            "newton_tolerance": scene.analysis.newton_tolerance,
+            "accuracy": choice_json(&choice),
             "duration": simulated,
             "ramp": ramp,
             "completed": failure.is_none(),
@@ -789,6 +871,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
             if period > 0.0 { start } else { String::new() }
         );
+        choice_text(&choice);
         if !riser::loads::current(&scene).is_none() && !scene.analysis.static_current {
             outln!(
                 "  the current acts from t = 0; the static state is without it (static_current = false, the \

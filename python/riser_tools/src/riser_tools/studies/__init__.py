@@ -7,7 +7,8 @@ How each runs its cases, and why:
   must not share the machine with a Dask worker's scheduling, transfers or a second case:
   `study` (speed against accuracy), `noise`, `rho`, `physics-switches`, `moordyn`,
   `moordyn-seabed` (the peer comparisons time both codes on one pinned CPU), `paper` (the
-  table's real-time factors), `lowe-langley`;
+  table's real-time factors), `lowe-langley`, `accuracy` (the accuracy knob's calibration and check:
+  its cost is the runs' work, elements x steps x Newton iterations, read from their summaries);
 * plain loops where the case is not an FMU run riser-sweep can express: `stability` checks
   the CLI itself (a crash, a hang under a timeout, the "riser: error" of a clean stop, NaN in
   the CSV), which an fmpy run in a worker cannot see; `cosim` feeds the FMU the displacement
@@ -34,6 +35,7 @@ COMMANDS = {
     "moordyn": ("riser_tools.studies.moordyn_compare", "MoorDyn on the catenary scene (make moordyn)"),
     "moordyn-seabed": ("riser_tools.studies.moordyn_seabed", "MoorDyn on the steel catenary (make moordyn-seabed)"),
     "lowe-langley": ("riser_tools.studies.lowe_langley", "the Lowe & Langley jumper (make lowe-langley)"),
+    "accuracy": ("riser_tools.studies.accuracy", "calibration and check of the accuracy knob (make accuracy)"),
     "bench-sweep": ("riser_tools.studies.bench_sweep", "riser-sweep against a plain loop (make bench-sweep)"),
     "package-fmu": ("riser_tools.fmu", "package fmu/riser.fmu (make fmu)"),
     "interface-doc": ("riser_tools.interface_doc", "write or check docs/interface.md"),

@@ -1,0 +1,235 @@
+"""The `accuracy` knob (issue 28): the calibration grid of its error model and the check of what
+it chooses. `riser-tools accuracy [--bin target/fasttest/riser] [--phase grid|verify|all]`.
+
+The error (docs/theory.md, "The accuracy knob"): `riser run SCENE --heave A,T --duration 4T
+--json` (the default ramp of one period and the default steady window, from 2T to 4T); its
+`steady.top_tension` [min, mean, max] against the same of a converged reference run:
+
+    e = max(|min - min_ref|, |mean - mean_ref|, |max - max_ref|) / max_ref.
+
+Grid phase: per calibration case, the reference (the finest mesh and step below, tolerance
+1e-10), two checks of it (half the elements, twice the step) and the grid elements x time step
+at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them),
+copied to docs/accuracy_grid.csv. Verify phase: the same runs with only `--set accuracy=...`
+(1e-2, 1e-3, 1e-4) against the same reference: what riser chose, its error and its wall time
+against the cheapest grid cell that reaches the target; docs/accuracy_verify.csv and
+docs/accuracy.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+# name -> (scene argument, heave amplitude m, heave period s, elements of the grid)
+CASES = {
+    "catenary": ("catenary", 2.5, 20.0, [10, 20, 40, 80]),
+    "lazy_wave": ("lazy_wave", 2.5, 30.0, [10, 20, 40, 80]),
+    "steel_catenary": ("steel_catenary", 2.5, 15.0, [20, 40, 80, 160]),
+    "lowe_langley_jumper": ("docs/cases/lowe_langley_jumper.toml", 10.0, 27.0, [20, 40, 80, 160]),
+    # the model's shortest period (MIN_PERIOD)
+    "catenary_T10": ("catenary", 2.5, 10.0, [10, 20, 40, 80]),
+}
+STEPS = [0.2, 0.1, 0.05, 0.025]
+REF_STEP = 0.0125
+TARGETS = [1e-2, 1e-3, 1e-4]
+FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
+          "tt_max", "wall_s", "newton_per_step", "completed"]
+
+
+def run(binary, case, sets):
+    scene, amp, period, _ = CASES[case]
+    cmd = [binary, "run", scene, "--heave", f"{amp},{period}", "--duration", f"{4 * period:g}", "--json"]
+    for k, v in sets.items():
+        cmd += ["--set", f"{k}={v}"]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
+    if line is None:
+        return {"completed": False, "stderr": p.stderr.strip()}
+    d = json.loads(line)
+    tt = d["steady"]["top_tension"]
+    return {"completed": d["completed"] and p.returncode == 0, "tt": tt, "wall": d["solve_wall_time"],
+            "iters": d["iterations_per_step"], "n": d["n_elements"], "dt": d["time_step"],
+            "tol": d.get("newton_tolerance"), "stderr": p.stderr.strip()}
+
+
+def error(row, ref):
+    a = [float(row[k]) for k in ("tt_min", "tt_mean", "tt_max")]
+    b = [float(ref[k]) for k in ("tt_min", "tt_mean", "tt_max")]
+    return max(abs(x - y) for x, y in zip(a, b)) / b[2]
+
+
+def work(row):
+    """The cost of a run as the work of its Newton iterations: elements x steps x iterations per step
+    (deterministic, unlike the wall time on a shared machine)."""
+    period = CASES[row["case"]][2]
+    return int(row["n_elements"]) * round(4 * period / float(row["time_step"])) * float(row["newton_per_step"])
+
+
+def load(path):
+    if not path.exists():
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def append(path, row):
+    new = not path.exists()
+    with open(path, "a", newline="") as f:
+        w = csv.DictWriter(f, FIELDS)
+        if new:
+            w.writeheader()
+        w.writerow(row)
+
+
+def have(rows, case, kind, n, dt, tol, acc=""):
+    for r in rows:
+        if (r["case"], r["kind"], r["n_elements"], r["time_step"], r["newton_tolerance"], r["accuracy"]) == (
+                case, kind, str(n), str(dt), str(tol), str(acc)):
+            return r
+    return None
+
+
+def one(binary, path, rows, case, kind, n, dt, tol, acc=""):
+    r = have(rows, case, kind, n, dt, tol, acc)
+    if r is not None:
+        return r
+    sets = {"accuracy": acc} if acc != "" else {"n_elements": n, "time_step": dt, "newton_tolerance": tol}
+    out = run(binary, case, sets)
+    if acc != "" and out["completed"]:
+        n, dt, tol = out["n"], out["dt"], out["tol"]
+    row = {"case": case, "kind": kind, "n_elements": n, "time_step": dt, "newton_tolerance": tol, "accuracy": acc,
+           "completed": out["completed"]}
+    if out["completed"]:
+        row.update(tt_min=out["tt"][0], tt_mean=out["tt"][1], tt_max=out["tt"][2], wall_s=out["wall"],
+                   newton_per_step=out["iters"])
+    else:
+        row.update(tt_min="", tt_mean="", tt_max="", wall_s="", newton_per_step="")
+        print(case, kind, n, dt, tol, acc, "failed:", out["stderr"][-300:], flush=True)
+    if acc != "":
+        row["n_elements"], row["time_step"], row["newton_tolerance"] = (
+            (n, dt, tol) if out["completed"] else ("refused", "", ""))
+        row["kind"] = kind
+    append(path, row)
+    rows.append({k: str(v) for k, v in row.items()})
+    print(case, kind, n, dt, tol, acc, row.get("tt_max"), row.get("wall_s"), flush=True)
+    return rows[-1]
+
+
+def reference(binary, path, rows, case):
+    n_ref = 2 * CASES[case][3][-1]
+    return one(binary, path, rows, case, "reference", n_ref, REF_STEP, 1e-10)
+
+
+def grid(binary, path, rows):
+    for case, (_, _, _, elements) in CASES.items():
+        ref = reference(binary, path, rows, case)
+        n_ref = int(ref["n_elements"])
+        one(binary, path, rows, case, "check_mesh", n_ref // 2, REF_STEP, 1e-10)
+        one(binary, path, rows, case, "check_step", n_ref, 2 * REF_STEP, 1e-10)
+        for n in elements:
+            for dt in STEPS:
+                one(binary, path, rows, case, "grid", n, dt, 1e-8)
+
+
+def verify(binary, path, rows):
+    for case in CASES:
+        for acc in TARGETS:
+            one(binary, path, rows, case, "accuracy", "", "", "", acc)
+
+
+def predicted(binary, case, target):
+    """The error model's prediction for a case and target (a 0.2 s run reports the choice)."""
+    scene, amp, period, _ = CASES[case]
+    p = subprocess.run([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json", "--set",
+                        f"accuracy={target}"], capture_output=True, text=True)
+    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
+    return json.loads(line)["accuracy"]["predicted_error"] if line else None
+
+
+def write_doc(rows, docs, binary):
+    lines = ["# The accuracy knob: calibration grid and check", "",
+             "Made by `riser-tools accuracy` (riser_tools.studies.accuracy; the model is in "
+             "[theory.md](theory.md) §16). Each run: `riser run SCENE --heave A,T --duration 4T` "
+             "(ramp one period, steady window 2T to 4T); error e = the largest of the steady window's min, mean "
+             "and max top tension's differences from the reference's, over the reference's max. Cost: the work, "
+             "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
+             "machine and only indicative); the cost ratio is the choice's work over the cheapest grid cell's "
+             "whose error is at or below the target.", ""]
+    for case, (scene, amp, period, _) in CASES.items():
+        mine = [r for r in rows if r["case"] == case]
+        ref = next((r for r in mine if r["kind"] == "reference"), None)
+        if ref is None or ref["completed"] != "True":
+            continue
+        lines += [f"## {case}", "", f"`{scene}`, heave {amp} m / {period:g} s, {4 * period:g} s; reference "
+                  f"{ref['n_elements']} elements, dt {ref['time_step']} s, tolerance 1e-10 (steady top tension "
+                  f"{float(ref['tt_min']) / 1e3:.3f} / {float(ref['tt_mean']) / 1e3:.3f} / "
+                  f"{float(ref['tt_max']) / 1e3:.3f} kN).", ""]
+        for kind in ("check_mesh", "check_step"):
+            c = next((r for r in mine if r["kind"] == kind and r["completed"] == "True"), None)
+            if c:
+                lines.append(f"* {kind}: {c['n_elements']} elements, dt {c['time_step']} s: e = {error(c, ref):.1e}")
+        lines += ["", "| elements | " + " | ".join(f"dt {dt:g} s" for dt in STEPS) + " |",
+                  "|---|" + "---|" * len(STEPS)]
+        for n in CASES[case][3]:
+            cells = []
+            for dt in STEPS:
+                r = have(mine, case, "grid", n, dt, 1e-08)
+                cells.append(f"{error(r, ref):.1e} ({float(r['wall_s']):.2f} s)" if r and r["completed"] == "True"
+                             else "failed" if r else "")
+            lines.append(f"| {n} | " + " | ".join(cells) + " |")
+        acc_rows = [r for r in mine if r["kind"] == "accuracy"]
+        if acc_rows:
+            lines += ["", "| accuracy | chosen n, dt, tol | predicted | error | work (wall) | cheapest grid cell "
+                      "reaching it | its work | cost ratio |", "|---|---|---|---|---|---|---|---|"]
+            grid_ok = [r for r in mine if r["kind"] == "grid" and r["completed"] == "True"]
+            for r in acc_rows:
+                target = float(r["accuracy"])
+                ok = [g for g in grid_ok if error(g, ref) <= target]
+                best = min(ok, key=work) if ok else None
+                if r["completed"] != "True":
+                    lines.append(f"| {target:g} | refused | | | | | | |")
+                    continue
+                e = error(r, ref)
+                pe = predicted(binary, case, target)
+                pe = f"{pe:.1e}" if pe is not None else "?"
+                b = (f"{best['n_elements']} el., dt {best['time_step']} s (e {error(best, ref):.1e})",
+                     f"{work(best):.3g}", f"{work(r) / work(best):.2f}") if best else ("none", "", "")
+                lines.append(f"| {target:g} | {r['n_elements']}, {r['time_step']} s, {float(r['newton_tolerance']):g} "
+                             f"| {pe} | {e:.1e} {'ok' if e <= target else 'ABOVE TARGET'} | {work(r):.3g} "
+                             f"({float(r['wall_s']):.2f} s) | {b[0]} | {b[1]} | {b[2]} |")
+        lines.append("")
+    (docs / "accuracy.md").write_text("\n".join(lines) + "\n")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="riser-tools accuracy", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bin", default="target/fasttest/riser")
+    ap.add_argument("--out", default="out/accuracy")
+    ap.add_argument("--docs", default="docs")
+    ap.add_argument("--phase", choices=["grid", "verify", "all", "doc"], default="all")
+    ap.add_argument("--case", action="append", help="only these cases (default: all)")
+    args = ap.parse_args(argv)
+    out, docs = Path(args.out), Path(args.docs)
+    out.mkdir(parents=True, exist_ok=True)
+    if args.case:
+        for c in list(CASES):
+            if c not in args.case:
+                del CASES[c]
+    path = out / "grid.csv"
+    rows = load(path)
+    if args.phase in ("grid", "all"):
+        grid(args.bin, path, rows)
+    if args.phase in ("verify", "all"):
+        verify(args.bin, path, rows)
+    shutil.copy(path, docs / "accuracy_runs.csv")
+    write_doc(rows, docs, args.bin)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,410 @@
+//! The accuracy knob (issue 28; docs/theory.md §16): from the relative error
+//! of the top tension the user accepts, the numerics that reach it at the
+//! least cost by riser's own error model,
+//!
+//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_t (A/A₀) (ω Δt)^{3/2},
+//!
+//! h = L/n the element length, κ the largest curvature of the static line
+//! (the sharpest bend the elements must follow: a sag or hog bend), λ =
+//! √(EI/T) the bending length at the static touchdown (the seabed term, only
+//! where the line rests on the seabed), ω = 2π/T and A the period and
+//! amplitude of the hang-off's motion, A₀ = 10 m; C_κ, C_c, C_t are the
+//! envelopes of the study `riser-tools accuracy` (docs/accuracy.md) over the
+//! built-in scenes and the Lowe & Langley jumper. The choice asks for e ≤
+//! target / [`SAFETY`] on discrete ladders of n and Δt, cheapest by
+//! [`cost`]; the Newton tolerance is [`TOLERANCE_PER_TARGET`] times the
+//! target. What the model was not calibrated on is refused
+//! ([`AccuracyError`]), not run with a guess.
+
+pub use super::error::AccuracyError;
+use super::error::RiserError;
+use super::report::solve_scene;
+use super::{Engine, design::Design};
+use crate::model::State;
+use crate::scene::{HangOffEnd, Model, Scene};
+
+/// The curvature constant C_κ of C_κ (h κ)⁴ (docs/theory.md §16.2).
+pub const C_CURVATURE: f64 = 7e-4;
+/// The seabed constant C_c of C_c (h/λ)⁴ (the bound of the fine meshes).
+pub const C_CONTACT: f64 = 0.17;
+/// The seabed constant C_c2 of C_c2 (h/λ)² (the bound of the coarse meshes;
+/// each bound holds at every grid point, the smaller is taken).
+pub const C_CONTACT2: f64 = 7.6e-3;
+/// The temporal constant C_t of C_t (A/A₀) (ω Δt)^{3/2}.
+pub const C_TIME: f64 = 0.3;
+/// The amplitude A₀ of the temporal term, m (the study's largest).
+pub const AMPLITUDE_SCALE: f64 = 10.0;
+/// The factor between the predicted error the choice allows and the target.
+pub const SAFETY: f64 = 1.5;
+/// The Newton tolerance per unit of target (clamped to
+/// [`TOLERANCE_RANGE`]): Newton's error is then far below the discretisation's.
+pub const TOLERANCE_PER_TARGET: f64 = 1e-5;
+/// The Newton tolerances the choice keeps to.
+pub const TOLERANCE_RANGE: [f64; 2] = [1e-10, 1e-7];
+/// The smallest target the model covers: the study's references are
+/// converged to about 2e-5 (their ringing axial waves, §16.1), a fifth of it.
+pub const MIN_TARGET: f64 = 1e-4;
+/// Targets above this one get its choice (the calibration's loosest).
+pub const MAX_TARGET: f64 = 1e-2;
+/// The shortest hang-off period the model covers, s (the calibration's
+/// shortest: the catenary at 10 s, docs/accuracy.md).
+pub const MIN_PERIOD: f64 = 10.0;
+/// The largest hang-off amplitude the model covers, m (the jumper's 10 m heave).
+pub const MAX_AMPLITUDE: f64 = 10.0;
+/// The fewest steps a period of the motion the choice takes: (16.2) bounds
+/// every grid point of the study up to ω Δt = 2π/75 (the steel catenary at
+/// 15 s and 0.2 s); at 50 steps a period (the catenary at 10 s and 0.2 s) it
+/// under-predicts 1.7-fold.
+pub const MIN_STEPS_PER_PERIOD: f64 = 75.0;
+/// The motion the choice is made for when the caller does not know it (the
+/// FMU, whose master moves the vessel; `riser run` without a motion): the
+/// shortest period covered, [`MIN_PERIOD`].
+pub const DESIGN_EXCITATION: Excitation = Excitation { period: MIN_PERIOD, amplitude: 2.5 };
+/// The element counts the choice takes from.
+pub const ELEMENT_LADDER: [usize; 20] =
+    [10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100, 120, 160, 200, 240, 320, 400, 480, 640, 800];
+/// The time steps the choice takes from, s (0.2 s is the study's longest).
+pub const STEP_LADDER: [f64; 14] =
+    [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01, 0.0075, 0.005];
+
+/// The hang-off's motion the choice is for: its shortest period and largest
+/// translation amplitude.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Excitation {
+    /// s
+    pub period: f64,
+    /// m
+    pub amplitude: f64,
+}
+
+/// Which numerics the user set explicitly (`--set`, the FMU's master): they
+/// win over the choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Pinned {
+    pub n_elements: bool,
+    pub time_step: bool,
+    pub newton_tolerance: bool,
+}
+
+impl Pinned {
+    /// From the names of the parameters set (`--set name=value`: the part
+    /// before `=` is taken).
+    pub fn of_names<'a>(names: impl IntoIterator<Item = &'a str>) -> Self {
+        let mut p = Pinned::default();
+        for n in names {
+            match n.split('=').next().unwrap_or("").trim() {
+                "n_elements" => p.n_elements = true,
+                "time_step" => p.time_step = true,
+                "newton_tolerance" => p.newton_tolerance = true,
+                _ => {}
+            }
+        }
+        p
+    }
+}
+
+/// The scales of a scene that set its error (docs/theory.md §16.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// Largest curvature of the static line, 1/m.
+    pub curvature: f64,
+    /// Its arc length, m.
+    pub curvature_s: f64,
+    /// Circular frequency of the motion, rad/s.
+    pub omega: f64,
+    /// Amplitude of the motion, m.
+    pub amplitude: f64,
+    /// The line's unstretched length, m.
+    pub length: f64,
+    /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
+    pub touchdown_bending_length: Option<f64>,
+}
+
+/// The numerics chosen for a target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    /// The target (the scene's `accuracy`).
+    pub target: f64,
+    pub n_elements: usize,
+    pub time_step: f64,
+    pub newton_tolerance: f64,
+    /// The model's spatial and temporal errors at the numerics used.
+    pub predicted_space: f64,
+    pub predicted_time: f64,
+    pub scales: Scales,
+    pub excitation: Excitation,
+    /// The numerics the user set, kept.
+    pub pinned: Pinned,
+}
+
+impl Choice {
+    /// The model's error at the numerics used.
+    pub fn predicted(&self) -> f64 {
+        self.predicted_space + self.predicted_time
+    }
+
+    /// One line for a log: what was chosen and why.
+    pub fn describe(&self) -> String {
+        let mark = |p: bool| if p { " (set)" } else { "" };
+        format!(
+            "accuracy {:e}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error model: {:.1e} from \
+             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, + {:.1e} \
+             from the step, omega dt = {:.4} for a motion of {} m at period {} s)",
+            self.target,
+            self.n_elements,
+            mark(self.pinned.n_elements),
+            self.time_step,
+            mark(self.pinned.time_step),
+            self.newton_tolerance,
+            mark(self.pinned.newton_tolerance),
+            self.predicted_space,
+            self.scales.length / self.n_elements as f64 * self.scales.curvature,
+            self.scales.curvature,
+            self.scales.curvature_s,
+            self.scales
+                .touchdown_bending_length
+                .map(|l| format!(
+                    ", h/lambda = {:.3} with sqrt(EI/T) = {l:.2} m at the touchdown",
+                    self.scales.length / self.n_elements as f64 / l
+                ))
+                .unwrap_or_default(),
+            self.predicted_time,
+            self.scales.omega * self.time_step,
+            self.excitation.amplitude,
+            self.excitation.period
+        )
+    }
+}
+
+/// The spatial error of `n` elements (docs/theory.md 16.2).
+pub fn space_error(s: &Scales, n: usize) -> f64 {
+    let h = s.length / n as f64;
+    let contact =
+        s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
+    C_CURVATURE * (h * s.curvature).powi(4) + contact
+}
+
+/// The temporal error of step `dt` s.
+pub fn time_error(s: &Scales, dt: f64) -> f64 {
+    C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5)
+}
+
+/// The relative cost of a run of `n` elements at step `dt`: per step, the
+/// band solves (∝ n plus a fixed part) times the Newton iterations, which
+/// grow with the step (the study's 1.3 at 0.01 s to 7 at 0.2 s).
+pub fn cost(n: usize, dt: f64) -> f64 {
+    let iterations = (1.0 + 30.0 * dt).min(7.0);
+    (n as f64 + 10.0) * iterations / dt
+}
+
+/// The features of `scene` the model does not cover, as an error.
+fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
+    let not = |feature: &str, reason: &str| {
+        Err(AccuracyError::NotCovered { feature: feature.to_string(), reason: reason.to_string() })
+    };
+    if scene.analysis.model == Model::Cable {
+        return not(
+            "the cable model",
+            "its calibration is the rod's (the cable leaves out bending, an error of 1e-3 to 4e-2 of the top \
+             tension by itself, docs/study.md)",
+        );
+    }
+    if scene.waves.as_ref().is_some_and(|w| w.kind != crate::scene::waves::WaveKind::None) {
+        return not(
+            "waves",
+            "the study has no waves: their kinematics along the line and the surface crossing set errors of their \
+             own",
+        );
+    }
+    if !scene.section.is_empty() {
+        return not("sections", "the study's lines are uniform (buoyancy modules aside)");
+    }
+    if scene.hang_off.end != HangOffEnd::Pinned {
+        return not(
+            &format!("a {} hang-off", scene.hang_off.end.name()),
+            "the study's hang-offs are pinned; a clamped end or flex joint adds a bending boundary layer",
+        );
+    }
+    if scene.analysis.rho_infinity != crate::scene::DEFAULT_RHO_INFINITY {
+        return not(
+            &format!("rho_infinity = {}", scene.analysis.rho_infinity),
+            "the study ran at the default 0.8, whose dissipation of the start's transient is part of the step's \
+             error (docs/theory.md §16.2)",
+        );
+    }
+    if scene.hang_off.offset != [0.0; 3] {
+        return not("a hang-off offset from the vessel's reference point", "the study moves the hang-off itself");
+    }
+    Ok(())
+}
+
+/// The scales of `scene` for `excitation`: the static line's largest
+/// curvature (solved on the scene's mesh, at least 60 elements).
+pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserError> {
+    let mut fine = scene.clone();
+    fine.analysis.n_elements = fine.analysis.n_elements.max(60);
+    let rep = solve_scene(&fine)?;
+    let mut engine = Engine::from_scene(&fine)?;
+    engine.set_static_frame(&rep.solution.config);
+    let state = State::at_rest(rep.solution.config.clone(), 0.0);
+    let touchdown = engine.outputs(&state).touchdown_s;
+    let d = Design::new(&fine).numbers(&engine, &state, touchdown);
+    // a line clear of its seabed in the statics that the motion may bring
+    // down onto it: the seabed term is calibrated on a line resting on it
+    if let (None, Some(bed)) = (d.touchdown_s, scene.seabed.as_ref()) {
+        let clearance = rep.shape.iter().map(|r| r.z - bed.height_at(r.x, r.y)).fold(f64::INFINITY, f64::min);
+        if clearance < 2.0 * excitation.amplitude + scene.line.outer_diameter {
+            return Err(AccuracyError::NotCovered {
+                feature: "a line that may touch the seabed only during the motion".to_string(),
+                reason: format!(
+                    "the static line is {clearance:.2} m above the seabed, within twice the motion's amplitude \
+                     ({} m): the study's lines rest on their seabed or stay clear of it",
+                    excitation.amplitude
+                ),
+            }
+            .into());
+        }
+    }
+    // the tension at the touchdown: the shape's rows interpolated
+    let touchdown_bending_length = d.touchdown_s.and_then(|s_td| {
+        let rows = &rep.shape;
+        let k = rows.partition_point(|r| r.s <= s_td).clamp(1, rows.len() - 1);
+        let (a, b) = (&rows[k - 1], &rows[k]);
+        let w = ((s_td - a.s) / (b.s - a.s)).clamp(0.0, 1.0);
+        let t = a.tension + w * (b.tension - a.tension);
+        let ei = scene.line.bending_stiffness;
+        (t > 0.0).then(|| (ei / t).sqrt())
+    });
+    Ok(Scales {
+        curvature: d.max_curvature,
+        curvature_s: d.max_curvature_s,
+        omega: 2.0 * std::f64::consts::PI / excitation.period,
+        amplitude: excitation.amplitude,
+        length: scene.line.length,
+        touchdown_bending_length,
+    })
+}
+
+/// The numerics for the scene's `accuracy` target, the motion `excitation`
+/// (None: [`DESIGN_EXCITATION`]) and the user's `pinned` numerics.
+pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> Result<Choice, RiserError> {
+    let target = scene.analysis.accuracy;
+    if target < MIN_TARGET {
+        return Err(AccuracyError::TargetTooSmall { target, min: MIN_TARGET }.into());
+    }
+    coverage(scene)?;
+    let excitation = excitation.unwrap_or(DESIGN_EXCITATION);
+    if excitation.period.is_nan() || excitation.period < MIN_PERIOD {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "a hang-off motion of period {} s is shorter than the {MIN_PERIOD} s the error model covers",
+                excitation.period
+            ),
+        }
+        .into());
+    }
+    if excitation.amplitude.is_nan() || excitation.amplitude > MAX_AMPLITUDE {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "a hang-off motion of amplitude {} m is larger than the {MAX_AMPLITUDE} m the error model covers",
+                excitation.amplitude
+            ),
+        }
+        .into());
+    }
+    let s = scales(scene, &excitation)?;
+    let budget = target.min(MAX_TARGET) / SAFETY;
+    let an = &scene.analysis;
+    let ns: Vec<usize> = if pinned.n_elements { vec![an.n_elements] } else { ELEMENT_LADDER.to_vec() };
+    let dts: Vec<f64> = if pinned.time_step {
+        vec![an.time_step]
+    } else {
+        STEP_LADDER
+            .iter()
+            .copied()
+            .filter(|&dt| dt * MIN_STEPS_PER_PERIOD <= excitation.period * (1.0 + 1e-9))
+            .collect()
+    };
+    let mut best: Option<(f64, usize, f64)> = None;
+    for &n in &ns {
+        for &dt in &dts {
+            let c = cost(n, dt);
+            if space_error(&s, n) + time_error(&s, dt) <= budget && best.is_none_or(|b| c < b.0) {
+                best = Some((c, n, dt));
+            }
+        }
+    }
+    // a pinned value that cannot reach the target: the user's value stands
+    // (the warning gives the predicted error), the other is the coarsest
+    // whose own term is within the budget
+    let (n, dt) = match best {
+        Some((_, n, dt)) => (n, dt),
+        None if pinned.n_elements || pinned.time_step => (
+            if pinned.n_elements {
+                an.n_elements
+            } else {
+                *ELEMENT_LADDER.iter().find(|&&n| space_error(&s, n) <= budget).unwrap_or(&ELEMENT_LADDER[19])
+            },
+            if pinned.time_step {
+                an.time_step
+            } else {
+                *STEP_LADDER.iter().find(|&&dt| time_error(&s, dt) <= budget).unwrap_or(&STEP_LADDER[13])
+            },
+        ),
+        None => {
+            return Err(AccuracyError::Unreachable {
+                target,
+                max_elements: ELEMENT_LADDER[ELEMENT_LADDER.len() - 1],
+                min_step: STEP_LADDER[STEP_LADDER.len() - 1],
+            }
+            .into());
+        }
+    };
+    let tol = if pinned.newton_tolerance {
+        an.newton_tolerance
+    } else {
+        (TOLERANCE_PER_TARGET * target.min(MAX_TARGET)).clamp(TOLERANCE_RANGE[0], TOLERANCE_RANGE[1])
+    };
+    Ok(Choice {
+        target,
+        n_elements: n,
+        time_step: dt,
+        newton_tolerance: tol,
+        predicted_space: space_error(&s, n),
+        predicted_time: time_error(&s, dt),
+        scales: s,
+        excitation,
+        pinned,
+    })
+}
+
+/// The scene with its numerics chosen for its `accuracy` (and the choice),
+/// or, when `accuracy` is 0, the scene itself untouched (None).
+pub fn apply(
+    scene: Scene,
+    excitation: Option<Excitation>,
+    pinned: Pinned,
+) -> Result<(Scene, Option<Choice>), RiserError> {
+    if scene.analysis.accuracy == 0.0 {
+        return Ok((scene, None));
+    }
+    let choice = choose(&scene, excitation, pinned)?;
+    let mut scene = scene;
+    scene.analysis.n_elements = choice.n_elements;
+    scene.analysis.time_step = choice.time_step;
+    scene.analysis.newton_tolerance = choice.newton_tolerance;
+    Ok((scene, Some(choice)))
+}
+
+/// The warning of a choice whose pinned numerics keep the predicted error
+/// above the target (None otherwise).
+pub fn warning(choice: &Choice) -> Option<String> {
+    (choice.predicted() > choice.target).then(|| {
+        format!(
+            "accuracy {:e}: with the numerics you set the error model predicts {:.1e}, above the target; the values \
+             you set win over the choice",
+            choice.target,
+            choice.predicted()
+        )
+    })
+}
