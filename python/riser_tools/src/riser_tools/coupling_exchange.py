@@ -180,3 +180,30 @@ def main(argv=None):
 
 if __name__ == "__main__":
     main()
+
+
+# --- measured in libcosim (osp/vessel/Vessel.py with the buoy's numbers) -------------------------
+
+def buoy_parameters(**exchange) -> dict:
+    """Vessel.py's parameters for the 50 t buoy of coupling_analysis.BUOY (its `mass` is M + A)
+    in coupling_loop.BUOY_WAVE, and the exchange (force_hold, line_mass, force_cutoff,
+    force_filter_order)."""
+    from .coupling_loop import BUOY_WAVE
+    return dict(mass=BUOY.mass + BUOY.added_mass, damping=BUOY.damping, stiffness=BUOY.stiffness,
+                wave_force=BUOY_WAVE.force, wave_period=BUOY_WAVE.period, ramp=BUOY_WAVE.ramp, **exchange)
+
+
+def measure(riser_fmu: str, vessel_fmu: str, h: float, duration: float = 50.0, start: float = 30.0,
+            body: dict | None = None, one_way: bool = False):
+    """libcosim's fixed step on riser and the body FMU; the top tension window over [start, duration]
+    (min, max, mean, N), the peak-to-peak of the tension over 5 s pieces (N), the heave's amplitude,
+    and with `one_way` the window of riser alone at 0.01 s fed the run's motion."""
+    from .coupling_loop import fixed_step, reference, window
+    two = fixed_step(riser_fmu, vessel_fmu, h, duration, body)
+    t, tt = two["t"], two["top_tension"]
+    pieces = [float(np.ptp(tt[(t >= a) & (t < a + 5.0)])) for a in np.arange(5.0, duration, 5.0)]
+    out = dict(h=h, window=window(two, start), pieces=pieces,
+               heave=float(np.ptp(two["heave"][t >= start]) / 2), run=two)
+    if one_way:
+        out["one_way"] = window(reference(riser_fmu, two, h_ref=0.01), start)
+    return out
