@@ -1,8 +1,9 @@
 """A light body on the line (issue 29, the buoy; docs/theory.md §7.3, docs/coupling.md): the 50 t
 surface buoy of coupling_analysis.BUOY (M + A = 75 t) as the body FMU osp/vessel/Vessel.py in
-libcosim's fixed-step algorithm (Jacobi). Held as the riser's force of t_n the loop diverges (the
-line's axial resonance near 4.5 Hz answers the buoy's heave with 2e8 N/m, 3.3 times the buoy's
-own inertia there). With the force the buoy holds low-passed (Vessel.py `force_cutoff` 0.5 Hz,
+libcosim's fixed-step algorithm (Jacobi). Held as the riser's force of t_n the loop diverges: at
+the line's axial resonance (3.8 Hz at the internal step 0.05 s, 4.4 Hz at 0.01 s) the line's
+answer to the hang-off's heave is 2.1 and 11 times the buoy's inertia (M + A) ω², where the
+vessel's is 0.05 and 0.28 (riser_tools.coupling_exchange.resonance_gain). With the force the buoy holds low-passed (Vessel.py `force_cutoff` 0.5 Hz,
 two first-order stages) it is bounded at 0.01-0.1 s, and the top tension window is within 1 % of
 the 0.01 s run's (measured 0.05 %, 0.07 %). Independent of the loop: riser alone at 0.01 s fed
 the buoy's recorded motion gives the same window, so the loop's tension is the line's answer to

@@ -46,7 +46,8 @@ class Exchange:
     name: str
     hold: tuple = (1.0,)
     line_mass: float = 0.0
-    cutoff: float = 0.0  # Hz: a first-order low-pass of the held force at the points (0: none)
+    cutoff: float = 0.0  # Hz: a low-pass of the held force at the points (0: none) ...
+    stages: int = 2  # ... of this many first-order stages (Vessel.py force_filter_order)
 
 
 ZOH = Exchange("zoh: F_n held")
@@ -58,8 +59,12 @@ def amp(m: float) -> Exchange:
     return Exchange(f"amp: F_n + m̂ a_n, m̂ = {m / 1e3:g} t", (1.0,), m)
 
 
-EXCHANGES = [ZOH, AB2, AB3, amp(25e3), amp(50e3), amp(75e3)]
-STEPS = [0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3, 0.5]
+def low_pass(fc: float, stages: int = 2) -> Exchange:
+    return Exchange(f"low-pass: F_n through {stages} first-order stages at {fc:g} Hz", (1.0,), 0.0, fc, stages)
+
+
+EXCHANGES = [ZOH, AB2, AB3, amp(50e3), amp(75e3), low_pass(0.5), low_pass(0.25), low_pass(0.15)]
+STEPS = [0.01, 0.02, 0.05, 0.1, 0.2, 0.5]
 
 
 def riser_taps(g: np.ndarray, h: float, both: bool = True):
@@ -95,7 +100,7 @@ def simulate(body: Body, h: float, ru: np.ndarray, rv: np.ndarray, ex: Exchange,
     vs = np.zeros(n + 1 + L)
     fs = np.zeros(n + 1 + len(ex.hold))
     s = np.array([kick, 0.0])
-    held_prev = filt = 0.0
+    held_prev, filt = 0.0, []
     t = np.arange(n + 1) * h
     for i in range(n + 1):
         xs[L + i], vs[L + i] = s
@@ -110,8 +115,10 @@ def simulate(body: Body, h: float, ru: np.ndarray, rv: np.ndarray, ex: Exchange,
         held = sum(c * fs[len(ex.hold) + i - m] for m, c in enumerate(ex.hold)) + ex.line_mass * acc
         if ex.cutoff > 0.0:
             alpha = np.exp(-2 * np.pi * ex.cutoff * h)
-            filt = held if i == 0 else alpha * filt + (1 - alpha) * held
-            held = filt
+            filt = [held] * ex.stages if i == 0 else filt
+            for j in range(ex.stages):
+                filt[j] = alpha * filt[j] + (1 - alpha) * held
+                held = filt[j]
         w = force(t[i]) if force else 0.0
         s = phi @ s + gam * (held + w)
         held_prev = held + w
@@ -148,9 +155,25 @@ def line_mass_estimate(g: np.ndarray, h: float, band=(0.5, 3.0)):
     return float(np.mean(out)) if out else float("nan")
 
 
-def analyse(resp, exchanges=EXCHANGES, bodies=(BUOY, VESSEL), duration=40.0):
+def resonance_gain(g: np.ndarray, h: float, body: Body, band=(3.5, 5.0)):
+    """max over `band` (Hz) of |K(ω)| / ((M + A) ω²): the line's answer at the hang-off against the
+    body's inertia, the physical loop's gain where the line resonates axially (> 1: the body takes
+    part in the line's axial mode, and a lagged exchange of it can grow)."""
+    from .coupling_analysis import exact_end_state, line_transfer
+    best = (0.0, 0.0)
+    for f in np.linspace(band[0], band[1], 61):
+        th = 2 * np.pi * f * h
+        if th >= np.pi:
+            break
+        k = abs((line_transfer(g, th)[:, 0] * exact_end_state(th)[:, 0]).sum())
+        gain = k / ((body.mass + body.added_mass) * (2 * np.pi * f) ** 2)
+        best = max(best, (gain, f))
+    return best
+
+
+def analyse(resp, exchanges=EXCHANGES, bodies=(BUOY, VESSEL), duration=40.0, steps=None):
     rows = []
-    for h in sorted(resp):
+    for h in sorted(h for h in resp if steps is None or h in steps):
         ru, rv = riser_taps(resp[h], h)
         for body in bodies:
             for ex in exchanges:
@@ -171,8 +194,11 @@ def main(argv=None):
     if args.fine:
         resp.update(read_response(Path(args.fine)))
     for h in sorted(resp):
-        print(f"h {h}: line's apparent mass 0.5-3 Hz {line_mass_estimate(resp[h], h) / 1e3:.1f} t")
-    for r in analyse(resp):
+        gb, fb = resonance_gain(resp[h], h, BUOY)
+        gv, _ = resonance_gain(resp[h], h, VESSEL)
+        print(f"h {h}: line's apparent mass 0.5-3 Hz {line_mass_estimate(resp[h], h) / 1e3:.1f} t; "
+              f"|K|/((M+A)ω²) at 3.5-5 Hz: buoy {gb:.2f} (at {fb:.2f} Hz), vessel {gv:.3f}")
+    for r in analyse(resp, steps=STEPS):
         print(f"{r['body']:14s} h {r['h']:5.2f} {r['exchange']:42s} growth {r['rate']:+8.3f} /s at {r['freq']:6.2f} Hz",
               flush=True)
     return 0
