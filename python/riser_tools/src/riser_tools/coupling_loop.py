@@ -207,6 +207,8 @@ def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vesse
     for name in ["heave", "heave_velocity"]:
         ex.connect_real_variables(v, vr[name], r, rr[name])
     ex.connect_real_variables(r, rr["top_force_z"], v, vr["force"])
+    if "top_force_z_mean" in rr and "force_mean" in vr:
+        ex.connect_real_variables(r, rr["top_force_z_mean"], v, vr["force_mean"])
     obs = CosimObserver.create_last_value()
     ex.add_observer(observer=obs)
     n = int(round(duration / h))
