@@ -18,6 +18,17 @@ What the body holds over the step [t_n, t_n + h] (F_k: riser's top_force_z at t_
   approaches M (the buoy: M + A = 75 t). The body integrates with its mass plus an estimate m̂ of
   the line's and holds F_n + m̂ a_n, a_n its own acceleration at t_n: the inertia is then
   implicit in the body and only the rest of the line's answer is exchanged with the lag.
+* ``low_pass``: F_n through first-order stages at a cut-off f_c, updated at the points (Vessel.py
+  `force_cutoff`, `force_filter_order`): the body made deaf to the line's axial resonance.
+
+Not in this linear model (the measured answers are at the communication points only): riser's
+`top_force_z_mean`, the mean force over the step (Vessel.py `force_hold` 4, 5).
+
+What the measurements say (libcosim, `measure`; docs/theory.md §7.3): the loop that grows is the
+line's axial resonance (3.8–4.4 Hz), where |K| / ((M + A) ω²) is 2–11 for the buoy and 0.05–0.28
+for the vessel (`resonance_gain`); F_n, the AB holds and the added-mass hold all grow; F_n
+low-passed at 0.5 Hz is bounded and within 0.07 % at 0.05–0.1 s, and the step mean low-passed at
+0.25 Hz at 0.05–0.2 s (0.23 %); 0.5 s stays 1.1–1.3 % off, riser's one-way error at that step.
 
 The loop is simulated in time, linear (riser alone: F_n = Σ r_u[k] x_{n−1−k} + Σ r_v[k] v_{n−1−k},
 with the velocities in the fit at h ≥ 0.21 s as the FMU does when both inputs are connected,
