@@ -183,9 +183,10 @@ def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
 def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None):
     """libcosim's fixed-step algorithm (Jacobi) on riser and the vessel FMU: vessel.heave and
     heave_velocity → riser.heave and heave_velocity (`auto`: the displacement drives),
-    riser.top_force_z → vessel.force; `vessel` sets the vessel's parameters (mass, damping,
-    stiffness, wave_force, wave_period, ramp, and how it holds riser's force: force_hold,
-    line_mass). Returns t, heave, heave_velocity, top_tension at the
+    riser.top_force_z → vessel.force, and riser.top_force_z_mean → vessel.force_mean where both
+    FMUs have them; `vessel` sets the vessel's parameters (mass, damping, stiffness, wave_force,
+    wave_period, ramp, and how it holds riser's force: force_hold, line_mass, force_cutoff,
+    force_filter_order). Returns t, heave, heave_velocity, top_tension at the
     communication points after t = 0."""
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
