@@ -117,6 +117,8 @@ pub struct Saved {
     history: InputHistory,
     mode: Mode,
     params_hash: u64,
+    /// `top_force_*_mean`: the mean force over the last communication step.
+    force_mean: V3,
     /// The parameters themselves when saved in this process (fmi2GetFMUstate),
     /// so that a refused restore names what differs; None when deserialized
     /// (a serialized state carries their hash only).
@@ -124,8 +126,9 @@ pub struct Saved {
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
-/// (12), the input history, the mode, the parameters' hash (2).
-const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 3;
+/// (12), the input history, the mode, the parameters' hash (2), the mean
+/// force over the last step (3).
+const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 6;
 
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
@@ -175,6 +178,11 @@ pub struct Instance {
     /// master did not set read back as its values).
     scene: Option<Scene>,
     outputs: Option<Outputs>,
+    /// The mean of top_force over the last completed communication step
+    /// (the trapezoid rule over its internal steps; the static force before
+    /// the first), N: `top_force_z_mean`, a force for a body to hold over the
+    /// next step (docs/theory.md §7.3).
+    force_mean: V3,
     start_time: f64,
     last_successful_time: f64,
     last_status: Status,
@@ -243,6 +251,7 @@ impl Instance {
             step_start: None,
             scene: None,
             outputs: None,
+            force_mean: V3::zeros(),
             start_time: 0.0,
             last_successful_time: 0.0,
             last_status: Status::Ok,
@@ -263,6 +272,7 @@ impl Instance {
         self.step_start = None;
         self.scene = None;
         self.outputs = None;
+        self.force_mean = V3::zeros();
         self.start_time = 0.0;
         self.last_successful_time = 0.0;
         self.last_status = Status::Ok;
@@ -461,6 +471,7 @@ impl Instance {
             ));
         }
         self.step_start = Some(sim.state.clone());
+        self.force_mean = outputs.top_force;
         self.outputs = Some(outputs);
         self.log(
             Status::Ok,
@@ -573,12 +584,20 @@ impl Instance {
             Err(m) => return self.fail(&format!("fmi2DoStep: communication step {m}")),
         };
         let mut result = Ok(());
+        let mut f_prev = self.outputs.as_ref().map_or(V3::zeros(), |o| o.top_force);
+        let (mut t_prev, mut impulse) = (now, V3::zeros());
         for k in 1..=n {
             let target = if k == n { t_end } else { now + k as f64 * dt };
             if let Err(e) = sim.advance_to(target, &motion) {
                 result = Err(e);
                 break;
             }
+            let f = sim.outputs().top_force;
+            impulse += (f_prev + f) * (0.5 * (target - t_prev));
+            (f_prev, t_prev) = (f, target);
+        }
+        if result.is_ok() {
+            self.force_mean = impulse / h;
         }
         let mut reached = sim.state.time;
         let mut outputs = sim.outputs();
@@ -668,6 +687,9 @@ impl Instance {
             "vessel_moment_y" => o.vessel_moment.y,
             "vessel_moment_z" => o.vessel_moment.z,
             "flex_joint_angle" => o.flex_joint_angle,
+            "top_force_x_mean" => self.force_mean.x,
+            "top_force_y_mean" => self.force_mean.y,
+            "top_force_z_mean" => self.force_mean.z,
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");
@@ -1052,6 +1074,7 @@ impl Instance {
             history: self.history,
             mode: self.mode,
             params_hash: self.params_hash(),
+            force_mean: self.force_mean,
             params: Some(self.params.clone()),
         })
     }
@@ -1071,7 +1094,7 @@ impl Instance {
         if s.state.mesh() != sim.state.mesh() {
             return self.fail("the FMU state has another mesh");
         }
-        if !s.state.is_finite() || !s.inputs.iter().all(|x| x.is_finite()) {
+        if !s.state.is_finite() || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite()) {
             return self.fail("the FMU state holds numbers that are not finite");
         }
         // a state whose outputs are not finite (a crafted or corrupted blob
@@ -1086,6 +1109,7 @@ impl Instance {
         sim.integrator.invalidate_tangent();
         self.inputs = s.inputs;
         self.history = s.history;
+        self.force_mean = s.force_mean;
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
         self.outputs = Some(sim.outputs());
@@ -1105,6 +1129,7 @@ impl Instance {
         // the hash as two exact integers (every number in the format is finite)
         extra.push((s.params_hash >> 32) as f64);
         extra.push((s.params_hash & 0xffff_ffff) as f64);
+        extra.extend_from_slice(s.force_mean.as_slice());
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
         out
@@ -1129,7 +1154,8 @@ impl Instance {
                     _ => StepComplete,
                 };
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
-                Ok(Saved { state, inputs, history, mode, params_hash, params: None })
+                let force_mean = V3::new(extra[n + 3], extra[n + 4], extra[n + 5]);
+                Ok(Saved { state, inputs, history, mode, params_hash, force_mean, params: None })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),

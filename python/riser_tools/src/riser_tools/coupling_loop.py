@@ -183,8 +183,10 @@ def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
 def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None):
     """libcosim's fixed-step algorithm (Jacobi) on riser and the vessel FMU: vessel.heave and
     heave_velocity → riser.heave and heave_velocity (`auto`: the displacement drives),
-    riser.top_force_z → vessel.force; `vessel` sets the vessel's parameters (mass, damping,
-    stiffness, wave_force, wave_period, ramp). Returns t, heave, heave_velocity, top_tension at the
+    riser.top_force_z → vessel.force, and riser.top_force_z_mean → vessel.force_mean where both
+    FMUs have them; `vessel` sets the vessel's parameters (mass, damping, stiffness, wave_force,
+    wave_period, ramp, and how it holds riser's force: force_hold, line_mass, force_cutoff,
+    force_filter_order). Returns t, heave, heave_velocity, top_tension at the
     communication points after t = 0."""
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
@@ -199,10 +201,15 @@ def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vesse
     vr = {x.name.decode(): x.reference for x in ex.slave_variables(v)}
     ex.real_initial_value(r, rr["time_step"], min(0.05, h))
     for k, x in (vessel or {}).items():
-        ex.real_initial_value(v, vr[k], float(x))
+        if k in ("force_hold", "force_filter_order"):  # Vessel.py's Integer parameter (how riser's force is held)
+            ex.integer_initial_value(v, vr[k], int(x))
+        else:
+            ex.real_initial_value(v, vr[k], float(x))
     for name in ["heave", "heave_velocity"]:
         ex.connect_real_variables(v, vr[name], r, rr[name])
     ex.connect_real_variables(r, rr["top_force_z"], v, vr["force"])
+    if "top_force_z_mean" in rr and "force_mean" in vr:
+        ex.connect_real_variables(r, rr["top_force_z_mean"], v, vr["force_mean"])
     obs = CosimObserver.create_last_value()
     ex.add_observer(observer=obs)
     n = int(round(duration / h))
