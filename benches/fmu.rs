@@ -170,9 +170,7 @@ fn fmu_run(driver: &Path, lib: &Path, n_el: usize, dt: f64, h: f64, runs: usize)
         .arg(lib)
         .arg(GUID)
         .args([vr("heave"), vr("top_tension")].map(|v| v.to_string()))
-        .args(
-            [h, DURATION, HEAVE.amplitude, HEAVE.period, HEAVE.ramp, WINDOW, runs as f64].map(|v| format!("{v}")),
-        )
+        .args([h, DURATION, HEAVE.amplitude, HEAVE.period, HEAVE.ramp, WINDOW, runs as f64].map(|v| format!("{v}")))
         .arg(format!("i:{}={n_el}", vr("n_elements")))
         .arg(format!("r:{}={dt}", vr("time_step")))
         .arg(format!("r:{}=1", vr("ca_normal")))
@@ -213,9 +211,8 @@ fn cli_run(bin: &Path, n_el: usize, dt: f64, runs: usize) -> f64 {
 
 fn fmu_table(runs: usize) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let lib = std::env::var("RISER_FMU_LIB")
-        .map(PathBuf::from)
-        .unwrap_or_else(|_| root.join("target/release/libriser.so"));
+    let lib =
+        std::env::var("RISER_FMU_LIB").map(PathBuf::from).unwrap_or_else(|_| root.join("target/release/libriser.so"));
     let bin = std::env::var("RISER_BIN").map(PathBuf::from).unwrap_or_else(|_| root.join("target/release/riser"));
     assert!(lib.exists(), "{} not built (make bench-fmu builds it)", lib.display());
     let driver = compile_driver(&root);

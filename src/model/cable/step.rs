@@ -431,7 +431,11 @@ impl CableModel {
                 );
                 f -= ff[row];
             }
-            if let Some(fsurf) = &fluid.surface {
+            // (a segment wholly below the band the surface sweeps gets nothing from it)
+            let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+            if let Some(fsurf) = &fluid.surface
+                && !fsurf.below(&x[e..e + 2], sweep)
+            {
                 let mut fs = [V3::zeros(); 2];
                 let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
                 let eta = eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64);

@@ -117,7 +117,11 @@ impl RodModel {
             if let Some(bed) = &self.seabed {
                 v += seabed::element_energy(bed.at(e), &c, &shapes, self.rod.h);
             }
-            if let Some(s) = &self.fluid.at(e).surface {
+            // an element whose centreline lies wholly below the band adds
+            // exactly nothing (V_s = 0 there): its composite rule skipped
+            if let Some(s) = &self.fluid.at(e).surface
+                && !s.hermite_below(&c, self.rod.h)
+            {
                 v += crate::loads::surface::element_energy(
                     s,
                     &c,
