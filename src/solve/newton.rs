@@ -78,8 +78,8 @@ impl<M: StepEquations> Integrator<M> {
     }
 
     /// Forgets the factorised tangent: the next step starts with a new one.
-    /// Call it where results must depend on the state alone (an FMU's
-    /// communication step, after a state was restored).
+    /// Call it where results must depend on the state alone (the FMU: when
+    /// a state is saved or restored).
     pub fn invalidate_tangent(&mut self) {
         self.factor_h = f64::NAN;
     }
