@@ -209,5 +209,7 @@ impl State {
         self.mean_slope_vel.clone_from(&self.slope_vel);
         self.prev_mean_vel.clone_from(&self.vel);
         self.prev_mean_slope_vel.clone_from(&self.slope_vel);
+        self.prev2_mean_vel.clone_from(&self.vel);
+        self.prev2_mean_slope_vel.clone_from(&self.slope_vel);
     }
 }
