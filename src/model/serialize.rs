@@ -12,7 +12,8 @@ use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 6;
+/// 7: the predictor's v̄_{n−2} (`prev2_mean_vel`, `prev2_mean_slope_vel`; issue 28).
+const VERSION: u32 = 7;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
