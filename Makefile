@@ -77,6 +77,19 @@ accuracy: build venv
 stability: build venv
 	$(TOOLS) stability
 
+# The FMU through its C ABI (issue 28): benches/fmu_driver.c, compiled with
+# cc, loads target/release/libriser.so as a master does (fmi2SetReal of the
+# heave, fmi2DoStep) at communication steps of 0.05, 0.1 and 0.2 s on the
+# catenary; real-time factor against the error of the top tension's window
+# against a converged run (120 elements, 0.005 s), beside the CLI on the same
+# numerics; and the cost of a step and of a Newton iteration at 5-60 elements
+# (benches/fmu.rs; docs/performance.md, "Through the FMU's C ABI"). About 10
+# minutes; it measures wall time: run it on a quiet machine. Not part of `make test`.
+.PHONY: bench-fmu
+bench-fmu:
+	$(CARGO) build --release --lib --bin riser
+	$(CARGO) bench --bench fmu
+
 # riser-sweep on Dask (issue 15): 48 cases as a plain loop and on a local
 # cluster of 1 and 2 workers; the "Sweeps on Dask" figures of docs/performance.md
 # (5 to 8 minutes; run it on a quiet machine, it measures wall time).

@@ -64,9 +64,12 @@ pub struct State {
     /// unresolved stiff modes), m/s and 1/s.
     pub mean_vel: Vec<V3>,
     pub mean_slope_vel: Vec<V3>,
-    /// The same of the step before (the predictor extrapolates quadratically).
+    /// The same of the step before and of the one before that (the
+    /// predictor extrapolates cubically, §5.7).
     pub prev_mean_vel: Vec<V3>,
     pub prev_mean_slope_vel: Vec<V3>,
+    pub prev2_mean_vel: Vec<V3>,
+    pub prev2_mean_slope_vel: Vec<V3>,
     /// Hang-off motion at `time`.
     pub hang_off: HangOff,
     /// Work done on the line by the hang-off since t = 0, J.
@@ -123,6 +126,8 @@ impl Clone for State {
             mean_slope_vel,
             prev_mean_vel,
             prev_mean_slope_vel,
+            prev2_mean_vel,
+            prev2_mean_slope_vel,
             hang_off,
             work_top,
             work_hydro,
@@ -147,6 +152,8 @@ impl Clone for State {
         self.mean_slope_vel.clone_from(mean_slope_vel);
         self.prev_mean_vel.clone_from(prev_mean_vel);
         self.prev_mean_slope_vel.clone_from(prev_mean_slope_vel);
+        self.prev2_mean_vel.clone_from(prev2_mean_vel);
+        self.prev2_mean_slope_vel.clone_from(prev2_mean_slope_vel);
         self.hang_off = *hang_off;
         self.work_top = *work_top;
         self.work_hydro = *work_hydro;
@@ -180,6 +187,8 @@ impl State {
             mean_slope_vel: vec![V3::zeros(); np],
             prev_mean_vel: vec![V3::zeros(); n],
             prev_mean_slope_vel: vec![V3::zeros(); np],
+            prev2_mean_vel: vec![V3::zeros(); n],
+            prev2_mean_slope_vel: vec![V3::zeros(); np],
             hf_accel: vec![V3::zeros(); n + np],
             hf_weight: vec![0.0; n + np],
             config,
@@ -260,6 +269,11 @@ pub struct DynamicOptions {
     /// frame, so that a reused tangent turns with the line (docs/theory.md
     /// §5.7); false: the global frame.
     pub corotated_tangent: bool,
+    /// Order of the predictor's extrapolation of the centreline over the
+    /// last steps ([`extrapolation`]): 3 cubic (the default since issue 28),
+    /// 2 quadratic (the predictor before), 1 linear. The cable takes at
+    /// most 2.
+    pub predictor_order: u32,
 }
 
 impl Default for DynamicOptions {
@@ -273,6 +287,7 @@ impl Default for DynamicOptions {
             rho_infinity: 1.0,
             max_tangent_age: 20,
             corotated_tangent: true,
+            predictor_order: 3,
         }
     }
 }
@@ -358,7 +373,8 @@ pub trait StepEquations {
     fn hang_off_prescribed(&self) -> bool;
     /// Prepares a step from `prev`: quantities of q_n the residual needs.
     fn begin(&self, ws: &mut Self::Workspace, prev: &State, options: &DynamicOptions);
-    /// Predicted q_{n+1} in `trial` (`order` 2: quadratic, 1: linear), the
+    /// Predicted q_{n+1} in `trial` (`order` 3: cubic, 2: quadratic, 1:
+    /// linear; [`extrapolation`]), the
     /// hang-off at `origin + target.displacement`.
     #[allow(clippy::too_many_arguments)]
     fn predict(
@@ -415,4 +431,16 @@ pub trait StepEquations {
 /// exceeds the internal forces' round-off for steps below a few milliseconds.
 pub fn inertia_roundoff(mass_per_length: f64, element_length: f64, extent: f64, h: f64) -> f64 {
     2.0 * mass_per_length * element_length * f64::EPSILON * extent / (h * h)
+}
+
+/// The predictor's weights of the last three steps' mean velocities
+/// [v̄_n, v̄_{n−1}, v̄_{n−2}]: r_{n+1} = r_n + h Σ wᵢ v̄ᵢ, the polynomial through
+/// the last `order` + 1 positions at equal steps taken on to t_{n+1}
+/// (order 3: cubic, 2: quadratic, otherwise linear; §5.7).
+pub fn extrapolation(order: u32) -> [f64; 3] {
+    match order {
+        3.. => [3.0, -3.0, 1.0],
+        2 => [2.0, -1.0, 0.0],
+        _ => [1.0, 0.0, 0.0],
+    }
 }

@@ -12,7 +12,8 @@ use crate::math::{M3, V3};
 use crate::model::RodConfig;
 
 const MAGIC: &[u8; 8] = b"RISERST\0";
-const VERSION: u32 = 6;
+/// 7: the predictor's v̄_{n−2} (`prev2_mean_vel`, `prev2_mean_slope_vel`; issue 28).
+const VERSION: u32 = 7;
 
 /// The sizes of a state's vectors: they identify the line model and its mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -160,6 +161,9 @@ impl State {
         {
             w.v3(v);
         }
+        for v in self.prev2_mean_vel.iter().chain(&self.prev2_mean_slope_vel) {
+            w.v3(v);
+        }
         w.v3(&self.hang_off.displacement);
         w.v3(&self.hang_off.velocity);
         w.m3(&self.hang_off.rotation);
@@ -233,6 +237,8 @@ impl State {
         let mean_slope_vel = r.vec3(np)?;
         let prev_mean_vel = r.vec3(n)?;
         let prev_mean_slope_vel = r.vec3(np)?;
+        let prev2_mean_vel = r.vec3(n)?;
+        let prev2_mean_slope_vel = r.vec3(np)?;
         let (displacement, velocity) = (r.v3()?, r.v3()?);
         let hang_off = HangOff { displacement, velocity, rotation: r.m3()?, angular_velocity: r.v3()? };
         let (work_top, work_hydro, dissipated, work_anchor) = (r.f()?, r.f()?, r.f()?, r.f()?);
@@ -260,6 +266,8 @@ impl State {
             mean_slope_vel,
             prev_mean_vel,
             prev_mean_slope_vel,
+            prev2_mean_vel,
+            prev2_mean_slope_vel,
             hang_off,
             work_top,
             work_hydro,

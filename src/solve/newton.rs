@@ -78,8 +78,8 @@ impl<M: StepEquations> Integrator<M> {
     }
 
     /// Forgets the factorised tangent: the next step starts with a new one.
-    /// Call it where results must depend on the state alone (an FMU's
-    /// communication step, after a state was restored).
+    /// Call it where results must depend on the state alone (the FMU: when
+    /// a state is saved or restored).
     pub fn invalidate_tangent(&mut self) {
         self.factor_h = f64::NAN;
     }
@@ -115,10 +115,10 @@ impl<M: StepEquations> Integrator<M> {
         while state.time < t_end - 1e-12 * h {
             let hh = sub.min(t_end - state.time);
             let target = motion(state.time + hh);
-            // the quadratic predictor (which falls back to the linear one by
+            // the cubic predictor (which falls back to the linear one by
             // itself when it extrapolates an unresolved oscillation); halved
             // sub-steps, whose history is of another step size, the linear one
-            let order = if level == 0 { 2 } else { 1 };
+            let order = if level == 0 { self.options.predictor_order } else { 1 };
             match self.try_step(state, hh, target, order) {
                 Ok(it) => {
                     info.iterations += it;
@@ -193,12 +193,16 @@ impl<M: StepEquations> Integrator<M> {
             last = res;
             // converged; or stagnating at round-off after a full Newton correction
             let at_tol = res <= tol && (!to_roundoff || res > 0.25 * last_res || res <= 0.1 * roundoff);
-            if at_tol || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
+            // (never the bare prediction: an extrapolation, not a solution of
+            // the step equations, whatever the tolerance; at the default one
+            // the prediction is never within it)
+            let corrected = iterations > 0;
+            if (at_tol && corrected) || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
                 converged = true;
                 break;
             }
             if at_start && res > 0.1 * self.force_scale && order >= 2 && !tried_linear {
-                // the quadratic predictor extrapolated an unresolved
+                // the cubic predictor extrapolated an unresolved
                 // oscillation: start again from the linear one
                 tried_linear = true;
                 model.predict(&mut self.ws, state, trial, h, self.origin, target, 1);
@@ -299,7 +303,7 @@ impl<M: StepEquations> Integrator<M> {
     pub fn begin_step(&mut self, prev: &State, h: f64, target: HangOff) -> RodConfig {
         self.model.begin(&mut self.ws, prev, &self.options);
         let mut trial = prev.clone();
-        self.model.predict(&mut self.ws, prev, &mut trial, h, self.origin, target, 2);
+        self.model.predict(&mut self.ws, prev, &mut trial, h, self.origin, target, self.options.predictor_order);
         trial.config
     }
 

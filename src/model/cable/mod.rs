@@ -289,7 +289,10 @@ impl CableModel {
                 .sum::<f64>();
         }
         for e in 0..self.cable.n_el {
-            if let Some(s) = &self.fluid.at(e).surface {
+            // a straight segment with both nodes below the band adds exactly nothing
+            if let Some(s) = &self.fluid.at(e).surface
+                && !s.below(&x[e..e + 2], 0.0)
+            {
                 v += surface::element_energy(s, &[x[e], x[e + 1]], surface::linear, l);
             }
         }

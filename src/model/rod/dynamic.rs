@@ -117,7 +117,11 @@ impl RodModel {
             if let Some(bed) = &self.seabed {
                 v += seabed::element_energy(bed.at(e), &c, &shapes, self.rod.h);
             }
-            if let Some(s) = &self.fluid.at(e).surface {
+            // an element whose centreline lies wholly below the band adds
+            // exactly nothing (V_s = 0 there): its composite rule skipped
+            if let Some(s) = &self.fluid.at(e).surface
+                && !s.hermite_below(&c, self.rod.h)
+            {
                 v += crate::loads::surface::element_energy(
                     s,
                     &c,
@@ -205,5 +209,7 @@ impl State {
         self.mean_slope_vel.clone_from(&self.slope_vel);
         self.prev_mean_vel.clone_from(&self.vel);
         self.prev_mean_slope_vel.clone_from(&self.slope_vel);
+        self.prev2_mean_vel.clone_from(&self.vel);
+        self.prev2_mean_slope_vel.clone_from(&self.slope_vel);
     }
 }

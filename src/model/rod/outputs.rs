@@ -63,7 +63,12 @@ impl RodModel {
                 );
                 f -= ff[k];
             }
-            if let Some(fsurf) = &fluid.surface {
+            // (an element wholly below the band the surface sweeps gets
+            // nothing from it: every point of the composite rule is skipped)
+            let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+            if let Some(fsurf) = &fluid.surface
+                && !fsurf.lowered(sweep).hermite_below(&el.c, rod.h)
+            {
                 let mut fs = [V3::zeros(); 4];
                 let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
                 surface::element_static_force(

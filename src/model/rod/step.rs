@@ -17,7 +17,6 @@ use crate::loads::fluid::{
 use crate::loads::{seabed, surface};
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, V3, cayley, skew};
-use crate::model::RodConfig;
 use crate::model::dissipation::{self, HighFrequency, TripleLayout};
 use crate::model::rod::element::{
     self, C_OFF, ElMat, ElVec, ElemDofs, Factors, NDOF_EL, NGP, STRIDE, Shear, Strain, T_OFF,
@@ -25,6 +24,7 @@ use crate::model::rod::element::{
 use crate::model::rod::gauss::{self, F4, GaussFields, GaussShapes};
 use crate::model::rod::{Rod, RotationBc};
 use crate::model::{DynamicOptions, HangOff, Linear, State, StepEquations, inertia_roundoff};
+use crate::model::{RodConfig, extrapolation};
 
 /// Scratch data of a rod step beyond the linear system, allocated once.
 pub struct RodWorkspace {
@@ -171,9 +171,10 @@ impl StepEquations for RodModel {
         }
     }
 
-    /// Predictor: quadratic (`order` 2) extrapolation of the centreline from the
-    /// last two steps, r_{n+1} = r_n + h (2 v̄_n − v̄_{n−1}) (v̄ the steps' mean
-    /// velocities), or linear (`order` 1), r_{n+1} = r_n + h v̄_n;
+    /// Predictor: cubic (`order` 3) extrapolation of the centreline from the
+    /// last three steps, r_{n+1} = r_n + h (3 v̄_n − 3 v̄_{n−1} + v̄_{n−2}) (v̄ the
+    /// steps' mean velocities), quadratic (`order` 2, r_n + h (2 v̄_n − v̄_{n−1}))
+    /// or linear (`order` 1), r_{n+1} = r_n + h v̄_n ([`crate::model::extrapolation`]);
     /// the hang-off on its path, and directors carried along with the predicted
     /// tangent (no spin about d3 at a twist-held node).
     fn predict(
@@ -188,15 +189,17 @@ impl StepEquations for RodModel {
     ) {
         let model = self;
         let (twist, theta) = (&ws.twist_nodes, &mut ws.theta_step);
-        let (c1, c0) = if order >= 2 { (2.0, 1.0) } else { (1.0, 0.0) };
+        let [c1, c0, cm] = extrapolation(order);
         let rod = &model.rod;
         for a in 0..=rod.n_el {
             let fixed = (a == 0 && rod.ends[0].position_fixed) || (a == rod.n_el && rod.ends[1].position_fixed);
             if !fixed {
-                trial.config.x[a] = prev.config.x[a] + (prev.mean_vel[a] * c1 - prev.prev_mean_vel[a] * c0) * h;
+                trial.config.x[a] = prev.config.x[a]
+                    + (prev.mean_vel[a] * c1 + prev.prev_mean_vel[a] * c0 + prev.prev2_mean_vel[a] * cm) * h;
             }
-            trial.config.xp[a] =
-                prev.config.xp[a] + (prev.mean_slope_vel[a] * c1 - prev.prev_mean_slope_vel[a] * c0) * h;
+            trial.config.xp[a] = prev.config.xp[a]
+                + (prev.mean_slope_vel[a] * c1 + prev.prev_mean_slope_vel[a] * c0 + prev.prev2_mean_slope_vel[a] * cm)
+                    * h;
         }
         if rod.ends[0].position_fixed {
             trial.config.x[0] = origin + target.displacement;
@@ -636,6 +639,8 @@ impl StepEquations for RodModel {
             let dp = cfg1.xp[a] - cfg0.xp[a];
             trial.prev_mean_vel[a] = state.mean_vel[a];
             trial.prev_mean_slope_vel[a] = state.mean_slope_vel[a];
+            trial.prev2_mean_vel[a] = state.prev_mean_vel[a];
+            trial.prev2_mean_slope_vel[a] = state.prev_mean_slope_vel[a];
             trial.mean_vel[a] = dx / h;
             trial.mean_slope_vel[a] = dp / h;
             for c in 0..3 {
