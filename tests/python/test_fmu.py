@@ -185,9 +185,11 @@ def test_bad_input_is_an_error_not_a_crash(fmu_path, unzipped):
     s.freeInstance()
 
 
-def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path):
+def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path, tmp_path):
     # OSP libcosim as an independent master: the riser alone for 5 s from the
-    # system structure in osp/, against fmpy with the same settings
+    # system structure in osp/ (its source pointed at the FMU under test, which
+    # `make check` builds elsewhere than fmu/), against fmpy with the same settings
+    import re
     from pathlib import Path
 
     from libcosimpy.CosimExecution import CosimExecution
@@ -196,7 +198,9 @@ def test_osp_libcosim_runs_the_fmu_like_fmpy(fmu_path):
 
     log_output_level(CosimLogLevel.WARNING)
     root = Path(__file__).resolve().parents[2]
-    ex = CosimExecution.from_osp_config_file(osp_path=str(root / "osp" / "OspSystemStructure.xml"))
+    xml = (root / "osp" / "OspSystemStructure.xml").read_text()
+    (tmp_path / "OspSystemStructure.xml").write_text(re.sub(r'source="[^"]*riser\.fmu"', f'source="{Path(fmu_path).as_posix()}"', xml))
+    ex = CosimExecution.from_osp_config_file(osp_path=str(tmp_path / "OspSystemStructure.xml"))
     obs = CosimObserver.create_last_value()
     ex.add_observer(observer=obs)
     idx = ex.slave_index_from_instance_name("riser")
