@@ -13,6 +13,9 @@ use riser::scene::{DEFAULT_RHO_INFINITY, Scene};
 use riser::sim::{Heave, Simulation};
 use std::time::Instant;
 
+mod common;
+use common::*;
+
 fn one_run(ramp: f64, rho_infinity: f64) -> (f64, f64, u64, f64) {
     let scene = Scene::builtin("catenary").unwrap().with_overrides(&[format!("rho_infinity={rho_infinity}")]).unwrap();
     let mut sim = Simulation::from_scene(&scene).unwrap();
@@ -28,11 +31,6 @@ fn one_run(ramp: f64, rho_infinity: f64) -> (f64, f64, u64, f64) {
     let st = &sim.state;
     let tangents = sim.integrator.factorizations() as f64 / st.steps as f64;
     (wall, st.newton_iterations as f64 / st.steps as f64, st.retries, tangents)
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn main() {

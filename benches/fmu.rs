@@ -33,16 +33,14 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
+mod common;
+use common::*;
+
 const SETTINGS: [&str; 3] = ["ca_normal=1", "structural_damping=0.002", "static_current=true"];
 const DURATION: f64 = 100.0;
 const HEAVE: Heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
 /// The CLI's default steady window: the ramp and one period.
 const WINDOW: f64 = 40.0;
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 fn scene(n_el: usize, dt: f64) -> Scene {
     let mut sets: Vec<String> = SETTINGS.iter().map(|s| s.to_string()).collect();
@@ -68,19 +66,6 @@ fn in_process(n_el: usize, dt: f64) -> (Vec<(f64, f64)>, f64, u64, u64) {
     }
     let wall = t0.elapsed().as_secs_f64();
     (series, wall, sim.state.newton_iterations, sim.state.steps)
-}
-
-/// µs per call of `f`, median of 7 rounds of `calls` calls.
-fn time(calls: usize, mut f: impl FnMut()) -> f64 {
-    let mut rounds = Vec::new();
-    for _ in 0..7 {
-        let t0 = Instant::now();
-        for _ in 0..calls {
-            f();
-        }
-        rounds.push(t0.elapsed().as_secs_f64() / calls as f64 * 1e6);
-    }
-    median(&mut rounds)
 }
 
 fn costs(runs: usize) {

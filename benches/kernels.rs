@@ -13,10 +13,8 @@ use riser::sim::{Engine, Heave, Simulation};
 use std::hint::black_box;
 use std::time::Instant;
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+mod common;
+use common::*;
 
 fn main() {
     let scene = Scene::builtin("catenary").unwrap();

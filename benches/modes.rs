@@ -11,10 +11,8 @@ use riser::sim::Simulation;
 use riser::sim::modes::scene_modes;
 use std::time::Instant;
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+mod common;
+use common::*;
 
 fn main() {
     let runs: usize = std::env::var("RISER_BENCH_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);

@@ -17,23 +17,8 @@ use riser::sim::{Engine, Heave, Simulation};
 use std::hint::black_box;
 use std::time::Instant;
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// µs per call of `f`, median of 7 rounds of `calls` calls.
-fn time(calls: usize, mut f: impl FnMut()) -> f64 {
-    let mut rounds = Vec::new();
-    for _ in 0..7 {
-        let t0 = Instant::now();
-        for _ in 0..calls {
-            f();
-        }
-        rounds.push(t0.elapsed().as_secs_f64() / calls as f64 * 1e6);
-    }
-    median(&mut rounds)
-}
+mod common;
+use common::*;
 
 fn main() {
     let base = Scene::builtin("catenary").unwrap();
