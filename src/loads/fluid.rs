@@ -138,7 +138,7 @@ impl FrozenWater {
 /// The water's motion at the four Gauss points of an element at `points`
 /// at time `t` (for outputs at a state; no scratch: a few points).
 pub fn water_at(sea: &Sea, points: &[V3; 4], t: f64) -> WaterAtGauss {
-    let k = points.map(|p| sea.kinematics(&p, t));
+    let k = points.map(|p| sea.water(&p, t));
     WaterAtGauss {
         velocity: k.map(|k| k.velocity),
         acceleration: k.map(|k| k.acceleration),

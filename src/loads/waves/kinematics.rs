@@ -256,6 +256,41 @@ impl Sea {
         pulp::Arch::new().dispatch(WaterPoints { sea: self, r, dr, points, out, scratch });
     }
 
+    /// The elevation, velocity and acceleration at one point at time `t`:
+    /// [`Sea::water_batch`]'s sums for a single point in scalar arithmetic
+    /// (no gradient, no scratch, no allocation; each component's phase once,
+    /// pass 2 cut where the batch cuts it), for the few points the outputs
+    /// evaluate at a state. Equal to the batch's to round-off.
+    pub fn water(&self, p: &V3, t: f64) -> WaterPoint {
+        let (r, dr) = self.settings.ramp.at(t);
+        let zeta = p.z - self.settings.surface_z;
+        if r == 0.0 || self.deep_cutoff.is_some_and(|cut| zeta < cut) {
+            return WaterPoint::STILL;
+        }
+        let st = &self.sorted;
+        let n = st.len;
+        let theta = |i: usize| st.kx[i] * p.x + st.ky[i] * p.y - st.omega[i] * t + st.phi0[i];
+        let eta = r * (0..n).map(|i| st.a[i] * theta(i).cos()).sum::<f64>();
+        let (zp, _, _) = self.stretch(zeta, eta);
+        let active = if zp < 0.0 { st.k[..n].partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
+        let (mut vel, mut acc) = (V3::zeros(), V3::zeros());
+        for i in 0..active {
+            let (s, c) = theta(i).sin_cos();
+            // C(ζ′), S(ζ′) (13.4), as the batch writes them
+            let e = (st.k[i] * zp).exp();
+            let (ch, sh) = match self.settings.depth {
+                None => (e, e),
+                Some(_) => {
+                    let q = st.e2kd[i] / e;
+                    (st.c[i] * (e + q), st.c[i] * (e - q))
+                }
+            };
+            vel += V3::new(st.awx[i] * ch * c, st.awy[i] * ch * c, st.aw[i] * sh * s);
+            acc += V3::new(st.aw2x[i] * ch * s, st.aw2y[i] * ch * s, -st.aw2[i] * sh * c);
+        }
+        WaterPoint { elevation: eta, velocity: vel * r, acceleration: acc * r + vel * dr }
+    }
+
     /// The body of [`Sea::water_batch`] at ramp `r`, rate `dr`, with ω t in
     /// the scratch.
     #[inline(always)]
@@ -472,7 +507,7 @@ mod tests {
     }
 
     #[test]
-    fn the_water_batch_equals_the_kinematics_at_every_depth_to_round_off() {
+    fn the_water_batch_and_the_one_point_water_equal_the_kinematics_at_every_depth_to_round_off() {
         for stretching in [Stretching::Wheeler, Stretching::Vertical, Stretching::None] {
             for depth in [None, Some(60.0), Some(400.0)] {
                 let s = broad_sea(stretching, depth);
@@ -518,6 +553,14 @@ mod tests {
                         if k.deep {
                             assert_eq!(*o, WaterPoint::STILL);
                         }
+                        // the one-point scalar form (the outputs') against the batch
+                        let w = s.water(p, t);
+                        assert!((w.elevation - o.elevation).abs() <= 1e-12 * a_sum, "{what}: {w:?}");
+                        assert!((w.velocity - o.velocity).norm() <= 1e-12 * aw_sum, "{what}: {w:?}");
+                        assert!(
+                            (w.acceleration - o.acceleration).norm() <= 1e-12 * (aw2_sum + aw_sum),
+                            "{what}: {w:?}"
+                        );
                     }
                 }
                 eprintln!("{stretching:?} {depth:?}: largest difference {worst:.1e} of the surface scale");
