@@ -49,9 +49,9 @@ WAVE_CASES = {
     "catenary_airy_heave": ("catenary", 2.5, 10.0, [10, 20, 40, 80], AIRY_CAT, 40.0, (20.0, 40.0)),
     "catenary_jonswap": ("catenary", 0.0, 10.0, [10, 20, 40, 80], JONSWAP, 220.0, WINDOW_IRREGULAR),
     "catenary_jonswap_heave": ("catenary", 2.5, 10.0, [10, 20, 40, 80], JONSWAP, 220.0, WINDOW_IRREGULAR),
-    "jumper_airy": (JUMPER, 0.0, 10.0, [20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
-    "jumper_airy_heave": (JUMPER, 2.5, 10.0, [20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
-    "jumper_jonswap": (JUMPER, 0.0, 10.0, [20, 40, 80, 160], JONSWAP, 220.0, WINDOW_IRREGULAR),
+    "jumper_airy": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
+    "jumper_airy_heave": (JUMPER, 2.5, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
+    "jumper_jonswap": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], JONSWAP, 220.0, WINDOW_IRREGULAR),
 }
 CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
