@@ -490,11 +490,7 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
     let dts: Vec<f64> = if pinned.time_step {
         vec![an.time_step]
     } else {
-        STEP_LADDER
-            .iter()
-            .copied()
-            .filter(|&dt| dt * MIN_STEPS_PER_PERIOD <= period * (1.0 + 1e-9))
-            .collect()
+        STEP_LADDER.iter().copied().filter(|&dt| dt * MIN_STEPS_PER_PERIOD <= period * (1.0 + 1e-9)).collect()
     };
     let mut best: Option<(f64, usize, f64)> = None;
     for &n in &ns {
