@@ -346,7 +346,7 @@ pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
         (w.tp.unwrap_or(f64::NAN), w.hs.unwrap_or(f64::NAN), MAX_HS)
     };
     let what = if regular { "a regular wave" } else { "a sea" };
-    if !(period >= MIN_WAVE_PERIOD) {
+    if period.is_nan() || period < MIN_WAVE_PERIOD {
         return Err(AccuracyError::Motion {
             message: format!(
                 "{what} of {} {period:.3} s is shorter than the {MIN_WAVE_PERIOD} s the error model covers in waves",
@@ -355,7 +355,7 @@ pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
         }
         .into());
     }
-    if !(height <= max_height * (1.0 + 1e-9)) {
+    if height.is_nan() || height > max_height * (1.0 + 1e-9) {
         return Err(AccuracyError::Motion {
             message: format!(
                 "{what} of {} {height:.3} m is higher than the {max_height} m the error model covers",
