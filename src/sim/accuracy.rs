@@ -16,7 +16,7 @@
 //! target. What the model was not calibrated on is refused
 //! ([`AccuracyError`]), not run with a guess.
 //!
-//! In waves (docs/theory.md §16.5) the error gains the sea's own terms,
+//! In waves (docs/theory.md §16.4) the error gains the sea's own terms,
 //!
 //!   e_w(h, Δt) = C_wt (a/A₀) (ω_w Δt)^{3/2} + C_wk (a/A₀) (h k_w)² + E_w,
 //!
@@ -71,7 +71,7 @@ pub const MIN_STEPS_PER_PERIOD: f64 = 75.0;
 /// FMU, whose master moves the vessel; `riser run` without a motion): the
 /// shortest period covered, [`MIN_PERIOD`].
 pub const DESIGN_EXCITATION: Excitation = Excitation { period: MIN_PERIOD, amplitude: 2.5 };
-/// The step constant C_wt of C_wt (a/A₀) (ω_w Δt)^{3/2} in waves (§16.5):
+/// The step constant C_wt of C_wt (a/A₀) (ω_w Δt)^{3/2} in waves (§16.4):
 /// the jumper's error in its regular wave falls from 4.1e-4 to 5.4e-5 from
 /// Δt = 0.1 to 0.025 s at 160 elements; with [`C_WAVE_MESH`] and
 /// [`WAVE_FLOOR`] the bound of its 10 elements at 0.05 s.
@@ -158,7 +158,7 @@ pub struct Scales {
     pub waves: Option<WaveScales>,
 }
 
-/// The scales of a scene's sea that set its error (docs/theory.md §16.5).
+/// The scales of a scene's sea that set its error (docs/theory.md §16.4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WaveScales {
     /// The mean circular frequency √(m₂/m₀) = 2π/T_z of the components
@@ -304,7 +304,7 @@ fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
 }
 
 /// The scales of the scene's sea (None: still water), or why the model does
-/// not cover it (docs/theory.md §16.5).
+/// not cover it (docs/theory.md §16.4).
 pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
     use crate::scene::waves::{StretchingSpec, WaveKind};
     let Some(w) = scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) else {

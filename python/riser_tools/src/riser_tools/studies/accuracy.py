@@ -7,6 +7,10 @@ The error (docs/theory.md, "The accuracy knob"): `riser run SCENE --heave A,T --
 
     e = max(|min - min_ref|, |mean - mean_ref|, |max - max_ref|) / max_ref.
 
+In waves (WAVE_CASES, docs/theory.md section 16.4): `riser run SCENE [--heave A,T] --set wave_... --duration D
+--window T0,T1 --json`, the same error over the case's own window (a regular wave: 20 to 40 s; an irregular
+sea: 20 to 220 s, 20 Tp, so that the window's extremes are those of the sea's largest wave groups).
+
 Grid phase: per calibration case, the reference (the finest mesh and step below, tolerance
 1e-10), two checks of it (half the elements, twice the step) and the grid elements x time step
 at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them),
