@@ -204,7 +204,11 @@ def write_doc(rows, docs, binary):
              "and max top tension's differences from the reference's, over the reference's max. Cost: the work, "
              "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
              "machine and only indicative); the cost ratio is the choice's work over the cheapest grid cell's "
-             "whose error is at or below the target.", ""]
+             "whose error is at or below the target. The cases in waves (from catenary_airy on; docs/theory.md "
+             "§16.4) run the sea given with `--set` over their own duration and steady window (a regular wave: 20 to "
+             "40 s; an irregular sea: 20 to 220 s, 20 Tp), with the heave if given; their runs at accuracy 1e-4 are "
+             "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for the "
+             "design motion (2.5 m at 10 s) as `riser run` without a motion and the FMU choose.", ""]
     for case, (scene, amp, period, _) in CASES.items():
         mine = [r for r in rows if r["case"] == case]
         ref = next((r for r in mine if r["kind"] == "reference"), None)
