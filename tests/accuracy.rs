@@ -144,12 +144,41 @@ fn without_accuracy_nothing_changes() {
 
 #[test]
 fn what_the_model_does_not_cover_is_refused_naming_why() {
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 13] = [
         (&["--set", "model=cable"], "does not cover the cable model"),
         (&["--set", "rho_infinity=1"], "does not cover rho_infinity = 1"),
         // the catenary's low point (z = -70.4 m) is 3.2 m above a seabed at -73.6 m: a heave of 2.5 m may touch it
         (&["--set", "seabed_z=-73.6", "--heave", "2.5,20"], "may touch the seabed only during the motion"),
-        (&["--set", "wave_kind=airy", "--set", "wave_height=2", "--set", "wave_period=12"], "does not cover waves"),
+        (
+            &["--set", "wave_kind=pierson_moskowitz", "--set", "wave_hs=4", "--set", "wave_tp=12"],
+            "does not cover waves of kind",
+        ),
+        (
+            &[
+                "--set",
+                "wave_kind=airy",
+                "--set",
+                "wave_height=2",
+                "--set",
+                "wave_period=12",
+                "--set",
+                "wave_direction=45",
+            ],
+            "does not cover waves travelling 45 deg from +x",
+        ),
+        (
+            &["--set", "wave_kind=airy", "--set", "wave_height=2", "--set", "wave_period=8"],
+            "period 8.000 s is shorter than the 10 s",
+        ),
+        (&["--set", "wave_kind=airy", "--set", "wave_height=12", "--set", "wave_period=12"], "higher than the 10 m"),
+        (
+            &["--set", "wave_kind=jonswap", "--set", "wave_hs=8", "--set", "wave_tp=12"],
+            "Hs 8.000 m is higher than the 6 m",
+        ),
+        (
+            &["--set", "wave_kind=airy", "--set", "wave_height=2", "--set", "wave_period=12", "--set", "accuracy=1e-4"],
+            "does not cover accuracy = 1e-4 in waves",
+        ),
         (&["--set", "hang_off_end=clamped"], "does not cover a clamped hang-off"),
         (&["--set", "hang_off_x=5"], "does not cover a hang-off offset"),
         (&["--set", "accuracy=5e-5"], "below 1e-4"),
@@ -163,4 +192,113 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
         assert!(!out.status.success(), "{args:?} ran");
         assert!(err.contains(message), "{args:?}: {err}");
     }
+}
+
+/// The still-water choices of the knob before the wave terms (issue 28), as
+/// `riser run SCENE --set accuracy=…` reported them on main: scene, target,
+/// n_elements, time_step, newton_tolerance, predicted error.
+const STILL_WATER_CHOICES: [(&str, f64, usize, f64, f64, f64); 12] = [
+    ("catenary", 1e-2, 10, 0.1, 1e-7, 0.0011911064122517297),
+    ("catenary", 1e-3, 10, 0.05, 1e-8, 0.000427510266084926),
+    ("catenary", 1e-4, 10, 0.0125, 1e-9, 6.20887412928452e-05),
+    ("lazy_wave", 1e-2, 10, 0.1, 1e-7, 0.006237173639966222),
+    ("lazy_wave", 1e-3, 20, 0.04, 1e-8, 0.0006148248940036574),
+    ("lazy_wave", 1e-4, 40, 0.01, 1e-9, 5.710329575812498e-05),
+    ("steel_catenary", 1e-2, 30, 0.1, 1e-7, 0.005832549383608028),
+    ("steel_catenary", 1e-3, 120, 0.05, 1e-8, 0.0006663452454621173),
+    ("steel_catenary", 1e-4, 240, 0.01, 1e-9, 5.28985201220265e-05),
+    ("docs/cases/lowe_langley_jumper.toml", 1e-2, 10, 0.1, 1e-7, 0.0012707841508072994),
+    ("docs/cases/lowe_langley_jumper.toml", 1e-3, 10, 0.05, 1e-8, 0.0005071880046404959),
+    ("docs/cases/lowe_langley_jumper.toml", 1e-4, 16, 0.0125, 1e-9, 6.586936599784208e-05),
+];
+
+#[test]
+fn the_still_water_choice_is_unchanged_by_the_wave_terms() {
+    use riser::sim::accuracy::{Excitation, choose};
+    for (scene, target, n, dt, tol, predicted) in STILL_WATER_CHOICES {
+        let path = format!("{}/{scene}", env!("CARGO_MANIFEST_DIR"));
+        let mut s = riser::scene::Scene::load(if scene.ends_with(".toml") { &path } else { scene }).unwrap();
+        s.analysis.accuracy = target;
+        for waves in [false, true] {
+            // an explicit still sea (`kind = "none"`) is still water
+            if waves {
+                s = s.with_overrides(&["wave_kind=none"]).unwrap();
+            }
+            let c = choose(&s, None, Default::default()).unwrap();
+            assert!(c.scales.waves.is_none());
+            assert_eq!(
+                (c.n_elements, c.time_step, c.newton_tolerance, c.predicted().to_bits()),
+                (n, dt, tol, predicted.to_bits()),
+                "{scene} at {target:e}"
+            );
+        }
+        // a motion given: the heave's own period and amplitude, as before
+        let c = choose(&s, Some(Excitation { period: 10.0, amplitude: 2.5 }), Default::default()).unwrap();
+        assert_eq!((c.n_elements, c.time_step), (n, dt), "{scene} at {target:e} with heave 2.5 m / 10 s");
+    }
+}
+
+/// The scenes in waves of the study (python/riser_tools/src/riser_tools/studies/accuracy.py's
+/// WAVE_CASES): case, scene, heave amplitude (m, 0: none) and period s,
+/// the sea's --set, duration s, steady window s.
+type WaveCase = (&'static str, &'static str, f64, f64, &'static [&'static str], f64, (f64, f64));
+const JONSWAP: &[&str] = &["wave_kind=jonswap", "wave_hs=6", "wave_tp=10", "wave_components=50", "wave_seed=1"];
+const WAVE_CASES: [WaveCase; 2] = [
+    ("catenary_jonswap_heave", "catenary", 2.5, 10.0, JONSWAP, 220.0, (20.0, 220.0)),
+    (
+        "jumper_airy",
+        "docs/cases/lowe_langley_jumper.toml",
+        0.0,
+        10.0,
+        &["wave_kind=airy", "wave_height=10", "wave_period=10"],
+        40.0,
+        (20.0, 40.0),
+    ),
+];
+
+/// Runs a case in waves at each target against its reference.
+fn reaches_its_targets_in_waves(case: &str, targets: &[f64]) {
+    let (_, scene, amplitude, period, sea, duration, (t0, t1)) = *WAVE_CASES.iter().find(|c| c.0 == case).unwrap();
+    let refs = reference(case);
+    let path = format!("{}/{scene}", env!("CARGO_MANIFEST_DIR"));
+    let scene = if scene.ends_with(".toml") { path.as_str() } else { scene };
+    for &target in targets {
+        let (duration, window, heave, acc) = (
+            format!("{duration}"),
+            format!("{t0},{t1}"),
+            format!("{amplitude},{period}"),
+            format!("accuracy={target}"),
+        );
+        let mut args = vec!["run", scene, "--duration", &duration, "--window", &window, "--json", "--set", &acc];
+        if amplitude > 0.0 {
+            args.extend(["--heave", &heave]);
+        }
+        for s in sea {
+            args.extend(["--set", s]);
+        }
+        let v = run_json(&args);
+        let tt: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let e = (0..3).map(|k| (tt[k] - refs[k]).abs()).fold(0.0, f64::max) / refs[2];
+        let c = &v["accuracy"];
+        assert!(c["wave_number"].as_f64().is_some(), "{case}: the choice has the sea's scales");
+        assert_eq!(c["n_elements"], v["n_elements"], "{case}");
+        assert_eq!(c["time_step"], v["time_step"], "{case}");
+        assert!(
+            e <= target,
+            "{case}, accuracy {target:e}: error {e:.2e} with {} elements, dt {} s (predicted {})",
+            v["n_elements"],
+            v["time_step"],
+            c["predicted_error"]
+        );
+    }
+}
+
+#[test]
+fn a_catenary_in_an_irregular_sea_and_heave_reaches_its_targets() {
+    reaches_its_targets_in_waves("catenary_jonswap_heave", &[1e-2, 1e-3]);
+}
+
+#[test]
+fn the_jumper_in_a_regular_wave_reaches_its_targets() {
+    reaches_its_targets_in_waves("jumper_airy", &[1e-2, 1e-3]);
 }

@@ -15,6 +15,17 @@
 //! [`cost`]; the Newton tolerance is [`TOLERANCE_PER_TARGET`] times the
 //! target. What the model was not calibrated on is refused
 //! ([`AccuracyError`]), not run with a guess.
+//!
+//! In waves (docs/theory.md §16.4) the error gains the sea's own terms,
+//!
+//!   e_w(h, Δt) = C_wt (a/A₀) (ω_w Δt)^{3/2} + C_wk (a/A₀) (h k_w)² + E_w,
+//!
+//! ω_w = √(m₂/m₀) = 2π/T_z the sea's mean frequency (a regular wave's 2π/T),
+//! a its amplitude (H/2 of a regular wave, H_s/2 of a spectrum), k_w its
+//! variance-weighted mean wave number (the length over which the wave force
+//! varies along the line, which the mesh must follow), E_w
+//! the floor the study's references themselves reach in waves; without waves
+//! the choice is the still-water model's, bit for bit.
 
 pub use super::error::AccuracyError;
 use super::error::RiserError;
@@ -60,6 +71,31 @@ pub const MIN_STEPS_PER_PERIOD: f64 = 75.0;
 /// FMU, whose master moves the vessel; `riser run` without a motion): the
 /// shortest period covered, [`MIN_PERIOD`].
 pub const DESIGN_EXCITATION: Excitation = Excitation { period: MIN_PERIOD, amplitude: 2.5 };
+/// The step constant C_wt of C_wt (a/A₀) (ω_w Δt)^{3/2} in waves (§16.4):
+/// the jumper's error in its regular wave falls from 4.1e-4 to 5.4e-5 from
+/// Δt = 0.1 to 0.025 s at 160 elements; with [`C_WAVE_MESH`] and
+/// [`WAVE_FLOOR`] the bound of its 10 elements at 0.05 s.
+pub const C_WAVE_TIME: f64 = 0.065;
+/// The mesh constant C_wk of C_wk (a/A₀) (h k_w)² in waves: the jumper's 10
+/// elements (h k_w = 0.68) in its regular wave, 5.2e-3.
+pub const C_WAVE_MESH: f64 = 0.02;
+/// The floor E_w of the error in waves: the scatter that does not fall with
+/// the mesh or the step in the study (the catenary in its regular wave: 1.8e-4
+/// to 3.5e-4 from 40 to 80 elements and 0.1 to 0.025 s; its steady window's
+/// min and max carry the line's axial ringing, its mean converges to 1e-6).
+pub const WAVE_FLOOR: f64 = 3e-4;
+/// The smallest target covered in waves (the references' own spread, above).
+pub const MIN_TARGET_WAVES: f64 = 1e-3;
+/// The shortest wave period (T, or T_p of a spectrum) covered, s.
+pub const MIN_WAVE_PERIOD: f64 = 10.0;
+/// The largest regular wave covered, H m (the jumper's 10 m).
+pub const MAX_WAVE_HEIGHT: f64 = 10.0;
+/// The largest significant wave height of a spectrum covered, m.
+pub const MAX_HS: f64 = 6.0;
+/// The steepest sea covered: H/λ of a regular wave, H_s/λ_p of a spectrum
+/// (the jumper's 10 m at 10 s, λ = 156 m).
+pub const MAX_WAVE_STEEPNESS: f64 = 0.065;
+
 /// The element counts the choice takes from.
 pub const ELEMENT_LADDER: [usize; 20] =
     [10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100, 120, 160, 200, 240, 320, 400, 480, 640, 800];
@@ -118,6 +154,22 @@ pub struct Scales {
     pub length: f64,
     /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
     pub touchdown_bending_length: Option<f64>,
+    /// The sea's scales (None: still water).
+    pub waves: Option<WaveScales>,
+}
+
+/// The scales of a scene's sea that set its error (docs/theory.md §16.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveScales {
+    /// The mean circular frequency √(m₂/m₀) = 2π/T_z of the components
+    /// (a regular wave's 2π/T), rad/s.
+    pub omega: f64,
+    /// H/2 of a regular wave, H_s/2 of a spectrum, m.
+    pub amplitude: f64,
+    /// The variance-weighted mean wave number Σ a² k / Σ a², rad/m.
+    pub wave_number: f64,
+    /// The period T of a regular wave, T_p of a spectrum, s.
+    pub period: f64,
 }
 
 /// The numerics chosen for a target.
@@ -172,7 +224,19 @@ impl Choice {
             self.scales.omega * self.time_step,
             self.excitation.amplitude,
             self.excitation.period
-        )
+        ) + &self
+            .scales
+            .waves
+            .map(|w| {
+                format!(
+                    "; in waves of amplitude {:.2} m, period {:.2} s: omega_w dt = {:.4}, h k_w = {:.3}",
+                    w.amplitude,
+                    w.period,
+                    w.omega * self.time_step,
+                    self.scales.length / self.n_elements as f64 * w.wave_number
+                )
+            })
+            .unwrap_or_default()
     }
 }
 
@@ -181,12 +245,20 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
     let h = s.length / n as f64;
     let contact =
         s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
-    C_CURVATURE * (h * s.curvature).powi(4) + contact
+    let still = C_CURVATURE * (h * s.curvature).powi(4) + contact;
+    match &s.waves {
+        None => still,
+        Some(w) => still + C_WAVE_MESH * w.amplitude / AMPLITUDE_SCALE * (h * w.wave_number).powi(2) + WAVE_FLOOR,
+    }
 }
 
 /// The temporal error of step `dt` s.
 pub fn time_error(s: &Scales, dt: f64) -> f64 {
-    C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5)
+    let still = C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5);
+    match &s.waves {
+        None => still,
+        Some(w) => still + C_WAVE_TIME * w.amplitude / AMPLITUDE_SCALE * (w.omega * dt).powf(1.5),
+    }
 }
 
 /// The relative cost of a run of `n` elements at step `dt`: per step, the
@@ -209,13 +281,6 @@ fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
              tension by itself, docs/study.md)",
         );
     }
-    if scene.waves.as_ref().is_some_and(|w| w.kind != crate::scene::waves::WaveKind::None) {
-        return not(
-            "waves",
-            "the study has no waves: their kinematics along the line and the surface crossing set errors of their \
-             own",
-        );
-    }
     if !scene.section.is_empty() {
         return not("sections", "the study's lines are uniform (buoyancy modules aside)");
     }
@@ -236,6 +301,98 @@ fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
         return not("a hang-off offset from the vessel's reference point", "the study moves the hang-off itself");
     }
     Ok(())
+}
+
+/// The scales of the scene's sea (None: still water), or why the model does
+/// not cover it (docs/theory.md §16.4).
+pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
+    use crate::scene::waves::{StretchingSpec, WaveKind};
+    let Some(w) = scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) else {
+        return Ok(None);
+    };
+    let not = |feature: String, reason: &str| -> Result<Option<WaveScales>, RiserError> {
+        Err(AccuracyError::NotCovered { feature, reason: reason.to_string() }.into())
+    };
+    if !matches!(w.kind, WaveKind::Airy | WaveKind::Jonswap) {
+        return not(
+            format!("waves of kind \"{}\"", w.kind.name()),
+            "the study's seas are a regular Airy wave and a JONSWAP spectrum",
+        );
+    }
+    if w.direction.unwrap_or(0.0) != 0.0 {
+        return not(
+            format!("waves travelling {} deg from +x", w.direction.unwrap_or(0.0)),
+            "the study's waves travel along +x, in the plane of its lines; across it they load the line out of \
+             its plane",
+        );
+    }
+    if w.stretching.unwrap_or_default() != StretchingSpec::Wheeler {
+        return not(
+            format!("{} stretching", w.stretching.unwrap_or_default().name()),
+            "the study's seas have the default Wheeler stretching",
+        );
+    }
+    let sea = crate::loads::waves::sea_of(scene, 0.0)
+        .map_err(|e| RiserError::Scene(crate::scene::SceneError::Invalid(vec![e])))?;
+    let Some(sea) = sea else {
+        return Ok(None);
+    };
+    let regular = w.kind == WaveKind::Airy;
+    // a spectrum's Tp and Hs as the scene gives them (the realised peak is
+    // the component nearest it; the realised Hs a little below, §13.3)
+    let (period, height, max_height) = if regular {
+        (sea.peak_period(), 2.0 * sea.max_elevation(), MAX_WAVE_HEIGHT)
+    } else {
+        (w.tp.unwrap_or(f64::NAN), w.hs.unwrap_or(f64::NAN), MAX_HS)
+    };
+    let what = if regular { "a regular wave" } else { "a sea" };
+    if period.is_nan() || period < MIN_WAVE_PERIOD {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "{what} of {} {period:.3} s is shorter than the {MIN_WAVE_PERIOD} s the error model covers in waves",
+                if regular { "period" } else { "peak period" }
+            ),
+        }
+        .into());
+    }
+    if height.is_nan() || height > max_height * (1.0 + 1e-9) {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "{what} of {} {height:.3} m is higher than the {max_height} m the error model covers",
+                if regular { "height" } else { "Hs" }
+            ),
+        }
+        .into());
+    }
+    let components = sea.components();
+    let numbers = sea.wave_numbers();
+    let a_max = components.iter().map(|c| c.amplitude.abs()).fold(0.0, f64::max);
+    let (peak, _) = components
+        .iter()
+        .enumerate()
+        .fold((0, -1.0), |(i, a), (j, c)| if c.amplitude.abs() > a { (j, c.amplitude.abs()) } else { (i, a) });
+    let steepness = height * numbers[peak] / (2.0 * std::f64::consts::PI);
+    if steepness > MAX_WAVE_STEEPNESS {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "{what} of steepness {} = {steepness:.3} is steeper than the {MAX_WAVE_STEEPNESS} the error model \
+                 covers",
+                if regular { "H/lambda" } else { "Hs/lambda_p" }
+            ),
+        }
+        .into());
+    }
+    debug_assert!(a_max > 0.0);
+    // the variance-weighted means: ω_w² = m₂/m₀ (2π/T_z) and k_w = Σ a² k / Σ a²
+    // (in deep water k(ω_w)); a regular wave's own ω and k
+    let m0: f64 = components.iter().map(|c| c.amplitude * c.amplitude).sum();
+    let omega2: f64 = components
+        .iter()
+        .map(|c| c.amplitude * c.amplitude * (2.0 * std::f64::consts::PI * c.frequency).powi(2))
+        .sum::<f64>()
+        / m0;
+    let wave_number = components.iter().zip(&numbers).map(|(c, k)| c.amplitude * c.amplitude * k).sum::<f64>() / m0;
+    Ok(Some(WaveScales { omega: omega2.sqrt(), amplitude: 0.5 * height, wave_number, period }))
 }
 
 /// The scales of `scene` for `excitation`: the static line's largest
@@ -282,6 +439,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         amplitude: excitation.amplitude,
         length: scene.line.length,
         touchdown_bending_length,
+        waves: wave_scales(scene)?,
     })
 }
 
@@ -312,6 +470,19 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
         }
         .into());
     }
+    let waves = wave_scales(scene)?;
+    if waves.is_some() && target < MIN_TARGET_WAVES {
+        return Err(AccuracyError::NotCovered {
+            feature: format!("accuracy = {target:e} in waves"),
+            reason: format!(
+                "below {MIN_TARGET_WAVES:e}, the smallest the model covers in waves: the study's references \
+                 in a regular wave agree with their own checks only to about 1.4e-4"
+            ),
+        }
+        .into());
+    }
+    // the fewest steps a period takes holds for the sea's peak period too
+    let period = waves.map_or(excitation.period, |w| excitation.period.min(2.0 * std::f64::consts::PI / w.omega));
     let s = scales(scene, &excitation)?;
     let budget = target.min(MAX_TARGET) / SAFETY;
     let an = &scene.analysis;
@@ -319,11 +490,7 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
     let dts: Vec<f64> = if pinned.time_step {
         vec![an.time_step]
     } else {
-        STEP_LADDER
-            .iter()
-            .copied()
-            .filter(|&dt| dt * MIN_STEPS_PER_PERIOD <= excitation.period * (1.0 + 1e-9))
-            .collect()
+        STEP_LADDER.iter().copied().filter(|&dt| dt * MIN_STEPS_PER_PERIOD <= period * (1.0 + 1e-9)).collect()
     };
     let mut best: Option<(f64, usize, f64)> = None;
     for &n in &ns {

@@ -64,3 +64,27 @@ def test_without_accuracy_the_scene_numerics_are_read_back(fmu_path, unzipped):
 def test_a_scene_the_model_does_not_cover_is_an_error(fmu_path, unzipped):
     with pytest.raises(Exception):
         started_slave(fmu_path, unzipped, scene="catenary", strings={"model": "cable"}, reals={"accuracy": 1e-3})
+
+
+def test_a_scene_in_waves_gets_the_cli_choice(fmu_path, unzipped, riser_bin):
+    """A sea the error model covers (docs/theory.md section 16.5): the FMU chooses what the CLI
+    chooses for the same scene and sea."""
+    strings = {"wave_kind": "jonswap"}
+    reals = {"accuracy": 1e-3, "wave_hs": 6.0, "wave_tp": 10.0}
+    integers = {"wave_components": 50, "wave_seed": 1}
+    s, vr = started_slave(fmu_path, unzipped, scene="catenary", strings=strings, reals=reals, integers=integers)
+    try:
+        c = cli_choice(riser_bin, "catenary", {**strings, **reals, **integers})
+        assert c["wave_number"] is not None
+        assert read_numerics(s, vr) == (c["n_elements"], c["time_step"], c["newton_tolerance"])
+        s.doStep(0.0, 0.2)
+        assert s.getReal([vr["top_tension"]])[0] > 0.0
+    finally:
+        s.terminate()
+        s.freeInstance()
+
+
+def test_a_sea_the_model_does_not_cover_is_an_error(fmu_path, unzipped):
+    with pytest.raises(Exception):
+        started_slave(fmu_path, unzipped, scene="catenary", strings={"wave_kind": "airy"},
+                      reals={"accuracy": 1e-3, "wave_height": 2.0, "wave_period": 12.0, "wave_direction": 45.0})

@@ -350,6 +350,10 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
             "touchdown_bending_length": c.scales.touchdown_bending_length,
             "motion_period": c.excitation.period,
             "motion_amplitude": c.excitation.amplitude,
+            "wave_omega": c.scales.waves.map(|w| w.omega),
+            "wave_amplitude": c.scales.waves.map(|w| w.amplitude),
+            "wave_number": c.scales.waves.map(|w| w.wave_number),
+            "length": c.scales.length,
         }),
     }
 }

@@ -7,6 +7,10 @@ The error (docs/theory.md, "The accuracy knob"): `riser run SCENE --heave A,T --
 
     e = max(|min - min_ref|, |mean - mean_ref|, |max - max_ref|) / max_ref.
 
+In waves (WAVE_CASES, docs/theory.md section 16.4): `riser run SCENE [--heave A,T] --set wave_... --duration D
+--window T0,T1 --json`, the same error over the case's own window (a regular wave: 20 to 40 s; an irregular
+sea: 20 to 220 s, 20 Tp, so that the window's extremes are those of the sea's largest wave groups).
+
 Grid phase: per calibration case, the reference (the finest mesh and step below, tolerance
 1e-10), two checks of it (half the elements, twice the step) and the grid elements x time step
 at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them),
@@ -34,6 +38,26 @@ CASES = {
     # the model's shortest period (MIN_PERIOD)
     "catenary_T10": ("catenary", 2.5, 10.0, [10, 20, 40, 80]),
 }
+# the scenes in waves (issue 28): name -> (scene, heave amplitude m (0: none), period s of the window's
+# start and of the heave, elements, the sea's --set, the run's duration s, its steady window (t0, t1) s)
+AIRY_CAT = ["wave_kind=airy", "wave_height=6", "wave_period=10"]
+AIRY_JUMPER = ["wave_kind=airy", "wave_height=10", "wave_period=10"]
+JONSWAP = ["wave_kind=jonswap", "wave_hs=6", "wave_tp=10", "wave_components=50", "wave_seed=1"]
+JUMPER = "docs/cases/lowe_langley_jumper.toml"
+# a regular wave: the sea's ramp (one period, 10 s) and one period more, then 2 periods (as the heave's 2T
+# to 4T); an irregular sea: the ramp (Tp) and one Tp more, then 200 s = 20 Tp, about 25 zero up-crossings:
+# the window's extremes are those of the sea's largest wave groups, not of one wave (WINDOW_IRREGULAR)
+WINDOW_IRREGULAR = (20.0, 220.0)
+WAVE_CASES = {
+    "catenary_airy": ("catenary", 0.0, 10.0, [10, 20, 40, 80], AIRY_CAT, 40.0, (20.0, 40.0)),
+    "catenary_airy_heave": ("catenary", 2.5, 10.0, [10, 20, 40, 80], AIRY_CAT, 40.0, (20.0, 40.0)),
+    "catenary_jonswap": ("catenary", 0.0, 10.0, [10, 20, 40, 80], JONSWAP, 220.0, WINDOW_IRREGULAR),
+    "catenary_jonswap_heave": ("catenary", 2.5, 10.0, [10, 20, 40, 80], JONSWAP, 220.0, WINDOW_IRREGULAR),
+    "jumper_airy": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
+    "jumper_airy_heave": (JUMPER, 2.5, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
+    "jumper_jonswap": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], JONSWAP, 220.0, WINDOW_IRREGULAR),
+}
+CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
@@ -41,9 +65,27 @@ FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accura
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
 
-def run(binary, case, sets):
+def command(binary, case):
+    """`riser run` of a case without its numerics: the heave (if any), the sea (if any), the duration
+    and, in waves, the steady window."""
     scene, amp, period, _ = CASES[case]
-    cmd = [binary, "run", scene, "--heave", f"{amp},{period}", "--duration", f"{4 * period:g}", "--json"]
+    if case not in WAVE_CASES:
+        return [binary, "run", scene, "--heave", f"{amp},{period}", "--duration", f"{4 * period:g}", "--json"]
+    *_, sea, duration, (t0, t1) = WAVE_CASES[case]
+    cmd = [binary, "run", scene, "--duration", f"{duration:g}", "--window", f"{t0:g},{t1:g}", "--json"]
+    if amp > 0:
+        cmd += ["--heave", f"{amp},{period}"]
+    for s in sea:
+        cmd += ["--set", s]
+    return cmd
+
+
+def duration_of(case):
+    return WAVE_CASES[case][5] if case in WAVE_CASES else 4 * CASES[case][2]
+
+
+def run(binary, case, sets):
+    cmd = command(binary, case)
     for k, v in sets.items():
         cmd += ["--set", f"{k}={v}"]
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -66,8 +108,8 @@ def error(row, ref):
 def work(row):
     """The cost of a run as the work of its Newton iterations: elements x steps x iterations per step
     (deterministic, unlike the wall time on a shared machine)."""
-    period = CASES[row["case"]][2]
-    return int(row["n_elements"]) * round(4 * period / float(row["time_step"])) * float(row["newton_per_step"])
+    return int(row["n_elements"]) * round(duration_of(row["case"]) / float(row["time_step"])) * float(
+        row["newton_per_step"])
 
 
 def load(path):
@@ -144,9 +186,12 @@ def verify(binary, path, rows):
 
 def predicted(binary, case, target):
     """The error model's prediction for a case and target (a 0.2 s run reports the choice)."""
-    scene, amp, period, _ = CASES[case]
-    p = subprocess.run([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json", "--set",
-                        f"accuracy={target}"], capture_output=True, text=True)
+    cmd = command(binary, case)
+    cmd[cmd.index("--duration") + 1] = "0.2"
+    if "--window" in cmd:
+        i = cmd.index("--window")
+        del cmd[i:i + 2]
+    p = subprocess.run(cmd + ["--set", f"accuracy={target}"], capture_output=True, text=True)
     line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
     return json.loads(line)["accuracy"]["predicted_error"] if line else None
 
@@ -159,13 +204,23 @@ def write_doc(rows, docs, binary):
              "and max top tension's differences from the reference's, over the reference's max. Cost: the work, "
              "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
              "machine and only indicative); the cost ratio is the choice's work over the cheapest grid cell's "
-             "whose error is at or below the target.", ""]
+             "whose error is at or below the target. The cases in waves (from catenary_airy on; docs/theory.md "
+             "§16.4) run the sea given with `--set` over their own duration and steady window (a regular wave: 20 to "
+             "40 s; an irregular sea: 20 to 220 s, 20 Tp), with the heave if given; their runs at accuracy 1e-4 are "
+             "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for the "
+             "design motion (2.5 m at 10 s) as `riser run` without a motion and the FMU choose.", ""]
     for case, (scene, amp, period, _) in CASES.items():
         mine = [r for r in rows if r["case"] == case]
         ref = next((r for r in mine if r["kind"] == "reference"), None)
         if ref is None or ref["completed"] != "True":
             continue
-        lines += [f"## {case}", "", f"`{scene}`, heave {amp} m / {period:g} s, {4 * period:g} s; reference "
+        if case in WAVE_CASES:
+            *_, sea, duration, (t0, t1) = WAVE_CASES[case]
+            what = (f"`{scene}`, " + (f"heave {amp} m / {period:g} s, " if amp > 0 else "no heave, ")
+                    + f"`--set {','.join(sea)}`, {duration:g} s, steady window {t0:g} to {t1:g} s")
+        else:
+            what = f"`{scene}`, heave {amp} m / {period:g} s, {4 * period:g} s"
+        lines += [f"## {case}", "", f"{what}; reference "
                   f"{ref['n_elements']} elements, dt {ref['time_step']} s, tolerance 1e-10 (steady top tension "
                   f"{float(ref['tt_min']) / 1e3:.3f} / {float(ref['tt_mean']) / 1e3:.3f} / "
                   f"{float(ref['tt_max']) / 1e3:.3f} kN).", ""]
