@@ -593,7 +593,7 @@ impl Instance {
                 result = Err(e);
                 break;
             }
-            let f = sim.outputs().top_force;
+            let f = sim.integrator.top_force(&sim.state);
             impulse += (f_prev + f) * (0.5 * (target - t_prev));
             (f_prev, t_prev) = (f, target);
         }

@@ -171,6 +171,16 @@ impl Engine {
         }
     }
 
+    /// The force the line exerts on the vessel in `state`, N: the
+    /// [`Outputs::top_force`] of [`Engine::outputs`] (minus the hang-off's
+    /// reaction) without the rest of the outputs.
+    pub fn top_force(&self, state: &State) -> V3 {
+        -match self {
+            Engine::Rod(i) => i.model.end_reactions(state)[0],
+            Engine::Cable(i) => i.model.end_reactions(state)[0],
+        }
+    }
+
     /// Tension (N) and curvature (1/m) at every node of `state` (the
     /// models' `node_profile`).
     pub fn node_profile(&self, state: &State) -> Vec<(f64, f64)> {
