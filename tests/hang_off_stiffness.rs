@@ -7,6 +7,8 @@
 //!   the static equations re-solved — the meaning of "the tangent stiffness
 //!   at the current state" (docs/theory.md §8.3).
 
+mod common;
+
 use riser::math::{M3, V3};
 use riser::model::RodConfig;
 use riser::model::cable::linearized::CableLinearized;
@@ -22,40 +24,9 @@ use riser::solve::eigen::hang_off_stiffness;
 /// Solves R_free(q) = `target` (the supports held where `q` has them) by
 /// Newton with backtracking from `q` (the cable's stiff axial law makes plain
 /// Newton overshoot); the support reaction at the hang-off, N.
-fn reaction_with_dead_loads<P: StaticEquations>(p: &P, mut q: P::Config, target: &[f64]) -> V3 {
-    let n = p.n_dof();
-    let mut sys = p.new_system().unwrap();
-    let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
-    let off_balance = |q: &P::Config, r: &mut [f64], sys: Option<&mut riser::math::band::BandedSystem>| {
-        p.residual(q, r, sys);
-        for (ri, ti) in r.iter_mut().zip(target) {
-            *ri -= ti;
-        }
-        p.relative(r)
-    };
-    let mut rel = off_balance(&q, &mut r, Some(&mut sys));
-    for _ in 0..60 {
-        if rel < 1e-13 {
-            break;
-        }
-        p.correction(&mut sys, &mut r, &mut du).unwrap();
-        let mut step = 1.0;
-        let mut trial = q.clone();
-        p.apply_increment(&mut trial, &du);
-        let mut trial_rel = off_balance(&trial, &mut r, None);
-        while trial_rel > rel && step > 1e-6 {
-            step *= 0.5;
-            trial = q.clone();
-            let part: Vec<f64> = du.iter().map(|v| v * step).collect();
-            p.apply_increment(&mut trial, &part);
-            trial_rel = off_balance(&trial, &mut r, None);
-        }
-        if trial_rel >= rel && rel < 1e-10 {
-            break; // at the round-off floor
-        }
-        q = trial;
-        rel = off_balance(&q, &mut r, Some(&mut sys));
-    }
+fn reaction_with_dead_loads<P: StaticEquations>(p: &P, q: P::Config, target: &[f64]) -> V3 {
+    let (q, _) = common::solve_with_dead_loads(p, q, target, |r| p.relative(r));
+    let mut r = vec![0.0; p.n_dof()];
     p.residual(&q, &mut r, None);
     V3::new(r[0], r[1], r[2])
 }

@@ -26,46 +26,18 @@ use riser::solve::eigen::{hang_off_stiffness, hang_off_stiffness6};
 /// tests/hang_off_stiffness.rs) of R_free(q) = `target` (the dead loads of a
 /// frozen state; zero at a static state), the supports held where `q` has them;
 /// converged: the free residual's largest within 1e-9 of the reaction.
-fn solve_static(p: &StaticProblem, mut q: RodConfig, target: &[f64]) -> RodConfig {
-    let n = p.n_dof();
-    let mut sys = p.new_system().unwrap();
-    let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
+fn solve_static(p: &StaticProblem, q: RodConfig, target: &[f64]) -> RodConfig {
     // the largest free residual over the hang-off's reaction (a neutrally
     // buoyant line has no weight to scale by)
     let mut fixed = p.rod.fixed_dofs();
     fixed.sort_unstable();
-    let off_balance = |q: &RodConfig, r: &mut [f64], sys: Option<&mut riser::math::band::BandedSystem>| {
-        p.residual(q, r, sys);
-        for (ri, ti) in r.iter_mut().zip(target) {
-            *ri -= ti;
-        }
+    let n = p.n_dof();
+    let measure = |r: &[f64]| {
         let free = (0..n).filter(|i| fixed.binary_search(i).is_err()).fold(0.0f64, |a, i| a.max(r[i].abs()));
         let reaction = V3::from_fn(|c, _| r[c] + target.get(c).unwrap_or(&0.0));
         free / reaction.norm()
     };
-    let mut rel = off_balance(&q, &mut r, Some(&mut sys));
-    for _ in 0..60 {
-        if rel < 1e-13 {
-            break;
-        }
-        p.correction(&mut sys, &mut r, &mut du).unwrap();
-        let mut step = 1.0;
-        let mut trial = q.clone();
-        p.apply_increment(&mut trial, &du);
-        let mut trial_rel = off_balance(&trial, &mut r, None);
-        while trial_rel > rel && step > 1e-6 {
-            step *= 0.5;
-            trial = q.clone();
-            let part: Vec<f64> = du.iter().map(|v| v * step).collect();
-            p.apply_increment(&mut trial, &part);
-            trial_rel = off_balance(&trial, &mut r, None);
-        }
-        if trial_rel >= rel && rel < 1e-10 {
-            break;
-        }
-        q = trial;
-        rel = off_balance(&q, &mut r, Some(&mut sys));
-    }
+    let (q, rel) = common::solve_with_dead_loads(p, q, target, measure);
     assert!(rel < 1e-9, "statics did not converge: {rel:.2e}");
     q
 }

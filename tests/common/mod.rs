@@ -110,3 +110,51 @@ pub fn assert_plane_pairs(what: &str, got: &[f64], exact: &[f64], tol: f64) {
         }
     }
 }
+
+/// Newton with backtracking (halving the step while the off-balance grows;
+/// the cable's stiff axial law makes plain Newton overshoot) from `q` for
+/// R_free(q) = `target` (dead loads; zero at a static state), the supports
+/// held where `q` has them, down to 1e-13 or the round-off floor. The
+/// off-balance is `measure` of R − target. Returns the solution and its
+/// off-balance.
+pub fn solve_with_dead_loads<P: riser::model::statics::StaticEquations>(
+    p: &P,
+    mut q: P::Config,
+    target: &[f64],
+    measure: impl Fn(&[f64]) -> f64,
+) -> (P::Config, f64) {
+    let n = p.n_dof();
+    let mut sys = p.new_system().unwrap();
+    let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
+    let off_balance = |q: &P::Config, r: &mut [f64], sys: Option<&mut riser::math::band::BandedSystem>| {
+        p.residual(q, r, sys);
+        for (ri, ti) in r.iter_mut().zip(target) {
+            *ri -= ti;
+        }
+        measure(r)
+    };
+    let mut rel = off_balance(&q, &mut r, Some(&mut sys));
+    for _ in 0..60 {
+        if rel < 1e-13 {
+            break;
+        }
+        p.correction(&mut sys, &mut r, &mut du).unwrap();
+        let mut step = 1.0;
+        let mut trial = q.clone();
+        p.apply_increment(&mut trial, &du);
+        let mut trial_rel = off_balance(&trial, &mut r, None);
+        while trial_rel > rel && step > 1e-6 {
+            step *= 0.5;
+            trial = q.clone();
+            let part: Vec<f64> = du.iter().map(|v| v * step).collect();
+            p.apply_increment(&mut trial, &part);
+            trial_rel = off_balance(&trial, &mut r, None);
+        }
+        if trial_rel >= rel && rel < 1e-10 {
+            break; // at the round-off floor
+        }
+        q = trial;
+        rel = off_balance(&q, &mut r, Some(&mut sys));
+    }
+    (q, rel)
+}
