@@ -29,6 +29,19 @@ OFFSET = {"hang_off_x": RHO[0], "hang_off_y": RHO[1], "hang_off_z": RHO[2]}
 RAMP_POSE, SETTLE, AVERAGE, TOL_HELD = 60.0, 400.0, 200.0, 1e-6
 
 
+def worst_block_error(j, fd, what, tol=1e-5):
+    """The 12 x 6 derivative against its finite differences, block by 3 x 3 block (force, moment,
+    vessel force, vessel moment against translations, rotations): each block's max |J - FD| over
+    its max |FD| within `tol`; the worst of them."""
+    worst = 0.0
+    for bi in range(4):
+        for bj in range(2):
+            b = (slice(3 * bi, 3 * bi + 3), slice(3 * bj, 3 * bj + 3))
+            err = np.abs(j[b] - fd[b]).max() / np.abs(fd[b]).max()
+            worst = max(worst, err)
+            assert err <= tol, (what, bi, bj, j[b].tolist(), fd[b].tolist(), err)
+    return worst
+
 def rot(axis, a):
     c, s = np.cos(a), np.sin(a)
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
@@ -92,13 +105,7 @@ def test_the_6x6_directional_derivative_is_the_statics_of_the_moved_and_rotated_
         e[k] = delta[k]
         fd[:, k] = (pose_loads(riser_bin, scene, model, anchor0, e)
                     - pose_loads(riser_bin, scene, model, anchor0, -e)) / (2 * delta[k])
-    worst = 0.0
-    for bi in range(4):
-        for bj in range(2):
-            b = (slice(3 * bi, 3 * bi + 3), slice(3 * bj, 3 * bj + 3))
-            err = np.abs(j[b] - fd[b]).max() / np.abs(fd[b]).max()
-            worst = max(worst, err)
-            assert err <= 1e-5, (scene, model, bi, bj, j[b].tolist(), fd[b].tolist(), err)
+    worst = worst_block_error(j, fd, (scene, model))
     print(f"{scene} ({model}): worst block max|J - FD|/max|FD| = {worst:.2e}")
 
 
@@ -156,13 +163,7 @@ def test_the_12x6_of_a_clamped_or_flex_joint_end_is_the_statics_of_the_moved_and
         e[k] = delta[k]
         fd[:, k] = (end_pose_loads(vessel_statics, "catenary", end, e)
                     - end_pose_loads(vessel_statics, "catenary", end, -e)) / (2 * delta[k])
-    worst = 0.0
-    for bi in range(4):
-        for bj in range(2):
-            b = (slice(3 * bi, 3 * bi + 3), slice(3 * bj, 3 * bj + 3))
-            err = np.abs(j[b] - fd[b]).max() / np.abs(fd[b]).max()
-            worst = max(worst, err)
-            assert err <= 1e-5, (end, bi, bj, j[b].tolist(), fd[b].tolist(), err)
+    worst = worst_block_error(j, fd, end)
     # the end moment's part: d(top_moment)/d(rotations) less the arm's (d theta x R rho) x F + R rho x dF
     f0, arm = loads0[:3], RHO
     arm_part = np.array([np.cross(np.cross(np.eye(3)[c], arm), f0) + np.cross(arm, j[0:3, 3 + c])
