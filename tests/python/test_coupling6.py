@@ -73,7 +73,7 @@ def test_at_0_25_s_the_loop_is_riser_one_way_at_that_step_and_the_velocities_bri
     # of t_n for the step from t_n and nothing else, so what the window misses is riser's one-way
     # answer at that step. Fed the poses alone (velocities unset: the displacement design), it
     # misses by 1.76 %: the design's curvature error rings the line's 4 Hz resonance; with the
-    # velocities, the five-point design of both (§7.4) leaves a quarter of that
+    # velocities, the five-point design of both (§7.4) leaves a fifth of that (0.33 %)
     h = 0.25
     two = fixed_step6(fmu_path, vessel6_fmu, h, 50.0, riser=RISER)
     same = reference6(fmu_path, two, h_ref=h, riser={**RISER, "time_step": 0.05})

@@ -10,7 +10,11 @@ the buoy's recorded motion gives the same window, so the loop's tension is the l
 the buoy's motion, with nothing of the exchange's own in it. At 0.2 s the line's resonance
 aliases into any pass band of the sampled force; riser's mean force over the step
 (top_force_z_mean, the trapezoid rule over its internal steps), low-passed at 0.25 Hz, keeps the
-loop bounded and within 0.25 % of its own 0.01 s run."""
+loop bounded and within 0.25 % of its own 0.01 s run. At 0.5 s the same exchange is within 0.35 %
+(it missed by 1.1-1.3 % while riser's design with both inputs (docs/theory.md §7.4) took the
+buoy's velocities for motion where they are off its positions' slope: a body that integrates a
+held force reports velocities off by −Ḟ h²/(12 M), 3e-4 m/s here; the fit now has that offset as
+a nuisance)."""
 import numpy as np
 import pytest
 
@@ -82,6 +86,30 @@ def test_with_the_step_mean_low_passed_the_buoy_loop_at_0_2_s_is_within_1_percen
     assert np.all(np.abs(a - b) <= 0.01 * b), (a, b)
     assert max(m["pieces"][5:]) < 5e3
     assert np.all(np.abs(b - reference["window"]) <= 1e-3 * b), (b, reference["window"])
+
+
+def test_with_the_step_mean_low_passed_the_buoy_loop_at_0_5_s_is_within_1_percent_of_the_0_01_s_run(
+        fmu_path, body_fmu, reference_mean):
+    # the exchange of the 0.2 s test at 0.5 s: bounded (peak-to-peak below 5 kN in every 5 s after
+    # 30 s; measured 2.8 kN) and the window within 1 % of its 0.01 s run (measured 0.24 %, 0.33 %,
+    # 0.01 %; 1.13 %, 1.32 % when riser fitted the buoy's velocities as motion). The buoy integrates
+    # riser's force held over 0.5 s, so its velocities are off the slope of its positions by
+    # −Ḟ h²/(12 M) (measured against a sixth-order central difference of the positions: about
+    # 2e-4 m/s rms, against 1e-6 m/s for the 0.01 s run's motion sampled at 0.5 s), which riser's
+    # design with both inputs (docs/theory.md §7.4, (7.10)) takes as a nuisance
+    from riser_tools.coupling_exchange import buoy_parameters, measure
+    m = measure(fmu_path, body_fmu, 0.5, body=buoy_parameters(**MEAN))
+    a, b = m["window"], reference_mean["window"]
+    print(f"0.5 s: {a} against {b}, pieces {m['pieces']}")
+    assert np.all(np.abs(a - b) <= 0.01 * b), (a, b)
+    assert max(m["pieces"][5:]) < 5e3
+    # the case the fix is for: the loop's velocities are off its positions' slope
+    run = m["run"]
+    c = np.array([-1, 9, -45, 0, 45, -9, 1]) / 60.0
+    slope = np.convolve(run["heave"], c[::-1], "valid") / 0.5
+    offset = (run["heave_velocity"][3:-3] - slope)[run["t"][3:-3] >= 20.0]
+    print(f"0.5 s: velocity off the positions' slope by {np.sqrt(np.mean(offset ** 2)):.2e} m/s rms")
+    assert np.sqrt(np.mean(offset ** 2)) > 1e-4
 
 
 def test_the_step_mean_is_the_trapezoid_of_the_force_and_is_part_of_the_fmu_state(fmu_path, unzipped):

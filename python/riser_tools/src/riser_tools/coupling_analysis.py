@@ -111,8 +111,9 @@ CANDIDATES = [
 class BothPredictor:
     """The design of `both` at uniform steps h ≥ 0.21 s (src/fmi/input_path.rs VELOCITY_DESIGN,
     docs/theory.md §7.4): the last `n` displacements and velocities written, in the least-squares
-    sense, as a quintic Q and its slope plus an alternating nuisance in each."""
-    name: str = "both: quintic, 5 points of displacement and velocity, two nuisances"
+    sense, as a quintic Q and its slope plus an alternating nuisance in each and an offset of the
+    velocities from Q's slope (7.10)."""
+    name: str = "both: quintic, 5 points of displacement and velocity, three nuisances"
     n: int = 5
     min_h: float = 0.21
 
@@ -126,10 +127,10 @@ def both_weights(p: BothPredictor = BOTH):
     rows = []
     for k in range(p.n):
         s = -float(k)
-        rows.append([s ** j for j in range(6)] + [(-1.0) ** k, 0.0])
+        rows.append([s ** j for j in range(6)] + [(-1.0) ** k, 0.0, 0.0])
     for k in range(p.n):
         s = -float(k)
-        rows.append([j * s ** (j - 1) if j else 0.0 for j in range(6)] + [0.0, (-1.0) ** k])
+        rows.append([j * s ** (j - 1) if j else 0.0 for j in range(6)] + [0.0, (-1.0) ** k, 1.0])
     inv = np.linalg.pinv(np.array(rows))[:6]
     j = np.arange(6)
     w = np.array([np.ones(6), j * 1.0, j * (j - 1.0)]) @ inv

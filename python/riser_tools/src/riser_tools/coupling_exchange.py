@@ -28,7 +28,9 @@ What the measurements say (libcosim, `measure`; docs/theory.md §7.3): the loop 
 line's axial resonance (3.8–4.4 Hz), where |K| / ((M + A) ω²) is 2–11 for the buoy and 0.05–0.28
 for the vessel (`resonance_gain`); F_n, the AB holds and the added-mass hold all grow; F_n
 low-passed at 0.5 Hz is bounded and within 0.07 % at 0.05–0.1 s, and the step mean low-passed at
-0.25 Hz at 0.05–0.2 s (0.23 %); 0.5 s stays 1.1–1.3 % off, riser's one-way error at that step.
+0.25 Hz at 0.05–0.5 s (0.23 % at 0.2 s, 0.33 % at 0.5 s: it missed 0.5 s by 1.1–1.3 % while riser fitted
+the buoy's velocities as motion, where a body integrating a held force reports them off its positions'
+slope by −Ḟ h²/(12 M); theory §7.4).
 
 The loop is simulated in time, linear (riser alone: F_n = Σ r_u[k] x_{n−1−k} + Σ r_v[k] v_{n−1−k},
 with the velocities in the fit at h ≥ 0.21 s as the FMU does when both inputs are connected,
