@@ -67,9 +67,16 @@ pub const MIN_PERIOD: f64 = 10.0;
 pub const MAX_AMPLITUDE: f64 = 10.0;
 /// The fewest steps a period of the motion the choice takes: (16.2) bounds
 /// every grid point of the study up to ω Δt = 2π/75 (the steel catenary at
-/// 15 s and 0.2 s); at 50 steps a period (the catenary at 10 s and 0.2 s) it
-/// under-predicts 1.7-fold.
+/// 15 s and 0.2 s); at 50 steps a period it under-predicts in waves (the
+/// jumper's 10 elements at 0.2 s in its 10 s wave: 4-fold).
 pub const MIN_STEPS_PER_PERIOD: f64 = 75.0;
+/// The least slack, as a fraction of the line's length, that the motion must
+/// leave between the line and the chord from its anchor to the hang-off's
+/// farthest position, L − (|r_anchor| + A) ≥ [`MIN_SLACK`] L (docs/theory.md
+/// 16.5): the study's tightest, the catenary at 2.5 m, keeps 5.3 %; with 10 m
+/// its chord reaches its length, the line snatches taut (3.8× its static
+/// tension) and the model's choices miss their targets 4- to 40-fold.
+pub const MIN_SLACK: f64 = 0.05;
 /// The motion the choice is made for when the caller does not know it (the
 /// FMU, whose master moves the vessel; `riser run` without a motion): the
 /// shortest period covered, [`MIN_PERIOD`].
@@ -322,12 +329,15 @@ fn wave_load_ratios(scene: &Scene, rows: &[super::report::ShapeRow], w: &WaveSca
     (load / top, drag / top)
 }
 
-/// The relative cost of a run of `n` elements at step `dt`: per step, the
-/// band solves (∝ n plus a fixed part) times the Newton iterations, which
-/// grow with the step (the study's 1.3 at 0.01 s to 7 at 0.2 s).
+/// The relative cost of a run of `n` elements at step `dt`, the study's work
+/// (docs/accuracy.md): elements × steps × Newton iterations per step, the
+/// iterations growing with the step, 2 + 40 Δt, at most 7 (the study's grid:
+/// 1.8–5.2 at 0.025 s, 2.3–6.3 at 0.05 s, 3.4–7.6 at 0.1 s, 4.6–9.0 at 0.2 s;
+/// this form predicts each case's measured work within 1.23–1.77× over its
+/// grid, where (n + 10)(1 + 30 Δt) missed by up to 4.7×).
 pub fn cost(n: usize, dt: f64) -> f64 {
-    let iterations = (1.0 + 30.0 * dt).min(7.0);
-    (n as f64 + 10.0) * iterations / dt
+    let iterations = (2.0 + 40.0 * dt).min(7.0);
+    n as f64 * iterations / dt
 }
 
 /// The features of `scene` the model does not cover, as an error.
@@ -538,6 +548,24 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
             message: format!(
                 "a hang-off motion of amplitude {} m is larger than the {MAX_AMPLITUDE} m the error model covers",
                 excitation.amplitude
+            ),
+        }
+        .into());
+    }
+    // (16.5): the motion must not take the line taut (the hang-off at the origin)
+    let a = &scene.anchor;
+    let chord = (a.x * a.x + a.y * a.y + a.z * a.z).sqrt() + excitation.amplitude;
+    let slack = (scene.line.length - chord) / scene.line.length;
+    if slack < MIN_SLACK {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "a hang-off motion of amplitude {} m may take the line taut: its anchor is {:.2} m away, which leaves \
+                 {:.1} % of its {} m length as slack, below the {} % the error model covers (a taut line snatches)",
+                excitation.amplitude,
+                chord - excitation.amplitude,
+                100.0 * slack,
+                scene.line.length,
+                100.0 * MIN_SLACK
             ),
         }
         .into());
