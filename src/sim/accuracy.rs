@@ -18,7 +18,7 @@
 //!
 //! In waves (docs/theory.md §16.4) the error gains the sea's own terms,
 //!
-//!   e_w(h, Δt) = S [C_wt (ω_w Δt)^{3/2} + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + [regular] E_c F_c,
+//!   e_w(h, Δt) = S [C_wt (ω_w Δt)^{3/2} + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + (in a regular wave) E_c F_c,
 //!
 //! ω_w = √(m₂/m₀) = 2π/T_z the sea's mean frequency (a regular wave's 2π/T),
 //! k_w its variance-weighted mean wave number (the length over which the wave
