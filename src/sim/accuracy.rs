@@ -18,13 +18,16 @@
 //!
 //! In waves (docs/theory.md §16.4) the error gains the sea's own terms,
 //!
-//!   e_w(h, Δt) = C_wt (a/A₀) (ω_w Δt)^{3/2} + C_wk (a/A₀) (h k_w)² + E_w,
+//!   e_w(h, Δt) = S [C_wt (ω_w Δt)^{3/2} + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + (in a regular wave) E_c F_c,
 //!
 //! ω_w = √(m₂/m₀) = 2π/T_z the sea's mean frequency (a regular wave's 2π/T),
-//! a its amplitude (H/2 of a regular wave, H_s/2 of a spectrum), k_w its
-//! variance-weighted mean wave number (the length over which the wave force
-//! varies along the line, which the mesh must follow), E_w
-//! the floor the study's references themselves reach in waves; without waves
+//! k_w its variance-weighted mean wave number (the length over which the wave
+//! force varies along the line, which the mesh must follow), S the amplitude
+//! of the sea's Morison load on the static line over its top tension (how
+//! strongly the waves act on this line's tension), E_w the floor the study
+//! reaches in waves, F_c the current's drag over the top tension (the
+//! current's start rings the line, which a regular wave's short window
+//! catches); without waves
 //! the choice is the still-water model's, bit for bit.
 
 pub use super::error::AccuracyError;
@@ -64,27 +67,43 @@ pub const MIN_PERIOD: f64 = 10.0;
 pub const MAX_AMPLITUDE: f64 = 10.0;
 /// The fewest steps a period of the motion the choice takes: (16.2) bounds
 /// every grid point of the study up to ω Δt = 2π/75 (the steel catenary at
-/// 15 s and 0.2 s); at 50 steps a period (the catenary at 10 s and 0.2 s) it
-/// under-predicts 1.7-fold.
+/// 15 s and 0.2 s); at 50 steps a period it under-predicts in waves (the
+/// jumper's 10 elements at 0.2 s in its 10 s wave: 4-fold).
 pub const MIN_STEPS_PER_PERIOD: f64 = 75.0;
+/// The least slack, as a fraction of the line's length, that the motion must
+/// leave between the line and the chord from its anchor to the hang-off's
+/// farthest position, L − (|r_anchor| + A) ≥ [`MIN_SLACK`] L (docs/theory.md
+/// 16.5): the study's tightest, the catenary at 2.5 m, keeps 5.3 %; with 10 m
+/// its chord reaches its length, the line snatches taut (3.8× its static
+/// tension) and the model's choices miss their targets 4- to 40-fold.
+pub const MIN_SLACK: f64 = 0.05;
 /// The motion the choice is made for when the caller does not know it (the
 /// FMU, whose master moves the vessel; `riser run` without a motion): the
 /// shortest period covered, [`MIN_PERIOD`].
 pub const DESIGN_EXCITATION: Excitation = Excitation { period: MIN_PERIOD, amplitude: 2.5 };
-/// The step constant C_wt of C_wt (a/A₀) (ω_w Δt)^{3/2} in waves (§16.4):
-/// the jumper's error in its regular wave falls from 4.1e-4 to 5.4e-5 from
-/// Δt = 0.1 to 0.025 s at 160 elements; with [`C_WAVE_MESH`] and
-/// [`WAVE_FLOOR`] the bound of its 10 elements at 0.05 s.
-pub const C_WAVE_TIME: f64 = 0.065;
-/// The mesh constant C_wk of C_wk (a/A₀) (h k_w)² in waves: the jumper's 10
-/// elements (h k_w = 0.68) in its regular wave, 5.2e-3.
-pub const C_WAVE_MESH: f64 = 0.02;
-/// The floor E_w of the error in waves: the scatter that does not fall with
-/// the mesh or the step in the study (the catenary in its regular wave: 1.8e-4
-/// to 3.5e-4 from 40 to 80 elements and 0.1 to 0.025 s; its steady window's
-/// min and max carry the line's axial ringing, its mean converges to 1e-6).
-pub const WAVE_FLOOR: f64 = 3e-4;
-/// The smallest target covered in waves (the references' own spread, above).
+/// The step constant C_wt of S C_wt (ω_w Δt)^{3/2} in waves (§16.4, eq. 16.3):
+/// the jumper's error in its regular wave, 160 elements, falls from 4.1e-4 to
+/// 5.4e-5 from Δt = 0.1 to 0.025 s (S = 0.62): 0.042 to 0.047 a point.
+pub const C_WAVE_TIME: f64 = 0.05;
+/// The mesh constant C_wk of S C_wk (h k_w)⁴ in waves: the bound of the
+/// coarse meshes (the jumper's 10 elements, h k_w = 0.68, in its regular
+/// wave: 5.2e-3; its errors fall 20-fold from 10 to 20 elements).
+pub const C_WAVE_MESH: f64 = 0.05;
+/// The mesh constant C_wk2 of S C_wk2 (h k_w)²: the bound of the fine meshes
+/// (each bound holds at every grid point, the smaller is taken).
+pub const C_WAVE_MESH2: f64 = 0.018;
+/// The floor E_w of the error in waves that falls neither with the mesh nor
+/// with the step (the jumper in the JONSWAP sea: 5.6e-5 at 160 elements and
+/// 0.025 s, of which the step term is 3.1e-5).
+pub const WAVE_FLOOR: f64 = 3.5e-5;
+/// The current's ringing E_c of E_c F_c in a regular wave: the axial waves
+/// that the current's start rings in the line, caught by the extremes of a
+/// regular wave's two-period window (the catenary in its regular wave without
+/// heave: 2e-4 to 4.6e-4 from 10 to 80 elements and 0.1 to 0.025 s, not
+/// monotonic, with F_c = 0.044; the line without current, the jumper, has none).
+pub const C_CURRENT_RINGING: f64 = 7.5e-3;
+/// The smallest target covered in waves (the references' own spread in a
+/// regular wave: 1.4e-4 against their half mesh).
 pub const MIN_TARGET_WAVES: f64 = 1e-3;
 /// The shortest wave period (T, or T_p of a spectrum) covered, s.
 pub const MIN_WAVE_PERIOD: f64 = 10.0;
@@ -170,6 +189,13 @@ pub struct WaveScales {
     pub wave_number: f64,
     /// The period T of a regular wave, T_p of a spectrum, s.
     pub period: f64,
+    /// A regular wave (not a spectrum).
+    pub regular: bool,
+    /// S: the amplitude of the sea's Morison load on the static line over the
+    /// static top tension (docs/theory.md 16.4; 0 until [`scales`] sets it).
+    pub load_ratio: f64,
+    /// F_c: the current's drag on the static line over the static top tension.
+    pub current_ratio: f64,
 }
 
 /// The numerics chosen for a target.
@@ -229,18 +255,21 @@ impl Choice {
             .waves
             .map(|w| {
                 format!(
-                    "; in waves of amplitude {:.2} m, period {:.2} s: omega_w dt = {:.4}, h k_w = {:.3}",
+                    "; in waves of amplitude {:.2} m, period {:.2} s: omega_w dt = {:.4}, h k_w = {:.3}, their load on \
+                     the line S = {:.3}, the current's F_c = {:.3}",
                     w.amplitude,
                     w.period,
                     w.omega * self.time_step,
-                    self.scales.length / self.n_elements as f64 * w.wave_number
+                    self.scales.length / self.n_elements as f64 * w.wave_number,
+                    w.load_ratio,
+                    w.current_ratio
                 )
             })
             .unwrap_or_default()
     }
 }
 
-/// The spatial error of `n` elements (docs/theory.md 16.2).
+/// The spatial error of `n` elements (docs/theory.md 16.2, 16.3).
 pub fn space_error(s: &Scales, n: usize) -> f64 {
     let h = s.length / n as f64;
     let contact =
@@ -248,25 +277,67 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
     let still = C_CURVATURE * (h * s.curvature).powi(4) + contact;
     match &s.waves {
         None => still,
-        Some(w) => still + C_WAVE_MESH * w.amplitude / AMPLITUDE_SCALE * (h * w.wave_number).powi(2) + WAVE_FLOOR,
+        Some(w) => {
+            let hk = h * w.wave_number;
+            // (16.3): S min(C_wk2 (h k_w)², C_wk (h k_w)⁴) + E_w + [regular] E_c F_c
+            let ringing = if w.regular { C_CURRENT_RINGING * w.current_ratio } else { 0.0 };
+            still + w.load_ratio * (C_WAVE_MESH2 * hk.powi(2)).min(C_WAVE_MESH * hk.powi(4)) + WAVE_FLOOR + ringing
+        }
     }
 }
 
-/// The temporal error of step `dt` s.
+/// The temporal error of step `dt` s (docs/theory.md 16.2, 16.3).
 pub fn time_error(s: &Scales, dt: f64) -> f64 {
     let still = C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5);
     match &s.waves {
         None => still,
-        Some(w) => still + C_WAVE_TIME * w.amplitude / AMPLITUDE_SCALE * (w.omega * dt).powf(1.5),
+        // (16.3): S C_wt (ω_w Δt)^{3/2}
+        Some(w) => still + C_WAVE_TIME * w.load_ratio * (w.omega * dt).powf(1.5),
     }
 }
 
-/// The relative cost of a run of `n` elements at step `dt`: per step, the
-/// band solves (∝ n plus a fixed part) times the Newton iterations, which
-/// grow with the step (the study's 1.3 at 0.01 s to 7 at 0.2 s).
+/// S and F_c of docs/theory.md (16.4): the amplitude of the sea's Morison
+/// load (inertia and the drag's change about the current) and the current's
+/// drag, each integrated over the submerged static line, over the static top
+/// tension. Deep-water decay e^{k_w ζ} at the depth ζ ≤ 0 below the mean
+/// surface; the orbital speed a ω_w e^{k_w ζ} is taken normal to the line.
+fn wave_load_ratios(scene: &Scene, rows: &[super::report::ShapeRow], w: &WaveScales) -> (f64, f64) {
+    let (line, env) = (&scene.line, &scene.environment);
+    let rho = env.water_density;
+    let d = line.outer_diameter;
+    let current = crate::loads::current(scene);
+    let area = std::f64::consts::PI * d * d / 4.0;
+    let (mut load, mut drag) = (0.0, 0.0);
+    for p in rows.windows(2) {
+        let (a, b) = (&p[0], &p[1]);
+        let (s, z) = (0.5 * (a.s + b.s), 0.5 * (a.z + b.z));
+        let depth = z - env.water_surface_z;
+        if depth > 0.0 {
+            continue;
+        }
+        let ds = b.s - a.s;
+        let decay = (w.wave_number * depth).exp();
+        let u = w.amplitude * w.omega * decay;
+        let speed = current.speed(s, z).0.abs();
+        // (16.4): ρ(1 + C_a)(πD²/4) a ω_w² e^{k_w ζ} + ½ρ C_d D ((U + u)² − U²)
+        let inertia = rho * (1.0 + line.ca_normal) * area * w.amplitude * w.omega.powi(2) * decay;
+        let wave_drag = 0.5 * rho * line.cd_normal * d * ((speed + u).powi(2) - speed.powi(2));
+        load += (inertia + wave_drag) * ds;
+        drag += 0.5 * rho * line.cd_normal * d * speed.powi(2) * ds;
+    }
+    let top = rows.first().map_or(f64::NAN, |r| r.tension.abs());
+    (load / top, drag / top)
+}
+
+/// The relative cost of a run of `n` elements at step `dt`, the study's work
+/// (docs/accuracy.md): elements × steps × Newton iterations per step, the
+/// iterations growing with the step, 2 + 40 Δt, at most 7 (the study's grid:
+/// 1.8–5.2 at 0.025 s, 2.3–6.3 at 0.05 s, 3.4–7.6 at 0.1 s, 4.6–9.0 at 0.2 s;
+/// this form predicts each case's measured work within 1.23–1.77× over its
+/// grid, where (n + 10)(1 + 30 Δt) missed by up to 4.7×).
 pub fn cost(n: usize, dt: f64) -> f64 {
-    let iterations = (1.0 + 30.0 * dt).min(7.0);
-    (n as f64 + 10.0) * iterations / dt
+    let iterations = (2.0 + 40.0 * dt).min(7.0);
+    n as f64 * iterations / dt
 }
 
 /// The features of `scene` the model does not cover, as an error.
@@ -392,7 +463,15 @@ pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
         .sum::<f64>()
         / m0;
     let wave_number = components.iter().zip(&numbers).map(|(c, k)| c.amplitude * c.amplitude * k).sum::<f64>() / m0;
-    Ok(Some(WaveScales { omega: omega2.sqrt(), amplitude: 0.5 * height, wave_number, period }))
+    Ok(Some(WaveScales {
+        omega: omega2.sqrt(),
+        amplitude: 0.5 * height,
+        wave_number,
+        period,
+        regular,
+        load_ratio: 0.0,
+        current_ratio: 0.0,
+    }))
 }
 
 /// The scales of `scene` for `excitation`: the static line's largest
@@ -439,7 +518,10 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         amplitude: excitation.amplitude,
         length: scene.line.length,
         touchdown_bending_length,
-        waves: wave_scales(scene)?,
+        waves: wave_scales(scene)?.map(|w| {
+            let (load_ratio, current_ratio) = wave_load_ratios(scene, &rep.shape, &w);
+            WaveScales { load_ratio, current_ratio, ..w }
+        }),
     })
 }
 
@@ -466,6 +548,24 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
             message: format!(
                 "a hang-off motion of amplitude {} m is larger than the {MAX_AMPLITUDE} m the error model covers",
                 excitation.amplitude
+            ),
+        }
+        .into());
+    }
+    // (16.5): the motion must not take the line taut (the hang-off at the origin)
+    let a = &scene.anchor;
+    let chord = (a.x * a.x + a.y * a.y + a.z * a.z).sqrt() + excitation.amplitude;
+    let slack = (scene.line.length - chord) / scene.line.length;
+    if slack < MIN_SLACK {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "a hang-off motion of amplitude {} m may take the line taut: its anchor is {:.2} m away, which leaves \
+                 {:.1} % of its {} m length as slack, below the {} % the error model covers (a taut line snatches)",
+                excitation.amplitude,
+                chord - excitation.amplitude,
+                100.0 * slack,
+                scene.line.length,
+                100.0 * MIN_SLACK
             ),
         }
         .into());
@@ -574,4 +674,55 @@ pub fn warning(choice: &Choice) -> Option<String> {
             choice.predicted()
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::report::ShapeRow;
+
+    /// S and F_c of (16.4) on a vertical line hanging from the mean surface
+    /// in a uniform current, against their closed forms: with ζ = −s,
+    /// ∫₀ᴸ e^{−k s} ds = (1 − e^{−kL})/k and ∫₀ᴸ e^{−2k s} ds = (1 − e^{−2kL})/(2k).
+    #[test]
+    fn the_wave_load_ratio_of_a_vertical_line_is_its_closed_form() {
+        let scene = Scene::load("catenary")
+            .unwrap()
+            .with_overrides(&["water_surface_z=0", "current_top=0.5", "current_bottom=0.5", "ca_normal=1"])
+            .unwrap();
+        let current = crate::loads::current(&scene);
+        let u0 = current.speed(0.0, 0.0).0;
+        assert!((u0 - 0.5).abs() < 1e-12 && (current.speed(80.0, -80.0).0 - 0.5).abs() < 1e-12);
+        let (length, top) = (100.0, 1.5e5);
+        let n = 4000;
+        let rows: Vec<ShapeRow> = (0..=n)
+            .map(|i| {
+                let s = length * i as f64 / n as f64;
+                ShapeRow { s, x: 0.0, y: 0.0, z: -s, tension: top }
+            })
+            .collect();
+        let w = WaveScales {
+            omega: 0.6,
+            amplitude: 3.0,
+            wave_number: 0.04,
+            period: 2.0 * std::f64::consts::PI / 0.6,
+            regular: true,
+            load_ratio: 0.0,
+            current_ratio: 0.0,
+        };
+        let (s_num, fc_num) = wave_load_ratios(&scene, &rows, &w);
+        let (line, rho) = (&scene.line, scene.environment.water_density);
+        let (d, k, aw) = (line.outer_diameter, w.wave_number, w.amplitude * w.omega);
+        let e1 = (1.0 - (-k * length).exp()) / k;
+        let e2 = (1.0 - (-2.0 * k * length).exp()) / (2.0 * k);
+        let inertia =
+            rho * (1.0 + line.ca_normal) * std::f64::consts::PI * d * d / 4.0 * w.amplitude * w.omega.powi(2) * e1;
+        let drag = 0.5 * rho * line.cd_normal * d * (2.0 * u0 * aw * e1 + aw * aw * e2);
+        let s_exact = (inertia + drag) / top;
+        let fc_exact = 0.5 * rho * line.cd_normal * d * u0 * u0 * length / top;
+        // the midpoint rule on 4000 segments: a relative error of at most
+        // (2 k h)²/24 = 1.7e-7 (the e^{−2k s} of the drag)
+        assert!((s_num / s_exact - 1.0).abs() < 1.7e-7, "S {s_num} against {s_exact}");
+        assert!((fc_num / fc_exact - 1.0).abs() < 1e-12, "F_c {fc_num} against {fc_exact}");
+    }
 }

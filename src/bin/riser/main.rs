@@ -353,6 +353,9 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
             "wave_omega": c.scales.waves.map(|w| w.omega),
             "wave_amplitude": c.scales.waves.map(|w| w.amplitude),
             "wave_number": c.scales.waves.map(|w| w.wave_number),
+            "wave_load_ratio": c.scales.waves.map(|w| w.load_ratio),
+            "current_load_ratio": c.scales.waves.map(|w| w.current_ratio),
+            "wave_regular": c.scales.waves.map(|w| w.regular),
             "length": c.scales.length,
         }),
     }

@@ -1,16 +1,18 @@
-"""The wave terms' constants of the accuracy knob's error model (docs/theory.md §16.4), fitted to
-the study's runs (docs/accuracy_runs.csv, written by `riser-tools accuracy`):
+"""The wave terms' constants of the accuracy knob's error model (docs/theory.md §16.4), checked
+against the study's runs (docs/accuracy_runs.csv, written by `riser-tools accuracy`):
 
-    e_w = C_wt (a/A₀)(ω_w Δt)^1.5 + C_wk (a/A₀)(h k_w)² + E_w,
+    e_w = S [C_wt (ω_w Δt)^1.5 + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + [regular wave] E_c F_c,
 
-on top of the still-water terms C_κ (h κ)⁴ + C_t (A/A₀)(ω Δt)^1.5 with their constants. For each
-wave case the scales (a, ω_w, k_w, the line's length and largest curvature) are read from the
-binary's own choice (`--json`'s `accuracy` object); every grid run with at least 75 steps per
-period is a point. For a grid of (E_w, C_wk), C_wt is the smallest that bounds every point; the
-triple whose model is the tightest over all points (least Σ log(model / error)) is printed, and
-each point's error against the model.
+on top of the still-water terms C_κ (h κ)⁴ + C_t (A/A₀)(ω Δt)^1.5 with their constants (the run's
+own heave; none: zero). For each wave case the scales (S, F_c, k_w, ω_w, the line's length and
+largest curvature) are read from the binary's own choice (`--json`'s `accuracy` object); every
+grid run with at least 75 steps per period is a point. Printed: each constant's envelope, the
+smallest value that bounds every point with the others as given (C_wk with C_wk2 left out and
+C_wk2 with C_wk left out: each of the two mesh bounds holds alone), and each point's error
+against the model.
 
-    riser-tools accuracy-fit [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv] [E_w C_wk C_wt]
+    riser-tools accuracy-fit [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
+                             [C_wt C_wk C_wk2 E_w E_c]
 """
 from __future__ import annotations
 
@@ -24,6 +26,10 @@ from . import accuracy as A
 
 # the still-water constants of src/sim/accuracy.rs (C_CURVATURE, C_TIME)
 C_K, C_T = 7e-4, 0.3
+# the wave constants of src/sim/accuracy.rs: C_WAVE_TIME, C_WAVE_MESH, C_WAVE_MESH2, WAVE_FLOOR,
+# C_CURRENT_RINGING
+CONSTANTS = (0.05, 0.05, 0.018, 3.5e-5, 7.5e-3)
+NAMES = ("C_wt", "C_wk", "C_wk2", "E_w", "E_c")
 
 
 def points(binary: str, runs: str):
@@ -40,8 +46,9 @@ def points(binary: str, runs: str):
         ref = next((r for r in m if r["kind"] == "reference"), None)
         if ref is None:
             continue
-        print(f"{case}: k_w {d['wave_number']:.4f} rad/m, omega_w {d['wave_omega']:.4f} rad/s, "
-              f"a {d['wave_amplitude']:.2f} m")
+        s, fc, regular = d["wave_load_ratio"], d["current_load_ratio"], d["wave_regular"]
+        print(f"{case}: S {s:.4f}, F_c {fc:.4f}, k_w {d['wave_number']:.4f} rad/m, "
+              f"omega_w {d['wave_omega']:.4f} rad/s, {'regular' if regular else 'spectrum'}")
         for r in m:
             if r["kind"] != "grid":
                 continue
@@ -50,21 +57,33 @@ def points(binary: str, runs: str):
                 continue
             h = d["length"] / n
             still = C_K * (h * d["max_curvature"]) ** 4 + C_T * amp / 10 * (2 * math.pi / period * dt) ** 1.5
-            xt = d["wave_amplitude"] / 10 * (d["wave_omega"] * dt) ** 1.5
-            xk = d["wave_amplitude"] / 10 * (h * d["wave_number"]) ** 2
-            out.append((case, n, dt, A.error(r, ref), still, xt, xk))
+            hk = h * d["wave_number"]
+            x = dict(t=s * (d["wave_omega"] * dt) ** 1.5, k4=s * hk ** 4, k2=s * hk ** 2, c=fc if regular else 0.0)
+            out.append((case, n, dt, A.error(r, ref), still, x))
     return out
 
 
-def fit(pts):
-    best = None
-    for ew in [0, 1e-4, 1.5e-4, 2e-4, 2.5e-4, 3e-4, 3.5e-4, 4e-4]:
-        for ck in [0, 1e-3, 2e-3, 5e-3, 1e-2, 1.2e-2, 1.4e-2, 1.6e-2, 1.8e-2, 2e-2, 2.5e-2, 3e-2, 4e-2]:
-            ct = max(max(0.0, e - s - ew - ck * xk) / xt for (_, _, _, e, s, xt, xk) in pts)
-            score = sum(math.log((s + ct * xt + ck * xk + ew) / e) for (_, _, _, e, s, xt, xk) in pts)
-            if best is None or score < best[0]:
-                best = (score, ew, ck, ct)
-    return best
+def model(c, still, x):
+    ct, ck, ck2, ew, ec = c
+    return still + ct * x["t"] + min(ck2 * x["k2"], ck * x["k4"]) + ew + ec * x["c"]
+
+
+def envelope(pts, c, i):
+    """The smallest value of constant i that bounds every point, the others as in c (for a mesh
+    constant, with the other mesh bound left out)."""
+    lo, hi = 0.0, 1.0
+    other = {1: 2, 2: 1}.get(i)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        q = list(c)
+        q[i] = mid
+        if other is not None:
+            q[other] = 1e9
+        if all(model(q, s, x) >= e for (_, _, _, e, s, x) in pts):
+            hi = mid
+        else:
+            lo = mid
+    return hi
 
 
 def main(argv=None):
@@ -72,17 +91,20 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", default="target/fasttest/riser")
     ap.add_argument("--runs", default="docs/accuracy_runs.csv")
-    ap.add_argument("constants", nargs="*", type=float, help="E_w C_wk C_wt to print the points against")
+    ap.add_argument("constants", nargs="*", type=float, help="C_wt C_wk C_wk2 E_w E_c")
     args = ap.parse_args(argv)
+    c = tuple(args.constants) if len(args.constants) == 5 else CONSTANTS
     pts = points(args.bin, args.runs)
-    score, ew, ck, ct = fit(pts)
-    print(f"tightest bound: E_w {ew:g}, C_wk {ck:g}, C_wt {ct:.3f} (sum of log(model/error) {score:.1f})")
-    if len(args.constants) == 3:
-        ew, ck, ct = args.constants
-    for (case, n, dt, e, s, xt, xk) in pts:
-        model = s + ct * xt + ck * xk + ew
-        print(f"{case:24s} {n:4d} {dt:6.3f} e {e:.1e} model {model:.1e} ratio {model / e:5.1f} "
-              f"(still {s:.1e}, step {ct * xt:.1e}, mesh {ck * xk:.1e})")
+    print("constants: " + ", ".join(f"{n} {v:g}" for n, v in zip(NAMES, c)))
+    print("envelopes, each with the others as given: "
+          + ", ".join(f"{n} {envelope(pts, c, i):.3g}" for i, n in enumerate(NAMES)))
+    worst = min(model(c, s, x) / e for (_, _, _, e, s, x) in pts)
+    print(f"smallest model / error over {len(pts)} points: {worst:.3f}")
+    for (case, n, dt, e, s, x) in pts:
+        m = model(c, s, x)
+        print(f"{case:24s} {n:4d} {dt:6.3f} e {e:.1e} model {m:.1e} ratio {m / e:5.1f} "
+              f"(still {s:.1e}, step {c[0] * x['t']:.1e}, mesh {min(c[2] * x['k2'], c[1] * x['k4']):.1e}, "
+              f"floor {c[3] + c[4] * x['c']:.1e})")
     return 0
 
 
