@@ -79,22 +79,20 @@ impl WaterPoint {
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {
     sin_cos: Vec<[f64; 2]>,
-    /// ω t (per call), θ, sin θ, cos θ, e^{kζ′} (per point), sorted terms.
+    /// ω t (per call), sin θ, cos θ, e^{kζ′} (per point), sorted terms.
     wt: Vec<f64>,
-    theta: Vec<f64>,
     sin: Vec<f64>,
     cos: Vec<f64>,
     exp: Vec<f64>,
-    arg: Vec<f64>,
 }
 
 /// The components [`Sea::water`] takes at a time (a multiple of [`LANES`];
-/// five buffers of this many numbers on the stack, 10 kB).
+/// four buffers of this many numbers on the stack, 8 kB).
 pub(crate) const CHUNK: usize = 256;
 
 impl WaveScratch {
     fn grow(&mut self, n: usize) {
-        for v in [&mut self.wt, &mut self.theta, &mut self.sin, &mut self.cos, &mut self.exp, &mut self.arg] {
+        for v in [&mut self.wt, &mut self.sin, &mut self.cos, &mut self.exp] {
             if v.len() < n {
                 v.resize(n, 0.0);
             }
@@ -128,15 +126,17 @@ fn add_kinematics<const DEEP: bool>(
     p: &[f64],
     acc: &mut [[f64; LANES]; 6],
 ) {
-    let n = sin.len();
-    let (cos, p) = (&cos[..n], &p[..n]);
+    // whole lanes, every slice of the same length: no bounds checks in the loop
+    let groups = sin.len() / LANES;
+    let n = groups * LANES;
+    let (sin, cos, p) = (&sin[..n], &cos[..n], &p[..n]);
     let r = lo..lo + n;
     let (awx, awy, aw) = (&st.awx[r.clone()], &st.awy[r.clone()], &st.aw[r.clone()]);
     let (aw2x, aw2y, aw2) = (&st.aw2x[r.clone()], &st.aw2y[r.clone()], &st.aw2[r.clone()]);
     let (e2kd, cf) = (&st.e2kd[r.clone()], &st.c[r]);
-    for j in (0..n).step_by(LANES) {
+    for g in 0..groups {
         for l in 0..LANES {
-            let i = j + l;
+            let i = g * LANES + l;
             let (ch, sh) = if DEEP {
                 (p[i], p[i])
             } else {
@@ -151,6 +151,49 @@ fn add_kinematics<const DEEP: bool>(
             acc[3][l] += aw2x[i] * cs;
             acc[4][l] += aw2y[i] * cs;
             acc[5][l] -= aw2[i] * sc;
+        }
+    }
+}
+
+/// The phases θ = kx x + ky y − ω t + φ₀ (13.1) of the sorted terms at
+/// `p` (`wt` their ω t) and their sines and cosines into `sin`, `cos`:
+/// [`vecmath::sin_cos`] with θ formed in the same loop (the same bits:
+/// msun's kernels if every |θ| is in their range, else std for all).
+#[inline(always)]
+fn phase_sin_cos(kx: &[f64], ky: &[f64], wt: &[f64], phi0: &[f64], p: &V3, sin: &mut [f64], cos: &mut [f64]) {
+    let n = kx.len();
+    let (ky, wt, phi0, sin, cos) = (&ky[..n], &wt[..n], &phi0[..n], &mut sin[..n], &mut cos[..n]);
+    let theta = |i: usize| kx[i] * p.x + ky[i] * p.y - wt[i] + phi0[i];
+    let mut ok = true;
+    for i in 0..n {
+        let th = theta(i);
+        ok &= th.abs() <= vecmath::SIN_COS_MAX;
+        (sin[i], cos[i]) = vecmath::sin_cos_reduced(th);
+    }
+    if !ok {
+        for i in 0..n {
+            (sin[i], cos[i]) = theta(i).sin_cos();
+        }
+    }
+}
+
+/// e^{max(kζ′, −38)} of each of the wave numbers `k` into `out` (13.4):
+/// [`vecmath::exp`] with the argument formed in the same loop (the same
+/// bits: msun's kernel if every argument is in its range, else std for all).
+#[inline(always)]
+fn decay_exp(k: &[f64], zp: f64, out: &mut [f64]) {
+    let n = k.len();
+    let out = &mut out[..n];
+    let arg = |i: usize| (k[i] * zp).max(-DECAY_LENGTHS);
+    let mut ok = true;
+    for i in 0..n {
+        let a = arg(i);
+        ok &= a.abs() <= vecmath::EXP_MAX;
+        out[i] = vecmath::exp_reduced(a);
+    }
+    if !ok {
+        for i in 0..n {
+            out[i] = arg(i).exp();
         }
     }
 }
@@ -276,8 +319,8 @@ impl Sea {
 
     /// The elevation, velocity and acceleration at one point at time `t`:
     /// [`Sea::water_batch`]'s per-point loop with the components taken
-    /// [`CHUNK`] at a time through buffers on the stack (no scratch, no
-    /// allocation; a sea of more than [`CHUNK`] components has its phases'
+    /// 256 at a time through buffers on the stack (no scratch, no
+    /// allocation; a sea of more than 256 components has its phases'
     /// sines and cosines evaluated again in pass 2), for the few points the
     /// outputs evaluate at a state. Bit for bit the batch's wherever every
     /// phase |θ| ≤ 8.2e5 rad (the vector sine's range, 15 days of a 10 s
@@ -298,17 +341,16 @@ impl Sea {
         let st = &self.sorted;
         let n = st.len;
         let zeta = p.z - self.settings.surface_z;
-        let mut theta = [0.0; CHUNK];
-        let (mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK]);
-        let (mut arg, mut exp) = ([0.0; CHUNK], [0.0; CHUNK]);
-        // θ, sin θ and cos θ of the sorted terms lo..lo + len, as the batch forms them
+        let mut wt = [0.0; CHUNK];
+        let (mut sin, mut cos, mut exp) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        // sin θ and cos θ of the sorted terms lo..lo + len, as the batch forms them
         let mut phases = |lo: usize, len: usize, sin: &mut [f64; CHUNK], cos: &mut [f64; CHUNK]| {
             let r = lo..lo + len;
-            let (kx, ky, w, phi0) = (&st.kx[r.clone()], &st.ky[r.clone()], &st.omega[r.clone()], &st.phi0[r]);
-            for (i, th) in theta[..len].iter_mut().enumerate() {
-                *th = kx[i] * p.x + ky[i] * p.y - w[i] * t + phi0[i];
+            for (wt, w) in wt[..len].iter_mut().zip(&st.omega[r.clone()]) {
+                *wt = w * t;
             }
-            vecmath::sin_cos(&theta[..len], sin, cos);
+            let (kx, ky, phi0) = (&st.kx[r.clone()], &st.ky[r.clone()], &st.phi0[r]);
+            phase_sin_cos(kx, ky, &wt[..len], phi0, p, sin, cos);
         };
         // pass 1: η (every component)
         let mut sum = [0.0; LANES];
@@ -328,10 +370,7 @@ impl Sea {
             if n > CHUNK {
                 phases(lo, len, &mut sin, &mut cos);
             }
-            for (arg, k) in arg[..len].iter_mut().zip(&st.k[lo..lo + len]) {
-                *arg = (k * zp).max(-DECAY_LENGTHS);
-            }
-            vecmath::exp(&arg[..len], &mut exp);
+            decay_exp(&st.k[lo..lo + len], zp, &mut exp);
             match self.settings.depth {
                 None => add_kinematics::<true>(st, lo, &sin[..len], &cos, &exp, &mut sums),
                 Some(_) => add_kinematics::<false>(st, lo, &sin[..len], &cos, &exp, &mut sums),
@@ -347,9 +386,8 @@ impl Sea {
     fn water_points(&self, r: f64, dr: f64, points: &[V3], out: &mut [WaterPoint], scratch: &mut WaveScratch) {
         let st = &self.sorted;
         let n = st.len;
-        let WaveScratch { wt, theta, sin, cos, exp, arg, .. } = scratch;
-        let (wt, theta, sin, cos) = (&wt[..n], &mut theta[..n], &mut sin[..n], &mut cos[..n]);
-        let (exp, arg) = (&mut exp[..n], &mut arg[..n]);
+        let WaveScratch { wt, sin, cos, exp, .. } = scratch;
+        let (wt, sin, cos, exp) = (&wt[..n], &mut sin[..n], &mut cos[..n], &mut exp[..n]);
         let (k, kx, ky, phi0) = (&st.k[..n], &st.kx[..n], &st.ky[..n], &st.phi0[..n]);
         for (p, o) in points.iter().zip(out.iter_mut()) {
             let zeta = p.z - self.settings.surface_z;
@@ -359,10 +397,7 @@ impl Sea {
             }
             // pass 1: θ, its sine and cosine, η (every component: η is the
             // surface's, whatever the point's depth)
-            for (((th, kx), ky), (wt, phi0)) in theta.iter_mut().zip(kx).zip(ky).zip(wt.iter().zip(phi0)) {
-                *th = kx * p.x + ky * p.y - wt + phi0;
-            }
-            vecmath::sin_cos(theta, sin, cos);
+            phase_sin_cos(kx, ky, wt, phi0, p, sin, cos);
             let mut sum = [0.0; LANES];
             dot_into(&st.a[..n], cos, &mut sum);
             let eta = r * sum.iter().sum::<f64>();
@@ -372,10 +407,7 @@ impl Sea {
             // 2e^{−38} of their surface values either way)
             let active = if zp < 0.0 { k.partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
             let m = active.div_ceil(LANES) * LANES;
-            for (arg, k) in arg[..m].iter_mut().zip(&k[..m]) {
-                *arg = (k * zp).max(-DECAY_LENGTHS);
-            }
-            vecmath::exp(&arg[..m], exp);
+            decay_exp(&k[..m], zp, exp);
             let mut sums = [[0.0; LANES]; 6];
             match self.settings.depth {
                 None => add_kinematics::<true>(st, 0, &sin[..m], cos, exp, &mut sums),
