@@ -83,8 +83,10 @@ fn main() {
 /// Whole steps (issue 27): the catenary at 60 elements, dt 0.05 s, heave
 /// 2.5 m / 20 s, 400 steps after 100 steps of settling, in calm water, a
 /// regular wave and JONSWAP seas of 50 and 200 components (the sea's own
-/// depth, the waves at full height from the start); median of 5 rounds,
-/// each a fresh run; the ratio to calm water.
+/// depth, the waves at full height from the start); median of 7 rounds,
+/// each a fresh run, the seas taken in turn within a round (interleaved,
+/// so that a machine whose load changes weighs on every sea alike); the
+/// ratio to calm water, and the median of the rounds' own ratios.
 fn steps_in_waves(base: &Scene) {
     let seas = [
         ("calm water", String::new()),
@@ -92,21 +94,23 @@ fn steps_in_waves(base: &Scene) {
         ("JONSWAP Hs 6 m Tp 10 s, 50 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 50".into()),
         ("JONSWAP Hs 6 m Tp 10 s, 200 components", "kind = \"jonswap\"\nhs = 6.0\ntp = 10.0\ncomponents = 200".into()),
     ];
-    println!();
-    println!("a step of the catenary, 60 elements, dt 0.05 s (median of 5 runs of 400 steps)");
-    println!("{:<44} {:>10} {:>14} {:>12}", "", "µs/step", "x calm water", "Newton/step");
-    let mut calm = f64::NAN;
-    for (name, block) in seas {
-        let text = if block.is_empty() {
-            base.to_toml()
-        } else {
-            format!("{}\n[waves]\n{block}\nramp = 0.0\n", base.to_toml())
-        };
-        let scene = Scene::from_toml(&text, "bench").unwrap();
-        let mut rounds = Vec::new();
-        let mut newton = 0.0;
-        for _ in 0..5 {
-            let mut sim = Simulation::from_scene(&scene).unwrap();
+    let scenes: Vec<Scene> = seas
+        .iter()
+        .map(|(_, block)| {
+            let text = if block.is_empty() {
+                base.to_toml()
+            } else {
+                format!("{}\n[waves]\n{block}\nramp = 0.0\n", base.to_toml())
+            };
+            Scene::from_toml(&text, "bench").unwrap()
+        })
+        .collect();
+    const ROUNDS: usize = 7;
+    let mut us = vec![Vec::new(); seas.len()];
+    let mut newton = vec![0.0; seas.len()];
+    for _ in 0..ROUNDS {
+        for (i, scene) in scenes.iter().enumerate() {
+            let mut sim = Simulation::from_scene(scene).unwrap();
             let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
             let motion = move |t: f64| heave.at(t);
             sim.start(heave.at(0.0));
@@ -119,14 +123,18 @@ fn steps_in_waves(base: &Scene) {
             for k in 101..=500u64 {
                 sim.advance_to(k as f64 * dt, &motion).unwrap();
             }
-            rounds.push(t0.elapsed().as_secs_f64() / 400.0 * 1e6);
-            newton = (sim.state.newton_iterations - it0) as f64 / 400.0;
+            us[i].push(t0.elapsed().as_secs_f64() / 400.0 * 1e6);
+            newton[i] = (sim.state.newton_iterations - it0) as f64 / 400.0;
             black_box(sim.outputs());
         }
-        let us = median(&mut rounds);
-        if calm.is_nan() {
-            calm = us;
-        }
-        println!("{name:<44} {us:>10.1} {:>14.2} {newton:>12.2}", us / calm);
+    }
+    println!();
+    println!("a step of the catenary, 60 elements, dt 0.05 s (median of {ROUNDS} interleaved runs of 400 steps)");
+    println!("{:<44} {:>10} {:>14} {:>14} {:>12}", "", "µs/step", "x calm water", "x calm, rounds", "Newton/step");
+    let calm = median(&mut us[0].clone());
+    for (i, (name, _)) in seas.iter().enumerate() {
+        let mut ratios: Vec<f64> = us[i].iter().zip(&us[0]).map(|(a, b)| a / b).collect();
+        let m = median(&mut us[i].clone());
+        println!("{name:<44} {m:>10.1} {:>14.2} {:>14.2} {:>12.2}", m / calm, median(&mut ratios), newton[i]);
     }
 }

@@ -176,8 +176,8 @@ impl Engine {
     /// reaction) without the rest of the outputs.
     pub fn top_force(&self, state: &State) -> V3 {
         -match self {
-            Engine::Rod(i) => i.model.end_reactions(state)[0],
-            Engine::Cable(i) => i.model.end_reactions(state)[0],
+            Engine::Rod(i) => i.model.end_reaction(state, 0),
+            Engine::Cable(i) => i.model.end_reaction(state, 0),
         }
     }
 

@@ -79,18 +79,20 @@ impl WaterPoint {
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {
     sin_cos: Vec<[f64; 2]>,
-    /// ω t (per call), θ, sin θ, cos θ, e^{kζ′} (per point), sorted terms.
+    /// ω t (per call), sin θ, cos θ, e^{kζ′} (per point), sorted terms.
     wt: Vec<f64>,
-    theta: Vec<f64>,
     sin: Vec<f64>,
     cos: Vec<f64>,
     exp: Vec<f64>,
-    arg: Vec<f64>,
 }
+
+/// The components [`Sea::water`] takes at a time (a multiple of [`LANES`];
+/// four buffers of this many numbers on the stack, 8 kB).
+pub(crate) const CHUNK: usize = 256;
 
 impl WaveScratch {
     fn grow(&mut self, n: usize) {
-        for v in [&mut self.wt, &mut self.theta, &mut self.sin, &mut self.cos, &mut self.exp, &mut self.arg] {
+        for v in [&mut self.wt, &mut self.sin, &mut self.cos, &mut self.exp] {
             if v.len() < n {
                 v.resize(n, 0.0);
             }
@@ -98,32 +100,43 @@ impl WaveScratch {
     }
 }
 
-/// Σ a·b over slices of a multiple of [`LANES`] elements, in [`LANES`]
-/// partial sums (which the compiler keeps in vector registers).
+/// Adds a·b over slices of a multiple of [`LANES`] elements to the
+/// [`LANES`] partial sums `acc` (which the compiler keeps in vector
+/// registers): lane l takes elements l, l + LANES, … in order, so that the
+/// sums do not depend on how the slices are cut into whole lanes.
 #[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; LANES];
+fn dot_into(a: &[f64], b: &[f64], acc: &mut [f64; LANES]) {
     for (a, b) in a.chunks_exact(LANES).zip(b.chunks_exact(LANES)) {
         for l in 0..LANES {
             acc[l] += a[l] * b[l];
         }
     }
-    acc.iter().sum()
 }
 
-/// The velocity and acceleration sums of pass 2 over the first `n` (a
-/// multiple of [`LANES`]) sorted terms, unramped: (13.3)-(13.4) with
-/// C = S = p (deep water) or C, S = c (p ± e^{−2kd}/p).
+/// Adds pass 2's velocity and acceleration terms of the sorted terms
+/// `lo..lo + sin.len()` (a multiple of [`LANES`]; `sin`, `cos`, `p` theirs),
+/// unramped, to the partial sums `acc`: (13.3)-(13.4) with C = S = p (deep
+/// water) or C, S = c (p ± e^{−2kd}/p). Lane by lane as [`dot_into`].
 #[inline(always)]
-fn kinematics_sums<const DEEP: bool>(st: &SortedTerms, n: usize, sin: &[f64], cos: &[f64], p: &[f64]) -> (V3, V3) {
-    let mut acc = [[0.0; LANES]; 6];
+fn add_kinematics<const DEEP: bool>(
+    st: &SortedTerms,
+    lo: usize,
+    sin: &[f64],
+    cos: &[f64],
+    p: &[f64],
+    acc: &mut [[f64; LANES]; 6],
+) {
+    // whole lanes, every slice of the same length: no bounds checks in the loop
+    let groups = sin.len() / LANES;
+    let n = groups * LANES;
     let (sin, cos, p) = (&sin[..n], &cos[..n], &p[..n]);
-    let (awx, awy, aw) = (&st.awx[..n], &st.awy[..n], &st.aw[..n]);
-    let (aw2x, aw2y, aw2) = (&st.aw2x[..n], &st.aw2y[..n], &st.aw2[..n]);
-    let (e2kd, cf) = (&st.e2kd[..n], &st.c[..n]);
-    for j in (0..n).step_by(LANES) {
+    let r = lo..lo + n;
+    let (awx, awy, aw) = (&st.awx[r.clone()], &st.awy[r.clone()], &st.aw[r.clone()]);
+    let (aw2x, aw2y, aw2) = (&st.aw2x[r.clone()], &st.aw2y[r.clone()], &st.aw2[r.clone()]);
+    let (e2kd, cf) = (&st.e2kd[r.clone()], &st.c[r]);
+    for g in 0..groups {
         for l in 0..LANES {
-            let i = j + l;
+            let i = g * LANES + l;
             let (ch, sh) = if DEEP {
                 (p[i], p[i])
             } else {
@@ -140,6 +153,54 @@ fn kinematics_sums<const DEEP: bool>(st: &SortedTerms, n: usize, sin: &[f64], co
             acc[5][l] -= aw2[i] * sc;
         }
     }
+}
+
+/// The phases θ = kx x + ky y − ω t + φ₀ (13.1) of the sorted terms at
+/// `p` (`wt` their ω t) and their sines and cosines into `sin`, `cos`:
+/// [`vecmath::sin_cos`] with θ formed in the same loop (the same bits:
+/// msun's kernels if every |θ| is in their range, else std for all).
+#[inline(always)]
+fn phase_sin_cos(kx: &[f64], ky: &[f64], wt: &[f64], phi0: &[f64], p: &V3, sin: &mut [f64], cos: &mut [f64]) {
+    let n = kx.len();
+    let (ky, wt, phi0, sin, cos) = (&ky[..n], &wt[..n], &phi0[..n], &mut sin[..n], &mut cos[..n]);
+    let theta = |i: usize| kx[i] * p.x + ky[i] * p.y - wt[i] + phi0[i];
+    let mut ok = true;
+    for i in 0..n {
+        let th = theta(i);
+        ok &= th.abs() <= vecmath::SIN_COS_MAX;
+        (sin[i], cos[i]) = vecmath::sin_cos_reduced(th);
+    }
+    if !ok {
+        for i in 0..n {
+            (sin[i], cos[i]) = theta(i).sin_cos();
+        }
+    }
+}
+
+/// e^{max(kζ′, −38)} of each of the wave numbers `k` into `out` (13.4):
+/// [`vecmath::exp`] with the argument formed in the same loop (the same
+/// bits: msun's kernel if every argument is in its range, else std for all).
+#[inline(always)]
+fn decay_exp(k: &[f64], zp: f64, out: &mut [f64]) {
+    let n = k.len();
+    let out = &mut out[..n];
+    let arg = |i: usize| (k[i] * zp).max(-DECAY_LENGTHS);
+    let mut ok = true;
+    for i in 0..n {
+        let a = arg(i);
+        ok &= a.abs() <= vecmath::EXP_MAX;
+        out[i] = vecmath::exp_reduced(a);
+    }
+    if !ok {
+        for i in 0..n {
+            out[i] = arg(i).exp();
+        }
+    }
+}
+
+/// The sums of [`add_kinematics`]' partial sums: (velocity, acceleration).
+#[inline(always)]
+fn kinematics_total(acc: &[[f64; LANES]; 6]) -> (V3, V3) {
     let sum = |a: &[f64; LANES]| a.iter().sum::<f64>();
     (V3::new(sum(&acc[0]), sum(&acc[1]), sum(&acc[2])), V3::new(sum(&acc[3]), sum(&acc[4]), sum(&acc[5])))
 }
@@ -257,37 +318,65 @@ impl Sea {
     }
 
     /// The elevation, velocity and acceleration at one point at time `t`:
-    /// [`Sea::water_batch`]'s sums for a single point in scalar arithmetic
-    /// (no gradient, no scratch, no allocation; each component's phase once,
-    /// pass 2 cut where the batch cuts it), for the few points the outputs
-    /// evaluate at a state. Equal to the batch's to round-off.
+    /// [`Sea::water_batch`]'s per-point loop with the components taken
+    /// 256 at a time through buffers on the stack (no scratch, no
+    /// allocation; a sea of more than 256 components has its phases'
+    /// sines and cosines evaluated again in pass 2), for the few points the
+    /// outputs evaluate at a state. Bit for bit the batch's wherever every
+    /// phase |θ| ≤ 8.2e5 rad (the vector sine's range, 15 days of a 10 s
+    /// wave: beyond, each chunk falls back to std on its own, the batch as
+    /// a whole).
     pub fn water(&self, p: &V3, t: f64) -> WaterPoint {
         let (r, dr) = self.settings.ramp.at(t);
         let zeta = p.z - self.settings.surface_z;
         if r == 0.0 || self.deep_cutoff.is_some_and(|cut| zeta < cut) {
             return WaterPoint::STILL;
         }
+        pulp::Arch::new().dispatch(WaterOnePoint { sea: self, p, t, r, dr })
+    }
+
+    /// The body of [`Sea::water`] (ramp `r` > 0, rate `dr`).
+    #[inline(always)]
+    fn water_one_point(&self, p: &V3, t: f64, r: f64, dr: f64) -> WaterPoint {
         let st = &self.sorted;
         let n = st.len;
-        let theta = |i: usize| st.kx[i] * p.x + st.ky[i] * p.y - st.omega[i] * t + st.phi0[i];
-        let eta = r * (0..n).map(|i| st.a[i] * theta(i).cos()).sum::<f64>();
-        let (zp, _, _) = self.stretch(zeta, eta);
-        let active = if zp < 0.0 { st.k[..n].partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
-        let (mut vel, mut acc) = (V3::zeros(), V3::zeros());
-        for i in 0..active {
-            let (s, c) = theta(i).sin_cos();
-            // C(ζ′), S(ζ′) (13.4), as the batch writes them
-            let e = (st.k[i] * zp).exp();
-            let (ch, sh) = match self.settings.depth {
-                None => (e, e),
-                Some(_) => {
-                    let q = st.e2kd[i] / e;
-                    (st.c[i] * (e + q), st.c[i] * (e - q))
-                }
-            };
-            vel += V3::new(st.awx[i] * ch * c, st.awy[i] * ch * c, st.aw[i] * sh * s);
-            acc += V3::new(st.aw2x[i] * ch * s, st.aw2y[i] * ch * s, -st.aw2[i] * sh * c);
+        let zeta = p.z - self.settings.surface_z;
+        let mut wt = [0.0; CHUNK];
+        let (mut sin, mut cos, mut exp) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        // sin θ and cos θ of the sorted terms lo..lo + len, as the batch forms them
+        let mut phases = |lo: usize, len: usize, sin: &mut [f64; CHUNK], cos: &mut [f64; CHUNK]| {
+            let r = lo..lo + len;
+            for (wt, w) in wt[..len].iter_mut().zip(&st.omega[r.clone()]) {
+                *wt = w * t;
+            }
+            let (kx, ky, phi0) = (&st.kx[r.clone()], &st.ky[r.clone()], &st.phi0[r]);
+            phase_sin_cos(kx, ky, &wt[..len], phi0, p, sin, cos);
+        };
+        // pass 1: η (every component)
+        let mut sum = [0.0; LANES];
+        for lo in (0..n).step_by(CHUNK) {
+            let len = CHUNK.min(n - lo);
+            phases(lo, len, &mut sin, &mut cos);
+            dot_into(&st.a[lo..lo + len], &cos[..len], &mut sum);
         }
+        let eta = r * sum.iter().sum::<f64>();
+        let (zp, _, _) = self.stretch(zeta, eta);
+        // pass 2: the components whose e^{kζ′} ≥ e^{−38}, in whole lanes (as the batch)
+        let active = if zp < 0.0 { st.k[..n].partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
+        let m = active.div_ceil(LANES) * LANES;
+        let mut sums = [[0.0; LANES]; 6];
+        for lo in (0..m).step_by(CHUNK) {
+            let len = CHUNK.min(m - lo);
+            if n > CHUNK {
+                phases(lo, len, &mut sin, &mut cos);
+            }
+            decay_exp(&st.k[lo..lo + len], zp, &mut exp);
+            match self.settings.depth {
+                None => add_kinematics::<true>(st, lo, &sin[..len], &cos, &exp, &mut sums),
+                Some(_) => add_kinematics::<false>(st, lo, &sin[..len], &cos, &exp, &mut sums),
+            }
+        }
+        let (vel, acc) = kinematics_total(&sums);
         WaterPoint { elevation: eta, velocity: vel * r, acceleration: acc * r + vel * dr }
     }
 
@@ -297,9 +386,8 @@ impl Sea {
     fn water_points(&self, r: f64, dr: f64, points: &[V3], out: &mut [WaterPoint], scratch: &mut WaveScratch) {
         let st = &self.sorted;
         let n = st.len;
-        let WaveScratch { wt, theta, sin, cos, exp, arg, .. } = scratch;
-        let (wt, theta, sin, cos) = (&wt[..n], &mut theta[..n], &mut sin[..n], &mut cos[..n]);
-        let (exp, arg) = (&mut exp[..n], &mut arg[..n]);
+        let WaveScratch { wt, sin, cos, exp, .. } = scratch;
+        let (wt, sin, cos, exp) = (&wt[..n], &mut sin[..n], &mut cos[..n], &mut exp[..n]);
         let (k, kx, ky, phi0) = (&st.k[..n], &st.kx[..n], &st.ky[..n], &st.phi0[..n]);
         for (p, o) in points.iter().zip(out.iter_mut()) {
             let zeta = p.z - self.settings.surface_z;
@@ -309,25 +397,23 @@ impl Sea {
             }
             // pass 1: θ, its sine and cosine, η (every component: η is the
             // surface's, whatever the point's depth)
-            for (((th, kx), ky), (wt, phi0)) in theta.iter_mut().zip(kx).zip(ky).zip(wt.iter().zip(phi0)) {
-                *th = kx * p.x + ky * p.y - wt + phi0;
-            }
-            vecmath::sin_cos(theta, sin, cos);
-            let eta = r * dot(&st.a[..n], cos);
+            phase_sin_cos(kx, ky, wt, phi0, p, sin, cos);
+            let mut sum = [0.0; LANES];
+            dot_into(&st.a[..n], cos, &mut sum);
+            let eta = r * sum.iter().sum::<f64>();
             let (zp, _, _) = self.stretch(zeta, eta);
             // pass 2: the components whose e^{kζ′} ≥ e^{−38}, rounded up to
             // whole lanes (the few beyond are evaluated at kζ′ ≥ −38: below
             // 2e^{−38} of their surface values either way)
             let active = if zp < 0.0 { k.partition_point(|k| k * zp >= -DECAY_LENGTHS) } else { n };
             let m = active.div_ceil(LANES) * LANES;
-            for (arg, k) in arg[..m].iter_mut().zip(&k[..m]) {
-                *arg = (k * zp).max(-DECAY_LENGTHS);
+            decay_exp(&k[..m], zp, exp);
+            let mut sums = [[0.0; LANES]; 6];
+            match self.settings.depth {
+                None => add_kinematics::<true>(st, 0, &sin[..m], cos, exp, &mut sums),
+                Some(_) => add_kinematics::<false>(st, 0, &sin[..m], cos, exp, &mut sums),
             }
-            vecmath::exp(&arg[..m], exp);
-            let (vel, acc) = match self.settings.depth {
-                None => kinematics_sums::<true>(st, m, sin, cos, exp),
-                Some(_) => kinematics_sums::<false>(st, m, sin, cos, exp),
-            };
+            let (vel, acc) = kinematics_total(&sums);
             *o = WaterPoint { elevation: eta, velocity: vel * r, acceleration: acc * r + vel * dr };
         }
     }
@@ -410,6 +496,24 @@ impl pulp::WithSimd for WaterPoints<'_> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         self.sea.water_points(self.r, self.dr, self.points, self.out, self.scratch);
+    }
+}
+
+/// [`Sea::water`]'s body as pulp's operation (as [`WaterPoints`]).
+struct WaterOnePoint<'a> {
+    sea: &'a Sea,
+    p: &'a V3,
+    t: f64,
+    r: f64,
+    dr: f64,
+}
+
+impl pulp::WithSimd for WaterOnePoint<'_> {
+    type Output = WaterPoint;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> WaterPoint {
+        self.sea.water_one_point(self.p, self.t, self.r, self.dr)
     }
 }
 
@@ -507,7 +611,7 @@ mod tests {
     }
 
     #[test]
-    fn the_water_batch_and_the_one_point_water_equal_the_kinematics_at_every_depth_to_round_off() {
+    fn the_water_batch_equals_the_kinematics_at_every_depth_to_round_off_and_the_one_point_water_bit_for_bit() {
         for stretching in [Stretching::Wheeler, Stretching::Vertical, Stretching::None] {
             for depth in [None, Some(60.0), Some(400.0)] {
                 let s = broad_sea(stretching, depth);
@@ -553,20 +657,52 @@ mod tests {
                         if k.deep {
                             assert_eq!(*o, WaterPoint::STILL);
                         }
-                        // the one-point scalar form (the outputs') against the batch
-                        let w = s.water(p, t);
-                        assert!((w.elevation - o.elevation).abs() <= 1e-12 * a_sum, "{what}: {w:?}");
-                        assert!((w.velocity - o.velocity).norm() <= 1e-12 * aw_sum, "{what}: {w:?}");
-                        assert!(
-                            (w.acceleration - o.acceleration).norm() <= 1e-12 * (aw2_sum + aw_sum),
-                            "{what}: {w:?}"
-                        );
+                        // the one-point form (the outputs'): the batch's bits
+                        assert_eq!(s.water(p, t), *o, "{what}");
                     }
                 }
                 eprintln!("{stretching:?} {depth:?}: largest difference {worst:.1e} of the surface scale");
                 assert!(below_component_cutoff > 50, "{below_component_cutoff}");
                 if depth.is_none() {
                     assert!(points.iter().any(|p| p.z + 4.0 < s.deep_cutoff().unwrap()));
+                }
+            }
+        }
+    }
+
+    /// A sea of more components than [`CHUNK`] (the one-point water takes
+    /// them in three chunks and evaluates the phases again in pass 2): the
+    /// same bits as the batch, at points from above the crests to below
+    /// every component's cut, in deep and finite depth.
+    #[test]
+    fn the_one_point_water_of_a_sea_of_many_components_has_the_batchs_bits() {
+        for depth in [None, Some(80.0)] {
+            let components: Vec<Component> = (0..2 * CHUNK + 37)
+                .map(|i| Component {
+                    frequency: 0.04 + 0.0011 * ((i * 7) % 549) as f64,
+                    amplitude: 0.3 / (1.0 + 10.0 * (0.0011 * i as f64)),
+                    phase: 0.37 * i as f64,
+                    direction: 0.2 - 0.003 * i as f64,
+                })
+                .collect();
+            let settings = SeaSettings {
+                depth,
+                gravity: 9.81,
+                surface_z: 2.0,
+                origin: [0.0, 0.0],
+                stretching: Stretching::Wheeler,
+                ramp: Ramp { start: 0.0, duration: 30.0 },
+            };
+            let s = Sea::new(components, settings);
+            let points: Vec<V3> =
+                (0..60).map(|i| V3::new(4.1 * i as f64, 0.7 * i as f64, 5.0 - 1.3 * i as f64)).collect();
+            let mut out = vec![WaterPoint::STILL; points.len()];
+            let mut scratch = WaveScratch::default();
+            for t in [17.0, 47.5] {
+                s.water_batch(t, &points, &mut out, &mut scratch);
+                assert!(out.iter().any(|o| o.velocity.norm() > 0.05), "{out:?}");
+                for (p, o) in points.iter().zip(&out) {
+                    assert_eq!(s.water(p, t), *o, "{depth:?} t {t} {p:?}");
                 }
             }
         }

@@ -61,7 +61,7 @@ pub(crate) const EXP_MAX: f64 = 700.0;
 
 /// (sin θ, cos θ) for |θ| ≤ [`SIN_COS_MAX`] (msun's reduction and kernels).
 #[inline(always)]
-fn sin_cos_reduced(x: f64) -> (f64, f64) {
+pub(crate) fn sin_cos_reduced(x: f64) -> (f64, f64) {
     let tmp = x * INV_PIO2 + TO_INT;
     let f_n = tmp - TO_INT;
     // n mod 4 in the low bits (TO_INT's are 0)
@@ -87,7 +87,7 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
 
 /// e^x for |x| ≤ [`EXP_MAX`] (msun's reduction and rational form).
 #[inline(always)]
-fn exp_reduced(x: f64) -> f64 {
+pub(crate) fn exp_reduced(x: f64) -> f64 {
     let tmp = x * INVLN2 + TO_INT;
     let kf = tmp - TO_INT;
     let k = tmp.to_bits().wrapping_sub(TO_INT.to_bits());
@@ -104,8 +104,10 @@ fn exp_reduced(x: f64) -> f64 {
 
 /// sin and cos of each of `theta` into `sin` and `cos` (at least as long):
 /// within 2e-16 of the exact values (std's where some |θ| exceeds
-/// [`SIN_COS_MAX`] or is not finite).
-#[inline(always)]
+/// [`SIN_COS_MAX`] or is not finite). The kernels over a slice as the
+/// kinematics loop uses them (there with the phase formed in the loop,
+/// `kinematics::phase_sin_cos`): what the tests check against std.
+#[cfg(test)]
 pub(crate) fn sin_cos(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
@@ -122,8 +124,9 @@ pub(crate) fn sin_cos(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
 }
 
 /// e^x of each of `x` into `out` (at least as long): within one ulp (std's
-/// where some |x| exceeds [`EXP_MAX`] or is not finite).
-#[inline(always)]
+/// where some |x| exceeds [`EXP_MAX`] or is not finite). As [`sin_cos`],
+/// the form the tests check (`kinematics::decay_exp` in the loop).
+#[cfg(test)]
 pub(crate) fn exp(x: &[f64], out: &mut [f64]) {
     let n = x.len();
     let out = &mut out[..n];

@@ -189,7 +189,8 @@ impl StepEquations for CableModel {
         let k_inertia = 2.0 / (h * h);
         let fluid_active = !self.fluid.is_inert_in(ws.water.is_some());
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
-        // a surface that moves sweeps the band of heights z_s ± max |η|
+        // a surface that moves sweeps the band of heights z_s ± max |η|; over
+        // a segment it dips at most the frozen elevation's depression (13.14)
         let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
         ws.surface_wave_work = 0.0;
         let mut ke = SMatrix::<f64, 6, 6>::zeros();
@@ -281,7 +282,7 @@ impl StepEquations for CableModel {
             }
             // the free surface: the emerged part's buoyancy taken off (§10)
             if let Some(fs) = &fluid.surface
-                && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], sweep)
+                && !fs.below(&[x0[a], x0[b], x1[a], x1[b]], water.map_or(sweep, |w| w.depression.min(sweep)))
             {
                 let mut fsv = [V3::zeros(); 2];
                 let mut ks = [[M3::zeros(); 2]; 2];
@@ -401,61 +402,64 @@ impl CableModel {
     /// the end rows of the equations of motion at the state (internal force,
     /// weight and water at the state; inertia with the last step's acceleration).
     pub fn end_reactions(&self, s: &State) -> [V3; 2] {
+        [self.end_reaction(s, 0), self.end_reaction(s, 1)]
+    }
+
+    /// The force of the support at end `end` (0: S = 0, 1: S = L) in
+    /// `state`, N: one of [`CableModel::end_reactions`].
+    pub fn end_reaction(&self, s: &State, end: usize) -> V3 {
         let c = &self.cable;
         let n = c.n_el;
         let x = &s.config.x;
-        let mut out = [V3::zeros(); 2];
-        for (end, e) in [0usize, n - 1].into_iter().enumerate() {
-            let d = x[e + 1] - x[e];
-            let f_int = d / d.norm() * c.tension(x, e);
-            let (row, node) = if end == 0 { (0, 0) } else { (1, n) };
-            let mut f = if end == 0 { -f_int } else { f_int };
-            f.z -= self.gravity_vector()[node];
-            let acc = &s.end_accel[end];
-            let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
-            f += acc[0] * mass[row][0] + acc[1] * mass[row][1];
-            // the waves at the state (§13.6)
-            let water = self.sea.as_ref().map(|sea| {
-                let xi = crate::math::shape::GAUSS4.xi;
-                water_at(sea, &xi.map(|xi| x[e] * (1.0 - xi) + x[e + 1] * xi), s.time)
-            });
-            if !fluid.is_inert_in(water.is_some()) {
-                let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
-                let mut ff = [V3::zeros(); 2];
-                segment_fluid_force(
-                    fluid,
-                    &[x[e], x[e + 1]],
-                    &[s.vel[e], s.vel[e + 1]],
-                    &[acc[0], acc[1]],
-                    water.as_ref(),
-                    c.s_node(e),
-                    c.l,
-                    fac,
-                    &mut ff,
-                    None,
-                );
-                f -= ff[row];
-            }
-            // (a segment wholly below the band the surface sweeps gets nothing from it)
-            let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
-            if let Some(fsurf) = &fluid.surface
-                && !fsurf.below(&x[e..e + 2], sweep)
-            {
-                let mut fs = [V3::zeros(); 2];
-                let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
-                let eta = eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64);
-                surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, eta, &mut fs, None);
-                f -= fs[row];
-            }
-            if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
-                let mut fs = [V3::zeros(); 2];
-                let shapes = linear_at_gauss(c.l);
-                seabed::element_state_force(bed, &[x[e], x[e + 1]], &[s.vel[e], s.vel[e + 1]], &shapes, c.l, &mut fs);
-                f -= fs[row];
-            }
-            out[end] = f;
+        let e = if end == 0 { 0 } else { n - 1 };
+        let d = x[e + 1] - x[e];
+        let f_int = d / d.norm() * c.tension(x, e);
+        let (row, node) = if end == 0 { (0, 0) } else { (1, n) };
+        let mut f = if end == 0 { -f_int } else { f_int };
+        f.z -= self.gravity_vector()[node];
+        let acc = &s.end_accel[end];
+        let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
+        f += acc[0] * mass[row][0] + acc[1] * mass[row][1];
+        // the waves at the state (§13.6)
+        let water = self.sea.as_ref().map(|sea| {
+            let xi = crate::math::shape::GAUSS4.xi;
+            water_at(sea, &xi.map(|xi| x[e] * (1.0 - xi) + x[e + 1] * xi), s.time)
+        });
+        if !fluid.is_inert_in(water.is_some()) {
+            let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
+            let mut ff = [V3::zeros(); 2];
+            segment_fluid_force(
+                fluid,
+                &[x[e], x[e + 1]],
+                &[s.vel[e], s.vel[e + 1]],
+                &[acc[0], acc[1]],
+                water.as_ref(),
+                c.s_node(e),
+                c.l,
+                fac,
+                &mut ff,
+                None,
+            );
+            f -= ff[row];
         }
-        out
+        // (a segment wholly below the band the surface sweeps gets nothing from it)
+        let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+        if let Some(fsurf) = &fluid.surface
+            && !fsurf.below(&x[e..e + 2], water.as_ref().map_or(sweep, |w| w.depression.min(sweep)))
+        {
+            let mut fs = [V3::zeros(); 2];
+            let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
+            let eta = eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64);
+            surface::element_static_force(fsurf, &[x[e], x[e + 1]], surface::linear, c.l, eta, &mut fs, None);
+            f -= fs[row];
+        }
+        if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
+            let mut fs = [V3::zeros(); 2];
+            let shapes = linear_at_gauss(c.l);
+            seabed::element_state_force(bed, &[x[e], x[e + 1]], &[s.vel[e], s.vel[e + 1]], &shapes, c.l, &mut fs);
+            f -= fs[row];
+        }
+        f
     }
 
     /// Tension (N) and curvature (1/m) at every node of the positions `x`:

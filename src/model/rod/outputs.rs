@@ -13,84 +13,88 @@ impl RodModel {
     /// the end rows of the equations of motion at the state (internal force,
     /// weight and water at the state; inertia with the last step's acceleration).
     pub fn end_reactions(&self, s: &State) -> [V3; 2] {
+        [self.end_reaction(s, 0), self.end_reaction(s, 1)]
+    }
+
+    /// The force of the support at end `end` (0: S = 0, 1: S = L) in
+    /// `state`, N: one of [`RodModel::end_reactions`] (the top's alone is
+    /// the FMU's per-step force: the anchor's water is not evaluated).
+    pub fn end_reaction(&self, s: &State, end: usize) -> V3 {
         let rod = &self.rod;
         let n = rod.n_el;
-        let mut out = [V3::zeros(); 2];
-        for (end, (e, k)) in [(0usize, 0usize), (n - 1, 2)].into_iter().enumerate() {
-            let el = ElemDofs::gather(&s.config, e);
-            let eps = rod.strains_of(&el, e);
-            let st = rod.stresses(e, &eps);
-            let mut re = ElVec::zeros();
-            element::internal_force(
-                &el,
-                &el,
-                &st,
-                rod.stiff(e),
-                Factors::STATIC,
+        let (e, k) = if end == 0 { (0usize, 0usize) } else { (n - 1, 2) };
+        let el = ElemDofs::gather(&s.config, e);
+        let eps = rod.strains_of(&el, e);
+        let st = rod.stresses(e, &eps);
+        let mut re = ElVec::zeros();
+        element::internal_force(
+            &el,
+            &el,
+            &st,
+            rod.stiff(e),
+            Factors::STATIC,
+            rod.h,
+            element::Shear::Spatial(rod.reference_penalty(e)),
+            &mut re,
+            None,
+        );
+        let node = if end == 0 { 0 } else { n };
+        let g = self.gravity_vector();
+        let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);
+        f -= V3::new(g[Rod::x_dof(node)], g[Rod::x_dof(node) + 1], g[Rod::x_dof(node) + 2]);
+        let acc = &s.end_accel[end];
+        let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
+        for m in 0..4 {
+            f += acc[m] * mass.centre[k][m];
+        }
+        // the waves at the state (§13.6)
+        let shapes = hermite_at_gauss(rod.h);
+        let water = self.sea.as_ref().map(|sea| {
+            let points = shapes.map(|(n, _)| (0..4).map(|k| el.c[k] * n[k]).sum::<V3>());
+            water_at(sea, &points, s.time)
+        });
+        if !fluid.is_inert_in(water.is_some()) {
+            let mut ff = [V3::zeros(); 4];
+            let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
+            let v = s.hermite_velocity(e);
+            element_fluid_force(
+                fluid,
+                FluidFields { c: &el.c, v: &v, a: acc, water: water.as_ref() },
+                &shapes,
+                rod.s_node(e),
                 rod.h,
-                element::Shear::Spatial(rod.reference_penalty(e)),
-                &mut re,
+                fac,
+                &mut ff,
                 None,
             );
-            let node = if end == 0 { 0 } else { n };
-            let g = self.gravity_vector();
-            let mut f = V3::new(re[12 * (k / 2)], re[12 * (k / 2) + 1], re[12 * (k / 2) + 2]);
-            f -= V3::new(g[Rod::x_dof(node)], g[Rod::x_dof(node) + 1], g[Rod::x_dof(node) + 2]);
-            let acc = &s.end_accel[end];
-            let (mass, fluid) = (self.mass.at(e), self.fluid.at(e));
-            for m in 0..4 {
-                f += acc[m] * mass.centre[k][m];
-            }
-            // the waves at the state (§13.6)
-            let shapes = hermite_at_gauss(rod.h);
-            let water = self.sea.as_ref().map(|sea| {
-                let points = shapes.map(|(n, _)| (0..4).map(|k| el.c[k] * n[k]).sum::<V3>());
-                water_at(sea, &points, s.time)
-            });
-            if !fluid.is_inert_in(water.is_some()) {
-                let mut ff = [V3::zeros(); 4];
-                let fac = FluidFactors { position: 0.0, velocity: 0.0, acceleration: 0.0 };
-                let v = s.hermite_velocity(e);
-                element_fluid_force(
-                    fluid,
-                    FluidFields { c: &el.c, v: &v, a: acc, water: water.as_ref() },
-                    &shapes,
-                    rod.s_node(e),
-                    rod.h,
-                    fac,
-                    &mut ff,
-                    None,
-                );
-                f -= ff[k];
-            }
-            // (an element wholly below the band the surface sweeps gets
-            // nothing from it: every point of the composite rule is skipped)
-            let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
-            if let Some(fsurf) = &fluid.surface
-                && !fsurf.lowered(sweep).hermite_below(&el.c, rod.h)
-            {
-                let mut fs = [V3::zeros(); 4];
-                let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
-                surface::element_static_force(
-                    fsurf,
-                    &el.c,
-                    |xi| crate::math::shape::hermite(xi, rod.h),
-                    rod.h,
-                    eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64),
-                    &mut fs,
-                    None,
-                );
-                f -= fs[k];
-            }
-            if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
-                let mut fs = [V3::zeros(); 4];
-                let v = s.hermite_velocity(e);
-                seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), rod.h, &mut fs);
-                f -= fs[k];
-            }
-            out[end] = f;
+            f -= ff[k];
         }
-        out
+        // (an element wholly below the band the surface sweeps gets
+        // nothing from it: every point of the composite rule is skipped)
+        let sweep = self.sea.as_ref().map_or(0.0, |s| s.max_elevation());
+        if let Some(fsurf) = &fluid.surface
+            && !fsurf.lowered(water.as_ref().map_or(sweep, |w| w.depression.min(sweep))).hermite_below(&el.c, rod.h)
+        {
+            let mut fs = [V3::zeros(); 4];
+            let eta = water.as_ref().map(|w| move |xi: f64| w.elevation_at(xi));
+            surface::element_static_force(
+                fsurf,
+                &el.c,
+                |xi| crate::math::shape::hermite(xi, rod.h),
+                rod.h,
+                eta.as_ref().map(|f| f as &dyn Fn(f64) -> f64),
+                &mut fs,
+                None,
+            );
+            f -= fs[k];
+        }
+        if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
+            let mut fs = [V3::zeros(); 4];
+            let v = s.hermite_velocity(e);
+            seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), rod.h, &mut fs);
+            f -= fs[k];
+        }
+        f
     }
 
     /// Effective tension (the axial force n·t, N) and curvature (|K₁, K₂|,

@@ -297,7 +297,8 @@ impl StepEquations for RodModel {
         let inv_h = 1.0 / h;
         let fluid_active = !model.fluid.is_inert_in(buf.water.is_some());
         let fac = FluidFactors { position: 0.5, velocity: 1.0 / h, acceleration: 2.0 / (h * h) };
-        // a surface that moves sweeps the band of heights z_s ± max |η|
+        // a surface that moves sweeps the band of heights z_s ± max |η|; over
+        // an element it dips at most the frozen elevation's depression (13.14)
         let sweep = model.sea.as_ref().map_or(0.0, |s| s.max_elevation());
         buf.surface_wave_work = 0.0;
         let mut re = ElVec::zeros();
@@ -455,7 +456,7 @@ impl StepEquations for RodModel {
             // the free surface: the buoyancy of the emerged part taken off, as
             // the discrete gradient of its potential (§10)
             if let Some(fs) = &fluid.surface
-                && let band = fs.lowered(sweep)
+                && let band = fs.lowered(water.map_or(sweep, |w| w.depression.min(sweep)))
                 && !(band.hermite_below(&eln.c, rod.h) && band.hermite_below(&el1.c, rod.h))
             {
                 let mut fsv = [V3::zeros(); 4];
