@@ -29,6 +29,16 @@
 //! current's start rings the line, which a regular wave's short window
 //! catches); without waves
 //! the choice is the still-water model's, bit for bit.
+//!
+//! The motion chosen for (docs/theory.md §16.5): a run's own; without one
+//! the hang-off held still ([`STILL`], A = 0, no step term), which in still
+//! water adds the floor E_s F_c of the current's start ([`C_STILL_CURRENT`]);
+//! where the motion is not known (`riser statics`, the FMU) the design motion
+//! ([`DESIGN_EXCITATION`]), whose amplitude and period the scene's
+//! `accuracy_motion_amplitude` and `accuracy_motion_period` replace, and
+//! which win over a run's own when set ([`excitation_for`]). Only meshes
+//! with a node at each end of every buoyancy section are taken
+//! ([`nodes_on_buoyancy_ends`]).
 
 pub use super::error::AccuracyError;
 use super::error::RiserError;
