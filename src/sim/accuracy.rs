@@ -802,6 +802,22 @@ mod tests {
     use super::*;
     use crate::sim::report::ShapeRow;
 
+    /// The lazy wave's modules span 50 to 80 m of its 100 m: n equal
+    /// elements put nodes at k·100/n m, on both ends exactly when n is a
+    /// multiple of 10 (50 n/100 and 80 n/100 whole); a line without modules
+    /// takes every mesh.
+    #[test]
+    fn the_meshes_taken_put_nodes_on_the_buoyancy_ends() {
+        let lazy = Scene::load("lazy_wave").unwrap();
+        assert_eq!((lazy.line.length, lazy.buoyancy[0].start, lazy.buoyancy[0].end), (100.0, 50.0, 80.0));
+        for n in ELEMENT_LADDER {
+            assert_eq!(nodes_on_buoyancy_ends(&lazy, n), n % 10 == 0, "{n} elements");
+        }
+        let catenary = Scene::load("catenary").unwrap();
+        assert!(catenary.buoyancy.is_empty());
+        assert!(ELEMENT_LADDER.iter().all(|&n| nodes_on_buoyancy_ends(&catenary, n)));
+    }
+
     /// S and F_c of (16.4) on a vertical line hanging from the mean surface
     /// in a uniform current, against their closed forms: with ζ = −s,
     /// ∫₀ᴸ e^{−k s} ds = (1 − e^{−kL})/k and ∫₀ᴸ e^{−2k s} ds = (1 − e^{−2kL})/(2k).
