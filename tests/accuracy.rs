@@ -304,3 +304,153 @@ fn a_catenary_in_an_irregular_sea_and_heave_reaches_its_targets() {
 fn the_jumper_in_a_regular_wave_reaches_its_targets() {
     reaches_its_targets_in_waves("jumper_airy", &[1e-2, 1e-3]);
 }
+
+/// The choice's `cost` of a run's `--json`.
+fn cost_of(c: &serde_json::Value) -> f64 {
+    riser::sim::accuracy::cost(c["n_elements"].as_u64().unwrap() as usize, c["time_step"].as_f64().unwrap())
+}
+
+/// The design motion (docs/theory.md §16.2): `riser statics` (as the FMU)
+/// chooses for `accuracy_motion_amplitude` and `accuracy_motion_period`,
+/// 2.5 m and 10 s unset, and reads them back; a smaller amplitude or a
+/// longer period never costs more. The catenary's case moves 2.5 m at 20 s:
+/// the choice for that design motion is cheaper than the default one's and
+/// reaches its target against the case's reference, and a run with the heave
+/// takes the design motion set over its own.
+#[test]
+fn the_design_motion_given_sets_the_choice() {
+    let statics = |sets: &[&str]| {
+        let mut args = vec!["statics", "catenary", "--json", "--set", "accuracy=1e-3"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        run_json(&args)["accuracy"].clone()
+    };
+    let motion =
+        |c: &serde_json::Value| (c["motion_amplitude"].as_f64().unwrap(), c["motion_period"].as_f64().unwrap());
+    let design = statics(&[]);
+    assert_eq!(motion(&design), (2.5, 10.0));
+    for (sets, expected) in [
+        (&["accuracy_motion_amplitude=1"][..], (1.0, 10.0)),
+        (&["accuracy_motion_period=20"][..], (2.5, 20.0)),
+        (&["accuracy_motion_amplitude=0.5", "accuracy_motion_period=30"][..], (0.5, 30.0)),
+    ] {
+        let c = statics(sets);
+        assert_eq!(motion(&c), expected, "{sets:?}");
+        assert!(cost_of(&c) <= cost_of(&design), "{sets:?}: {c} against {design}");
+    }
+    let at_20 = statics(&["accuracy_motion_period=20"]);
+    assert!(cost_of(&at_20) < cost_of(&design), "{at_20} against {design}");
+    // the case's motion: its choice, pinned as a master would set it, reaches 1e-3
+    let refs = reference("catenary");
+    let error_of = |v: &serde_json::Value| {
+        let tt: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        (0..3).map(|k| (tt[k] - refs[k]).abs()).fold(0.0, f64::max) / refs[2]
+    };
+    let (n, dt, tol) = (
+        format!("n_elements={}", at_20["n_elements"]),
+        format!("time_step={}", at_20["time_step"]),
+        format!("newton_tolerance={}", at_20["newton_tolerance"]),
+    );
+    let v = run_json(&[
+        "run",
+        "catenary",
+        "--heave",
+        "2.5,20",
+        "--duration",
+        "80",
+        "--json",
+        "--set",
+        &n,
+        "--set",
+        &dt,
+        "--set",
+        &tol,
+    ]);
+    assert!(error_of(&v) <= 1e-3, "the design motion's choice {at_20}: error {:.2e}", error_of(&v));
+    // a run with its heave and the design period set: the design motion wins
+    let v = run_json(&[
+        "run",
+        "catenary",
+        "--heave",
+        "2.5,20",
+        "--duration",
+        "80",
+        "--json",
+        "--set",
+        "accuracy=1e-3",
+        "--set",
+        "accuracy_motion_period=10",
+    ]);
+    assert_eq!(motion(&v["accuracy"]), (2.5, 10.0));
+    assert_eq!((&v["n_elements"], &v["time_step"]), (&design["n_elements"], &design["time_step"]));
+    assert!(error_of(&v) <= 1e-3, "error {:.2e}", error_of(&v));
+}
+
+/// `riser run` without a motion chooses for the hang-off held still: no step
+/// term, the floor E_s F_c of the current's start (docs/theory.md §16.2).
+/// The catenary (F_c = 0.044) at 1e-2 reaches it against the still case's
+/// reference (docs/accuracy.md, catenary_still) and costs no more than the
+/// design motion's choice; at 1e-3 the floor is above what the target leaves,
+/// and the run is refused naming it, unless a design motion is given.
+#[test]
+fn a_run_without_motion_chooses_for_the_hang_off_held_still() {
+    let still = ["run", "catenary", "--duration", "40", "--window", "20,40", "--json"];
+    fn with<'a>(base: &[&'a str], sets: &[&'a str]) -> Vec<&'a str> {
+        let mut args = base.to_vec();
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        args
+    }
+    let v = run_json(&with(&still, &["accuracy=1e-2"]));
+    let c = &v["accuracy"];
+    assert_eq!(c["motion_amplitude"].as_f64(), Some(0.0));
+    assert_eq!(c["predicted_time_error"].as_f64(), Some(0.0));
+    let design = run_json(&["statics", "catenary", "--json", "--set", "accuracy=1e-2"])["accuracy"].clone();
+    assert!(cost_of(c) <= cost_of(&design), "{c} against {design}");
+    let refs = reference("catenary_still");
+    let tt: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let e = (0..3).map(|k| (tt[k] - refs[k]).abs()).fold(0.0, f64::max) / refs[2];
+    assert!(e <= 1e-2, "error {e:.2e}");
+    let out = riser(&with(&still, &["accuracy=1e-3"]));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("without a hang-off motion or waves"), "{err}");
+    // a design motion given: chosen for it, as riser statics
+    let short = ["run", "catenary", "--duration", "0.4", "--json"];
+    let args = with(&short, &["accuracy=1e-3", "accuracy_motion_amplitude=2.5"]);
+    let v = run_json(&args);
+    assert_eq!(
+        (v["accuracy"]["motion_amplitude"].as_f64(), v["accuracy"]["motion_period"].as_f64()),
+        (Some(2.5), Some(10.0))
+    );
+}
+
+/// A design motion outside what the model covers, or no motion at all, is
+/// refused naming the parameter (`--set`; the scene's `[analysis]` keys are
+/// checked the same way).
+#[test]
+fn a_bad_design_motion_is_refused_naming_it() {
+    for (set, message) in [
+        ("accuracy_motion_amplitude=-1", "accuracy_motion_amplitude: -1 m is outside [0, 100] m"),
+        ("accuracy_motion_amplitude=nan", "accuracy_motion_amplitude: NaN is not a finite number"),
+        ("accuracy_motion_period=-10", "accuracy_motion_period: -10 s is outside"),
+        ("accuracy_motion_amplitude=20", "amplitude 20 m (accuracy_motion_amplitude) is larger than the 10 m"),
+        ("accuracy_motion_period=5", "period 5 s (accuracy_motion_period) is shorter than the 10 s"),
+    ] {
+        let out = riser(&["statics", "catenary", "--set", "accuracy=1e-3", "--set", set]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(message), "{set}: {err}");
+    }
+    let toml = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/catenary.toml"))
+        .unwrap()
+        .replace("[analysis]", "[analysis]\naccuracy_motion_period = -3.0");
+    let dir = std::env::temp_dir().join(format!("riser-accmotion-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad_motion.toml");
+    std::fs::write(&path, toml).unwrap();
+    let out = riser(&["statics", path.to_str().unwrap(), "--set", "accuracy=1e-3"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("analysis.accuracy_motion_period"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -287,6 +287,16 @@ pub struct Analysis {
     /// a `--set`/FMU value of one of them wins over its choice).
     #[serde(default, skip_serializing_if = "is_unset")]
     pub accuracy: f64,
+    /// The amplitude of the hang-off motion, m, the accuracy knob chooses for
+    /// (docs/theory.md §16.2): unset, `riser run` takes its own motion's (0
+    /// without one) and `riser statics` and the FMU the design motion's
+    /// 2.5 m; set, it wins over the run's motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy_motion_amplitude: Option<f64>,
+    /// The period of the hang-off motion, s, the accuracy knob chooses for:
+    /// unset, the run's motion's and otherwise the design motion's 10 s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy_motion_period: Option<f64>,
 }
 
 fn is_unset(v: &f64) -> bool {
@@ -305,6 +315,12 @@ fn default_time_step() -> f64 {
 fn default_tolerance() -> f64 {
     1e-8
 }
+/// The amplitude of the design motion, m, the accuracy knob chooses for
+/// where the motion is not known (`riser statics`, the FMU) and
+/// `accuracy_motion_amplitude` is unset (docs/theory.md §16.2).
+pub const DESIGN_MOTION_AMPLITUDE: f64 = 2.5;
+/// The period of the design motion, s: the shortest the knob covers.
+pub const DESIGN_MOTION_PERIOD: f64 = 10.0;
 /// The default ρ∞ (docs/theory.md §5.10 says how it was chosen).
 pub const DEFAULT_RHO_INFINITY: f64 = 0.8;
 fn default_rho_infinity() -> f64 {
@@ -322,6 +338,8 @@ impl Default for Analysis {
             structural_damping: 0.0,
             rho_infinity: default_rho_infinity(),
             accuracy: 0.0,
+            accuracy_motion_amplitude: None,
+            accuracy_motion_period: None,
         }
     }
 }

@@ -2,10 +2,13 @@
 //! command line, parameters of the FMU).
 
 use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpec, read_table};
-use super::{Buoyancy, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError, SeabedSpec, ranges};
+use super::{
+    Buoyancy, DESIGN_MOTION_AMPLITUDE, DESIGN_MOTION_PERIOD, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError,
+    SeabedSpec, ranges,
+};
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 54] = [
+pub const PARAMETER_NAMES: [(&str, &str); 56] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -60,6 +63,8 @@ pub const PARAMETER_NAMES: [(&str, &str); 54] = [
     ("hang_off_z", "m"),
     ("rotation_order", "zyx | xyz"),
     ("accuracy", "-"),
+    ("accuracy_motion_amplitude", "m"),
+    ("accuracy_motion_period", "s"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -199,6 +204,8 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "structural_damping" => s.analysis.structural_damping = num()?,
         "rho_infinity" => s.analysis.rho_infinity = num()?,
         "accuracy" => s.analysis.accuracy = num()?,
+        "accuracy_motion_amplitude" => s.analysis.accuracy_motion_amplitude = Some(num()?),
+        "accuracy_motion_period" => s.analysis.accuracy_motion_period = Some(num()?),
         "static_current" => {
             s.analysis.static_current = match value {
                 "true" | "1" => true,
@@ -299,6 +306,9 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "structural_damping" => num(s.analysis.structural_damping),
         "rho_infinity" => num(s.analysis.rho_infinity),
         "accuracy" => num(s.analysis.accuracy),
+        // unset: the design motion's (the FMU's start values)
+        "accuracy_motion_amplitude" => num(s.analysis.accuracy_motion_amplitude.unwrap_or(DESIGN_MOTION_AMPLITUDE)),
+        "accuracy_motion_period" => num(s.analysis.accuracy_motion_period.unwrap_or(DESIGN_MOTION_PERIOD)),
         "length" => num(s.line.length),
         "mass_per_length" => num(s.line.mass_per_length),
         "outer_diameter" => num(s.line.outer_diameter),

@@ -597,6 +597,24 @@ pub const RANGES: &[Range] = &[
         reason: "relative error of the top tension accepted (0: unset, the numerics as given); the error model \
                  is calibrated from 1e-4 to 1e-2 (theory 16), a looser target gets the 1e-2 choice",
     },
+    Range {
+        field: "analysis.accuracy_motion_amplitude",
+        parameter: Some("accuracy_motion_amplitude"),
+        unit: "m",
+        min: 0.0,
+        max: 100.0,
+        reason: "the hang-off motion's amplitude the accuracy knob chooses for (theory 16.2); it covers 0 to 10 m \
+                 and refuses a larger one",
+    },
+    Range {
+        field: "analysis.accuracy_motion_period",
+        parameter: Some("accuracy_motion_period"),
+        unit: "s",
+        min: 0.1,
+        max: 1000.0,
+        reason: "the hang-off motion's period the accuracy knob chooses for (theory 16.2); it covers 10 s and \
+                 longer and refuses a shorter one",
+    },
 ];
 
 /// The hang-off inputs of the FMU (m and m/s): checked when a master sets them.

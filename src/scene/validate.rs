@@ -149,6 +149,12 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     c.range("analysis.structural_damping", an.structural_damping);
     c.range("analysis.rho_infinity", an.rho_infinity);
     c.range("analysis.accuracy", an.accuracy);
+    if let Some(a) = an.accuracy_motion_amplitude {
+        c.range("analysis.accuracy_motion_amplitude", a);
+    }
+    if let Some(t) = an.accuracy_motion_period {
+        c.range("analysis.accuracy_motion_period", t);
+    }
     let end = s.hang_off.end;
     if end != super::HangOffEnd::Pinned && an.model == super::Model::Cable {
         c.err(

@@ -29,6 +29,16 @@
 //! current's start rings the line, which a regular wave's short window
 //! catches); without waves
 //! the choice is the still-water model's, bit for bit.
+//!
+//! The motion chosen for (docs/theory.md §16.5): a run's own; without one
+//! the hang-off held still ([`STILL`], A = 0, no step term), which in still
+//! water adds the floor E_s F_c of the current's start ([`C_STILL_CURRENT`]);
+//! where the motion is not known (`riser statics`, the FMU) the design motion
+//! ([`DESIGN_EXCITATION`]), whose amplitude and period the scene's
+//! `accuracy_motion_amplitude` and `accuracy_motion_period` replace, and
+//! which win over a run's own when set ([`excitation_for`]). Only meshes
+//! with a node at each end of every buoyancy section are taken
+//! ([`nodes_on_buoyancy_ends`]).
 
 pub use super::error::AccuracyError;
 use super::error::RiserError;
@@ -80,7 +90,19 @@ pub const MIN_SLACK: f64 = 0.05;
 /// The motion the choice is made for when the caller does not know it (the
 /// FMU, whose master moves the vessel; `riser run` without a motion): the
 /// shortest period covered, [`MIN_PERIOD`].
-pub const DESIGN_EXCITATION: Excitation = Excitation { period: MIN_PERIOD, amplitude: 2.5 };
+/// The user's `accuracy_motion_amplitude` and `accuracy_motion_period`
+/// replace either of its two.
+pub const DESIGN_EXCITATION: Excitation =
+    Excitation { period: crate::scene::DESIGN_MOTION_PERIOD, amplitude: crate::scene::DESIGN_MOTION_AMPLITUDE };
+/// The hang-off held still (`riser run` without a motion): no step term of
+/// the motion, no period to take steps of.
+pub const STILL: Excitation = Excitation { period: f64::INFINITY, amplitude: 0.0 };
+/// The floor E_s of E_s F_c in still water without a motion (docs/theory.md
+/// §16.2): the current's start rings the line, and a window from 20 to 40 s
+/// holds what the step's dissipation left of it, which falls neither with
+/// the mesh nor with the step (the lazy wave, F_c = 0.20: 1.2–3.4e-3 from 20
+/// to 80 elements and 0.2 to 0.025 s; the catenary, F_c = 0.044: 1.7–5.6e-4).
+pub const C_STILL_CURRENT: f64 = 0.017;
 /// The step constant C_wt of S C_wt (ω_w Δt)^{3/2} in waves (§16.4, eq. 16.3):
 /// the jumper's error in its regular wave, 160 elements, falls from 4.1e-4 to
 /// 5.4e-5 from Δt = 0.1 to 0.025 s (S = 0.62): 0.042 to 0.047 a point.
@@ -132,6 +154,17 @@ pub struct Excitation {
     pub amplitude: f64,
 }
 
+impl Excitation {
+    /// "for a motion of 2.5 m at period 10 s" or "for the hang-off held still".
+    pub fn describe(&self) -> String {
+        if self.amplitude == 0.0 && self.period.is_infinite() {
+            "for the hang-off held still".to_string()
+        } else {
+            format!("for a motion of {} m at period {} s", self.amplitude, self.period)
+        }
+    }
+}
+
 /// Which numerics the user set explicitly (`--set`, the FMU's master): they
 /// win over the choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -171,6 +204,9 @@ pub struct Scales {
     pub amplitude: f64,
     /// The line's unstretched length, m.
     pub length: f64,
+    /// F_c: the current's drag on the static line over the static top
+    /// tension (docs/theory.md 16.4), whose start sets the floor of a still run.
+    pub current_ratio: f64,
     /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
     pub touchdown_bending_length: Option<f64>,
     /// The sea's scales (None: still water).
@@ -227,7 +263,7 @@ impl Choice {
         format!(
             "accuracy {:e}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error model: {:.1e} from \
              the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, + {:.1e} \
-             from the step, omega dt = {:.4} for a motion of {} m at period {} s)",
+             from the step, omega dt = {:.4} {})",
             self.target,
             self.n_elements,
             mark(self.pinned.n_elements),
@@ -248,8 +284,7 @@ impl Choice {
                 .unwrap_or_default(),
             self.predicted_time,
             self.scales.omega * self.time_step,
-            self.excitation.amplitude,
-            self.excitation.period
+            self.excitation.describe()
         ) + &self
             .scales
             .waves
@@ -276,6 +311,8 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
         s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
     let still = C_CURVATURE * (h * s.curvature).powi(4) + contact;
     match &s.waves {
+        // no motion, no sea: the current's start is what the window holds
+        None if s.amplitude == 0.0 => still + C_STILL_CURRENT * s.current_ratio,
         None => still,
         Some(w) => {
             let hk = h * w.wave_number;
@@ -288,7 +325,8 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
 
 /// The temporal error of step `dt` s (docs/theory.md 16.2, 16.3).
 pub fn time_error(s: &Scales, dt: f64) -> f64 {
-    let still = C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5);
+    let still =
+        if s.amplitude == 0.0 { 0.0 } else { C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powf(1.5) };
     match &s.waves {
         None => still,
         // (16.3): S C_wt (ω_w Δt)^{3/2}
@@ -327,6 +365,39 @@ fn wave_load_ratios(scene: &Scene, rows: &[super::report::ShapeRow], w: &WaveSca
     }
     let top = rows.first().map_or(f64::NAN, |r| r.tension.abs());
     (load / top, drag / top)
+}
+
+/// Whether `n` equal elements put a node at each end of every buoyancy
+/// section inside the line (docs/theory.md §16.2): the study's lazy wave
+/// meshes (10 to 80 elements) all do; 12 and 14 elements, which cut its
+/// modules' end at 80 m, miss by 3.5e-2 and 2e-3 in its heave case where
+/// C_κ (h κ)⁴ gives 2.4e-3 and 1.3e-3 (the step in the load smeared over an
+/// element; at 12 the line snaps into compression). The choice takes only
+/// such meshes.
+pub fn nodes_on_buoyancy_ends(scene: &Scene, n: usize) -> bool {
+    let l = scene.line.length;
+    scene.buoyancy.iter().flat_map(|b| [b.start, b.end]).filter(|&e| e > 0.0 && e < l).all(|e| {
+        let k = e / l * n as f64;
+        (k - k.round()).abs() < 1e-6
+    })
+}
+
+/// F_c of docs/theory.md (16.4) alone: the current's drag on the submerged
+/// static line over the static top tension.
+fn current_load_ratio(scene: &Scene, rows: &[super::report::ShapeRow]) -> f64 {
+    let (line, env) = (&scene.line, &scene.environment);
+    let current = crate::loads::current(scene);
+    let mut drag = 0.0;
+    for p in rows.windows(2) {
+        let (a, b) = (&p[0], &p[1]);
+        let (s, z) = (0.5 * (a.s + b.s), 0.5 * (a.z + b.z));
+        if z - env.water_surface_z > 0.0 {
+            continue;
+        }
+        let speed = current.speed(s, z).0.abs();
+        drag += 0.5 * env.water_density * line.cd_normal * line.outer_diameter * speed.powi(2) * (b.s - a.s);
+    }
+    drag / rows.first().map_or(f64::NAN, |r| r.tension.abs())
 }
 
 /// The relative cost of a run of `n` elements at step `dt`, the study's work
@@ -517,6 +588,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         omega: 2.0 * std::f64::consts::PI / excitation.period,
         amplitude: excitation.amplitude,
         length: scene.line.length,
+        current_ratio: current_load_ratio(scene, &rep.shape),
         touchdown_bending_length,
         waves: wave_scales(scene)?.map(|w| {
             let (load_ratio, current_ratio) = wave_load_ratios(scene, &rep.shape, &w);
@@ -525,20 +597,50 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     })
 }
 
-/// The numerics for the scene's `accuracy` target, the motion `excitation`
-/// (None: [`DESIGN_EXCITATION`]) and the user's `pinned` numerics.
-pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> Result<Choice, RiserError> {
+/// The motion the choice is for: the run's `motion` (None: not known, the
+/// FMU and `riser statics`; [`STILL`]: a run without one), each of its two
+/// replaced by the scene's `accuracy_motion_amplitude` and
+/// `accuracy_motion_period` where set. Where the motion is not known or the
+/// hang-off is held still, setting either gives the design motion
+/// ([`DESIGN_EXCITATION`], the other of the two from it).
+pub fn excitation_for(scene: &Scene, motion: Option<Excitation>) -> Excitation {
+    let an = &scene.analysis;
+    let (amplitude, period) = (an.accuracy_motion_amplitude, an.accuracy_motion_period);
+    let base = match motion {
+        Some(m) if m == STILL && (amplitude.is_some() || period.is_some()) => DESIGN_EXCITATION,
+        Some(m) => m,
+        None => DESIGN_EXCITATION,
+    };
+    Excitation { amplitude: amplitude.unwrap_or(base.amplitude), period: period.unwrap_or(base.period) }
+}
+
+/// The numerics for the scene's `accuracy` target, the run's `motion` (see
+/// [`excitation_for`]) and the user's `pinned` numerics.
+pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Result<Choice, RiserError> {
     let target = scene.analysis.accuracy;
     if target < MIN_TARGET {
         return Err(AccuracyError::TargetTooSmall { target, min: MIN_TARGET }.into());
     }
     coverage(scene)?;
-    let excitation = excitation.unwrap_or(DESIGN_EXCITATION);
+    let excitation = excitation_for(scene, motion);
+    for (field, value, unit) in
+        [("accuracy_motion_amplitude", excitation.amplitude, "m"), ("accuracy_motion_period", excitation.period, "s")]
+    {
+        if value.is_nan() || value < 0.0 || (unit == "s" && value == 0.0) {
+            return Err(AccuracyError::Motion {
+                message: format!("{field} = {value} {unit} is not a motion: it must be a positive number"),
+            }
+            .into());
+        }
+    }
+    let given = |set: Option<f64>, field: &str| if set.is_some() { format!(" ({field})") } else { String::new() };
+    let an = &scene.analysis;
     if excitation.period.is_nan() || excitation.period < MIN_PERIOD {
         return Err(AccuracyError::Motion {
             message: format!(
-                "a hang-off motion of period {} s is shorter than the {MIN_PERIOD} s the error model covers",
-                excitation.period
+                "a hang-off motion of period {} s{} is shorter than the {MIN_PERIOD} s the error model covers",
+                excitation.period,
+                given(an.accuracy_motion_period, "accuracy_motion_period")
             ),
         }
         .into());
@@ -546,8 +648,9 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
     if excitation.amplitude.is_nan() || excitation.amplitude > MAX_AMPLITUDE {
         return Err(AccuracyError::Motion {
             message: format!(
-                "a hang-off motion of amplitude {} m is larger than the {MAX_AMPLITUDE} m the error model covers",
-                excitation.amplitude
+                "a hang-off motion of amplitude {} m{} is larger than the {MAX_AMPLITUDE} m the error model covers",
+                excitation.amplitude,
+                given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude")
             ),
         }
         .into());
@@ -585,8 +688,26 @@ pub fn choose(scene: &Scene, excitation: Option<Excitation>, pinned: Pinned) -> 
     let period = waves.map_or(excitation.period, |w| excitation.period.min(2.0 * std::f64::consts::PI / w.omega));
     let s = scales(scene, &excitation)?;
     let budget = target.min(MAX_TARGET) / SAFETY;
+    if s.amplitude == 0.0 && s.waves.is_none() && C_STILL_CURRENT * s.current_ratio > budget {
+        return Err(AccuracyError::NotCovered {
+            feature: format!("accuracy = {target:e} without a hang-off motion or waves in this current"),
+            reason: format!(
+                "the current's start rings the line and the window holds what is left of it, E_s F_c = {:.1e} \
+                 whatever the mesh and the step (F_c = {:.3}, docs/theory.md 16.2), above the {budget:.1e} the \
+                 target leaves; give the motion the run is for (--heave, or accuracy_motion_amplitude and \
+                 accuracy_motion_period) or a looser target",
+                C_STILL_CURRENT * s.current_ratio,
+                s.current_ratio
+            ),
+        }
+        .into());
+    }
     let an = &scene.analysis;
-    let ns: Vec<usize> = if pinned.n_elements { vec![an.n_elements] } else { ELEMENT_LADDER.to_vec() };
+    let ns: Vec<usize> = if pinned.n_elements {
+        vec![an.n_elements]
+    } else {
+        ELEMENT_LADDER.iter().copied().filter(|&n| nodes_on_buoyancy_ends(scene, n)).collect()
+    };
     let dts: Vec<f64> = if pinned.time_step {
         vec![an.time_step]
     } else {
@@ -680,6 +801,22 @@ pub fn warning(choice: &Choice) -> Option<String> {
 mod tests {
     use super::*;
     use crate::sim::report::ShapeRow;
+
+    /// The lazy wave's modules span 50 to 80 m of its 100 m: n equal
+    /// elements put nodes at k·100/n m, on both ends exactly when n is a
+    /// multiple of 10 (50 n/100 and 80 n/100 whole); a line without modules
+    /// takes every mesh.
+    #[test]
+    fn the_meshes_taken_put_nodes_on_the_buoyancy_ends() {
+        let lazy = Scene::load("lazy_wave").unwrap();
+        assert_eq!((lazy.line.length, lazy.buoyancy[0].start, lazy.buoyancy[0].end), (100.0, 50.0, 80.0));
+        for n in ELEMENT_LADDER {
+            assert_eq!(nodes_on_buoyancy_ends(&lazy, n), n % 10 == 0, "{n} elements");
+        }
+        let catenary = Scene::load("catenary").unwrap();
+        assert!(catenary.buoyancy.is_empty());
+        assert!(ELEMENT_LADDER.iter().all(|&n| nodes_on_buoyancy_ends(&catenary, n)));
+    }
 
     /// S and F_c of (16.4) on a vertical line hanging from the mean surface
     /// in a uniform current, against their closed forms: with ζ = −s,

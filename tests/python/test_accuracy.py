@@ -88,3 +88,71 @@ def test_a_sea_the_model_does_not_cover_is_an_error(fmu_path, unzipped):
     with pytest.raises(Exception):
         started_slave(fmu_path, unzipped, scene="catenary", strings={"wave_kind": "airy"},
                       reals={"accuracy": 1e-3, "wave_height": 2.0, "wave_period": 12.0, "wave_direction": 45.0})
+
+
+def test_the_design_motion_is_a_parameter_read_back(fmu_path, unzipped, riser_bin):
+    """The design motion (docs/theory.md section 16.2): 2.5 m at 10 s unless the master sets
+    accuracy_motion_amplitude and accuracy_motion_period; the FMU then chooses what the CLI chooses
+    for them, no dearer for a smaller amplitude and a longer period."""
+    s, vr = started_slave(fmu_path, unzipped, scene="catenary", reals={"accuracy": 1e-3})
+    try:
+        design = read_numerics(s, vr)
+        assert (s.getReal([vr["accuracy_motion_amplitude"]])[0], s.getReal([vr["accuracy_motion_period"]])[0]) == (
+            2.5, 10.0)
+    finally:
+        s.terminate()
+        s.freeInstance()
+    reals = {"accuracy": 1e-3, "accuracy_motion_amplitude": 1.0, "accuracy_motion_period": 20.0}
+    s, vr = started_slave(fmu_path, unzipped, scene="catenary", reals=reals)
+    try:
+        n, dt, tol = read_numerics(s, vr)
+        assert (s.getReal([vr["accuracy_motion_amplitude"]])[0], s.getReal([vr["accuracy_motion_period"]])[0]) == (
+            1.0, 20.0)
+        c = cli_choice(riser_bin, "catenary", reals)
+        assert (c["motion_amplitude"], c["motion_period"]) == (1.0, 20.0)
+        assert (n, dt, tol) == (c["n_elements"], c["time_step"], c["newton_tolerance"])
+        # the work model of src/sim/accuracy.rs (cost): elements x steps x iterations a step
+        def cost(n, dt):
+            return n * min(2.0 + 40.0 * dt, 7.0) / dt
+        assert cost(n, dt) < cost(design[0], design[1])
+    finally:
+        s.terminate()
+        s.freeInstance()
+
+
+DESIGN_CHILD = r"""
+import sys
+from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+fmu_path, unzipped, name, value = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
+md = read_model_description(fmu_path)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="design")
+s.instantiate(loggingOn=True)
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.setReal([vr["accuracy"]], [1e-3])
+status = 0
+try:
+    s.setReal([vr[name]], [value])
+    s.exitInitializationMode()
+except FMICallException as e:
+    status = e.status
+print("@@status", status, flush=True)
+"""
+
+
+@pytest.mark.parametrize("name,value,message", [
+    ("accuracy_motion_period", 5.0, "period 5 s (accuracy_motion_period) is shorter than the 10 s"),
+    ("accuracy_motion_amplitude", 20.0, "amplitude 20 m (accuracy_motion_amplitude) is larger than the 10 m"),
+    ("accuracy_motion_amplitude", -1.0, "accuracy_motion_amplitude"),
+])
+def test_a_design_motion_the_model_does_not_cover_is_an_error_naming_it(fmu_path, unzipped, name, value, message):
+    import sys
+
+    p = subprocess.run([sys.executable, "-c", DESIGN_CHILD, fmu_path, unzipped, name, str(value)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert "@@status 3" in p.stdout, p.stdout  # fmi2Error
+    assert message in p.stdout + p.stderr, p.stdout + p.stderr

@@ -354,7 +354,7 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
             "wave_amplitude": c.scales.waves.map(|w| w.amplitude),
             "wave_number": c.scales.waves.map(|w| w.wave_number),
             "wave_load_ratio": c.scales.waves.map(|w| w.load_ratio),
-            "current_load_ratio": c.scales.waves.map(|w| w.current_ratio),
+            "current_load_ratio": c.scales.current_ratio,
             "wave_regular": c.scales.waves.map(|w| w.regular),
             "length": c.scales.length,
         }),
@@ -366,13 +366,13 @@ fn choice_text(choice: &Option<riser::sim::accuracy::Choice>) {
     if let Some(c) = choice {
         outln!(
             "  accuracy {:e}: chose n_elements {}, time_step {} s, newton_tolerance {:e} (predicted error {:.1e}; \
-             for a motion of period {} s)",
+             {})",
             c.target,
             c.n_elements,
             c.time_step,
             c.newton_tolerance,
             c.predicted(),
-            c.excitation.period
+            c.excitation.describe()
         );
     }
 }
@@ -653,8 +653,10 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     }
     let scene = load(scene, set).map_err(|e| e.to_string())?;
     // the accuracy knob: the numerics for the motion asked for (issue 28)
-    let excitation = motions.excitation();
-    let (scene, choice) = choose_numerics(scene, set, excitation)?;
+    // (a run without one: the hang-off held still, unless the scene's
+    // accuracy_motion_* give a design motion)
+    let excitation = motions.excitation().unwrap_or(riser::sim::accuracy::STILL);
+    let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
     let wall0 = std::time::Instant::now();

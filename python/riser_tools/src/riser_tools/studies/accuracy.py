@@ -60,7 +60,13 @@ WAVE_CASES = {
     "jumper_airy": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
     "jumper_airy_heave": (JUMPER, 2.5, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
     "jumper_jonswap": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], JONSWAP, 220.0, WINDOW_IRREGULAR),
+    # still water, no motion (docs/theory.md §16.2, the floor E_s F_c): what the window from 20 to 40 s holds of
+    # the current's start, which `riser run` without a motion chooses for
+    "catenary_still": ("catenary", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
+    "lazy_wave_still": ("lazy_wave", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
 }
+# the cases without a motion or a sea: no period to take steps of
+STILL_CASES = ("catenary_still", "lazy_wave_still")
 CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
 REF_STEP = 0.0125
@@ -91,6 +97,8 @@ STEPS_PER_PERIOD = 75.0
 
 def shortest_period(case):
     """The shortest period of a case's motions: its heave's and, in waves, its sea's (10 s here)."""
+    if case in STILL_CASES:
+        return float("inf")
     return min(CASES[case][2], 10.0) if case in WAVE_CASES else CASES[case][2]
 
 
@@ -230,8 +238,12 @@ def write_doc(rows, docs, binary):
              "dt 0.1 s and below). The cases in waves (from catenary_airy on; docs/theory.md "
              "§16.4) run the sea given with `--set` over their own duration and steady window (a regular wave: 20 to "
              "40 s; an irregular sea: 20 to 220 s, 20 Tp), with the heave if given; their runs at accuracy 1e-4 are "
-             "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for the "
-             "design motion (2.5 m at 10 s) as `riser run` without a motion and the FMU choose. catenary_A10 (10 m at "
+             "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for no "
+             "hang-off motion, as `riser run` without a motion chooses (`riser statics` and the FMU choose for the "
+             "design motion, 2.5 m at 10 s unless accuracy_motion_amplitude and accuracy_motion_period give "
+             "another). catenary_still and lazy_wave_still: still water, no motion, the window 20 to 40 s, what "
+             "is left of the current's start (the floor E_s F_c of docs/theory.md §16.2); the model covers every "
+             "step there. catenary_A10 (10 m at "
              "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
              "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only.", ""]
     for case, (scene, amp, period, _) in CASES.items():
@@ -242,7 +254,8 @@ def write_doc(rows, docs, binary):
         if case in WAVE_CASES:
             *_, sea, duration, (t0, t1) = WAVE_CASES[case]
             what = (f"`{scene}`, " + (f"heave {amp} m / {period:g} s, " if amp > 0 else "no heave, ")
-                    + f"`--set {','.join(sea)}`, {duration:g} s, steady window {t0:g} to {t1:g} s")
+                    + (f"`--set {','.join(sea)}`, " if sea else "still water, ")
+                    + f"{duration:g} s, steady window {t0:g} to {t1:g} s")
         else:
             what = f"`{scene}`, heave {amp} m / {period:g} s, {4 * period:g} s"
         lines += [f"## {case}", "", f"{what}; reference "

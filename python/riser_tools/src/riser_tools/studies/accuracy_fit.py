@@ -36,6 +36,9 @@ def points(binary: str, runs: str):
     rows = list(csv.DictReader(open(runs)))
     out = []
     for case, (scene, amp, period, els, sea, dur, win) in A.WAVE_CASES.items():
+        if case in A.STILL_CASES:
+            # no sea: their floor is E_s F_c (docs/theory.md 16.6, C_STILL_CURRENT), not a wave term
+            continue
         cmd = A.command(binary, case)
         cmd[cmd.index("--duration") + 1] = "0.2"
         i = cmd.index("--window")
