@@ -311,7 +311,8 @@ impl Sea {
             *wt = w * t;
         }
         // the loop compiled for the widest vectors the processor has (AVX2:
-        // four lanes instead of two), chosen at run time by pulp, the SIMD
+        // four lanes instead of two; AVX-512, pulp's `x86-v4`: eight),
+        // chosen at run time by pulp, the SIMD
         // layer faer already brings (no unsafe here); the same operations in
         // the same order on every path: the same bits
         pulp::Arch::new().dispatch(WaterPoints { sea: self, r, dr, points, out, scratch });
@@ -721,5 +722,21 @@ mod tests {
         // the portable body, with the scratch's ω t of the call above
         s.water_points(r, dr, &points, &mut b, &mut scratch);
         assert_eq!(a, b);
+        // and each x86 instruction set this processor has, by name (the
+        // dispatch above took the widest: AVX-512 where there is one)
+        #[cfg(target_arch = "x86_64")]
+        {
+            let by = |vectorize: &dyn Fn(WaterPoints<'_>)| {
+                let mut c = vec![WaterPoint::STILL; points.len()];
+                vectorize(WaterPoints { sea: &s, r, dr, points: &points, out: &mut c, scratch: &mut scratch.clone() });
+                assert_eq!(a, c);
+            };
+            if let Some(v3) = pulp::x86::V3::try_new() {
+                by(&|op| pulp::Simd::vectorize(v3, op));
+            }
+            if let Some(v4) = pulp::x86::V4::try_new() {
+                by(&|op| pulp::Simd::vectorize(v4, op));
+            }
+        }
     }
 }
