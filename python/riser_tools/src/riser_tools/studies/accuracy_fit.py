@@ -23,7 +23,9 @@ calibration cases (STEP_CASES, the grid points with at least 75 steps a period a
 the model's mesh terms) and their spread, the largest over the smallest: the form whose constant
 varies least across the lines and periods is the better founded.
 
-    riser-tools accuracy-fit --still [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
+    riser-tools accuracy-fit --still [--ladder] [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
+
+--ladder takes the ladder's points between the grid's steps too (`riser-tools accuracy`, kind ladder).
 """
 from __future__ import annotations
 
@@ -160,15 +162,18 @@ def mesh_error(q: dict, n: int) -> float:
     return e
 
 
-def step_points(rows: list, case: str, q: dict) -> list:
-    """(n, Δt, e, e less the mesh terms) of a heave case's grid points the step term must bound: at
-    least 75 steps a period, above the references' floor."""
+def step_points(rows: list, case: str, q: dict, kinds=("grid",)) -> list:
+    """(n, Δt, e, e less the mesh terms) of a heave case's points of the given kinds (the grid's; with
+    "ladder", the steps between them too) the step term must bound: at least 75 steps a period, above
+    the references' floor."""
     m = [r for r in rows if r["case"] == case and r["completed"] == "True"]
     ref = next(r for r in m if r["kind"] == "reference")
     out = []
     for r in m:
-        n, dt = int(r["n_elements"]) if r["kind"] == "grid" else 0, float(r["time_step"] or "nan")
-        if r["kind"] != "grid" or dt * A.STEPS_PER_PERIOD > q["T"] * (1 + 1e-9):
+        if r["kind"] not in kinds:
+            continue
+        n, dt = int(r["n_elements"]), float(r["time_step"])
+        if dt * A.STEPS_PER_PERIOD > q["T"] * (1 + 1e-9):
             continue
         e = A.error(r, ref)
         if e >= FLOOR:
@@ -189,12 +194,12 @@ def spread(envelopes: dict) -> float:
     return max(v) / min(v)
 
 
-def still_main(binary: str, runs: str) -> int:
+def still_main(binary: str, runs: str, ladder: bool = False) -> int:
     rows = list(csv.DictReader(open(runs)))
     cases = {}
     for case in STEP_CASES:
         q = step_scales(binary, case)
-        cases[case] = (q, step_points(rows, case, q))
+        cases[case] = (q, step_points(rows, case, q, ("grid", "ladder") if ladder else ("grid",)))
         print(f"{case}: A {q['A']} m, T {q['T']:g} s, T0 {q['T0'] / 1e3:.2f} kN, quasi-static swing {q['Rqs']:.4f}, "
               f"{len(cases[case][1])} points")
         for name, (_, f) in STEP_FORMS.items():
@@ -215,10 +220,12 @@ def main(argv=None):
     ap.add_argument("--runs", default="docs/accuracy_runs.csv")
     ap.add_argument("--still", action="store_true",
                     help="the still-water step term's candidate forms instead (docs/theory.md 16.3)")
+    ap.add_argument("--ladder", action="store_true",
+                    help="with --still: the ladder's steps between the grid's too (riser-tools accuracy --phase ladder)")
     ap.add_argument("constants", nargs="*", type=float, help="C_wt C_wk C_wk2 E_w E_c")
     args = ap.parse_args(argv)
     if args.still:
-        return still_main(args.bin, args.runs)
+        return still_main(args.bin, args.runs, args.ladder)
     c = tuple(args.constants) if len(args.constants) == 5 else CONSTANTS
     pts = points(args.bin, args.runs)
     print("constants: " + ", ".join(f"{n} {v:g}" for n, v in zip(NAMES, c)))
