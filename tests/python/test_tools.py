@@ -242,3 +242,22 @@ def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin
     assert spreads["amplitude"] == pytest.approx(3.13, abs=0.01)
     assert min(spreads, key=spreads.get) == "amplitude"
     assert all(v > 7.0 for k, v in spreads.items() if k != "amplitude"), spreads
+
+
+def test_the_ladder_runs_every_knob_step_with_75_steps_a_period(monkeypatch):
+    """riser-tools accuracy --phase ladder: each heave case's meshes at every step of the knob's
+    STEP_LADDER (src/sim/accuracy.rs) from 0.2 to 0.01 s that leaves at least 75 steps a period of
+    its motion: the catenary at 10 s from 0.1 s (10/75 = 0.133 s), at 20 s from 0.2 s."""
+    from riser_tools.studies import accuracy as A
+
+    text = open(A.Path(__file__).resolve().parents[2] / "src" / "sim" / "accuracy.rs").read()
+    ladder = text[text.index("pub const STEP_LADDER"):].split("[", 2)[2].split("]")[0]
+    knob = [float(x) for x in ladder.split(",")]
+    assert A.LADDER_STEPS == [dt for dt in knob if dt >= 0.01]
+    calls = []
+    monkeypatch.setattr(A, "one", lambda binary, path, rows, case, kind, n, dt, tol: calls.append((case, n, dt)))
+    A.ladder("riser", None, [])
+    steps = {(c, n): [dt for (c2, n2, dt) in calls if (c2, n2) == (c, n)] for (c, n, _) in calls}
+    assert steps[("catenary_T10", 10)] == [0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
+    assert steps[("catenary", 10)] == A.LADDER_STEPS
+    assert set(steps) == {(c, n) for c, ns in A.LADDER.items() for n in ns}
