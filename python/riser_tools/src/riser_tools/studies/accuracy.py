@@ -11,6 +11,10 @@ In waves (WAVE_CASES, docs/theory.md section 16.4): `riser run SCENE [--heave A,
 --window T0,T1 --json`, the same error over the case's own window (a regular wave: 20 to 40 s; an irregular
 sea: 20 to 220 s, 20 Tp, so that the window's extremes are those of the sea's largest wave groups).
 
+Ladder phase (LADDER): the heave cases' chosen and coarsest meshes at every step of the knob's own
+ladder from 0.2 to 0.01 s, against the model's prediction for the same numerics: the points between the
+grid's four steps that the choice may land on (docs/theory.md §16.3).
+
 Grid phase: per calibration case, the reference (the finest mesh and step below, tolerance
 1e-10), two checks of it (half the elements, twice the step) and the grid elements x time step
 at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them; the verify phase's
@@ -69,8 +73,19 @@ WAVE_CASES = {
 STILL_CASES = ("catenary_still", "lazy_wave_still")
 CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
+# The ladder (docs/theory.md §16.3, "Between the grid's steps"): the knob chooses its step from
+# src/sim/accuracy.rs STEP_LADDER, not only from the grid's four; the heave cases' meshes it chooses
+# (and the grid's coarsest) at every ladder step from 0.2 to 0.01 s with at least 75 steps a period,
+# against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4)
+LADDER_STEPS = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
+LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [100, 160],
+          "lowe_langley_jumper": [10, 16, 20]}
+LADDER_TOL = 1e-9
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
+# targets between the three, where the ladder shows the model below the error (docs/theory.md §16.3):
+# the catenary at 10 s chooses 10 elements at 0.02 s for 1.8e-4 to 2.3e-4
+EXTRA_TARGETS = {"catenary_T10": [2e-4]}
 FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
@@ -200,6 +215,16 @@ def grid(binary, path, rows):
                 one(binary, path, rows, case, "grid", n, dt, 1e-8)
 
 
+def ladder(binary, path, rows):
+    for case, meshes in LADDER.items():
+        if case not in CASES:
+            continue
+        for n in meshes:
+            for dt in LADDER_STEPS:
+                if dt * STEPS_PER_PERIOD <= shortest_period(case) * (1 + 1e-9):
+                    one(binary, path, rows, case, "ladder", n, dt, LADDER_TOL)
+
+
 def verify(binary, path, rows):
     """The knob's runs, always afresh (they check the present model; the grid's are reused): the
     stored ones of these cases are dropped first."""
@@ -209,13 +234,16 @@ def verify(binary, path, rows):
         w.writeheader()
         w.writerows({k: r.get(k, "") for k in FIELDS} for r in rows)
     for case in CASES:
-        for acc in TARGETS:
+        for acc in TARGETS + EXTRA_TARGETS.get(case, []):
             one(binary, path, rows, case, "accuracy", "", "", "", acc)
 
 
-def predicted(binary, case, target):
-    """The error model's prediction for a case and target (a 0.2 s run reports the choice)."""
+def predicted(binary, case, target, pinned=None):
+    """The error model's prediction for a case and target (a 0.2 s run reports the choice); with
+    pinned = (n, dt), its prediction for those numerics."""
     cmd = command(binary, case)
+    for k, v in zip(("n_elements", "time_step"), pinned or ()):
+        cmd += ["--set", f"{k}={v}"]
     cmd[cmd.index("--duration") + 1] = "0.2"
     if "--window" in cmd:
         i = cmd.index("--window")
@@ -245,7 +273,12 @@ def write_doc(rows, docs, binary):
              "is left of the current's start (the floor E_s F_c of docs/theory.md §16.2); the model covers every "
              "step there. catenary_A10 (10 m at "
              "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
-             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only.", ""]
+             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. The ladder "
+             "tables (the heave cases without a sea): the meshes the knob chooses and the grid's coarsest at every step of "
+             "the knob's own ladder from 0.2 to 0.01 s (at least 75 steps a period), each against the model's prediction "
+             "for the same numerics (`--set accuracy=1e-2` with n_elements and time_step pinned): the points between the "
+             "grid's four steps a choice may land on (docs/theory.md §16.3). catenary_T10 is also checked at accuracy 2e-4, "
+             "between the targets, where its ladder shows the model below the error.", ""]
     for case, (scene, amp, period, _) in CASES.items():
         mine = [r for r in rows if r["case"] == case]
         ref = next((r for r in mine if r["kind"] == "reference"), None)
@@ -275,6 +308,25 @@ def write_doc(rows, docs, binary):
                 cells.append(f"{error(r, ref):.1e} ({float(r['wall_s']):.2f} s)" if r and r["completed"] == "True"
                              else "failed" if r else "")
             lines.append(f"| {n} | " + " | ".join(cells) + " |")
+        lad = [r for r in mine if r["kind"] == "ladder"]
+        if lad:
+            meshes = sorted({int(r["n_elements"]) for r in lad})
+            lines += ["", f"The ladder (tolerance {LADDER_TOL:g}): e against the model's prediction for the same numerics "
+                      "(**above** where the error exceeds it).", "",
+                      "| dt s | " + " | ".join(f"{n} el.: e | predicted" for n in meshes) + " |",
+                      "|---|" + "---|---|" * len(meshes)]
+            for dt in LADDER_STEPS:
+                cells = []
+                for n in meshes:
+                    r = have(mine, case, "ladder", n, dt, LADDER_TOL)
+                    if r is None or r["completed"] != "True":
+                        cells += ["failed" if r else "", ""]
+                        continue
+                    e, pe = error(r, ref), predicted(binary, case, 1e-2, (n, dt))
+                    cells += [f"{e:.1e}" + (" **above**" if pe is not None and e > pe else ""),
+                              f"{pe:.1e}" if pe is not None else "?"]
+                if any(cells):
+                    lines.append(f"| {dt:g} | " + " | ".join(cells) + " |")
         acc_rows = [r for r in mine if r["kind"] == "accuracy"]
         if acc_rows:
             lines += ["", "| accuracy | chosen n, dt, tol | predicted | error | work (wall) | cheapest grid cell "
@@ -310,7 +362,7 @@ def main(argv=None):
     ap.add_argument("--bin", default="target/fasttest/riser")
     ap.add_argument("--out", default="out/accuracy")
     ap.add_argument("--docs", default="docs")
-    ap.add_argument("--phase", choices=["grid", "verify", "all", "doc"], default="all")
+    ap.add_argument("--phase", choices=["grid", "ladder", "verify", "all", "doc"], default="all")
     ap.add_argument("--case", action="append", help="only these cases (default: all)")
     args = ap.parse_args(argv)
     out, docs = Path(args.out), Path(args.docs)
@@ -323,6 +375,8 @@ def main(argv=None):
     rows = load(path)
     if args.phase in ("grid", "all"):
         grid(args.bin, path, rows)
+    if args.phase in ("ladder", "all"):
+        ladder(args.bin, path, rows)
     if args.phase in ("verify", "all"):
         verify(args.bin, path, rows)
     shutil.copy(path, docs / "accuracy_runs.csv")

@@ -13,6 +13,19 @@ against the model.
 
     riser-tools accuracy-fit [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
                              [C_wt C_wk C_wk2 E_w E_c]
+
+With --still, the still-water step term of (16.2) instead (docs/theory.md §16.3, "The step term's
+form"): for each candidate form M (ω Δt)^c, M one of the a-priori scales of STEP_FORMS (the present
+A/A₀; the hang-off's acceleration A ω²/g; the rigid-body inertia of the line over its static top
+tension; the drag of the line moving with the hang-off over it; the quasi-static swing of the top
+tension from the statics with the hang-off moved by ±A), the envelope constant of each of the five
+calibration cases (STEP_CASES, the grid points with at least 75 steps a period and e ≥ 4e-5, less
+the model's mesh terms) and their spread, the largest over the smallest: the form whose constant
+varies least across the lines and periods is the better founded.
+
+    riser-tools accuracy-fit --still [--ladder] [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
+
+--ladder takes the ladder's points between the grid's steps too (`riser-tools accuracy`, kind ladder).
 """
 from __future__ import annotations
 
@@ -21,6 +34,7 @@ import csv
 import json
 import math
 import subprocess
+import tomllib
 
 from . import accuracy as A
 
@@ -89,13 +103,129 @@ def envelope(pts, c, i):
     return hi
 
 
+# the still-water calibration cases of the step term (docs/theory.md §16.2): a heave, no sea
+STEP_CASES = ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10")
+# below it a grid point is at the references' floor (docs/theory.md §16.1, §16.2)
+FLOOR = 4e-5
+# the mesh constants of src/sim/accuracy.rs (C_CURVATURE, C_CONTACT2, C_CONTACT) and A₀ (AMPLITUDE_SCALE)
+C_K2, C_C = 7.6e-3, 0.17
+A0 = 10.0
+# the candidate scales M of the step term M (ω Δt)^c: name -> (description, M of a case's scales)
+STEP_FORMS = {
+    "amplitude": ("A/A0 (the present form)", lambda q: q["A"] / A0),
+    "acceleration": ("A w^2/g, the hang-off's acceleration", lambda q: q["A"] * q["w"] ** 2 / q["g"]),
+    "inertia": ("(m + m_a) L A w^2 / T0, the line's rigid-body inertia over its top tension",
+                lambda q: q["mass"] * q["L"] * q["A"] * q["w"] ** 2 / q["T0"]),
+    "drag": ("1/2 rho Cd D L (A w)^2 / T0, the drag of the line moving with the hang-off",
+             lambda q: 0.5 * q["rho"] * q["cdd"] * q["L"] * (q["A"] * q["w"]) ** 2 / q["T0"]),
+    "quasi-static": ("|T0(+A) - T0(-A)| / (2 T0), the statics with the hang-off moved by +-A",
+                     lambda q: q["Rqs"]),
+}
+STEP_EXPONENTS = (1.0, 1.25, 1.5, 2.0)
+
+
+def _json(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    return json.loads([line for line in p.stdout.splitlines() if line.startswith("{")][0])
+
+
+def step_scales(binary: str, case: str) -> dict:
+    """A heave case's scales: the line's (its scene as riser prints it), the static top tension and
+    its quasi-static swing (`riser statics` with the anchor, and the seabed, moved by -+A: the
+    hang-off moved by +-A), the mesh terms' scales as the binary reports them."""
+    scene, amp, period, _ = A.CASES[case]
+    d = _json([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json",
+               "--set", "accuracy=1e-2"])["accuracy"]
+    sc = tomllib.loads(subprocess.run([binary, "scene", scene], capture_output=True, text=True, check=True).stdout)
+    line, env = sc["line"], sc["environment"]
+    rho = env["water_density"]
+
+    def top(dz):
+        sets = ["--set", f"anchor_z={sc['anchor']['z'] + dz}"]
+        if "seabed" in sc:
+            sets += ["--set", f"seabed_z={sc['seabed']['z'] + dz}"]
+        return _json([binary, "statics", scene, "--json"] + (sets if dz else []))["top_tension"]
+
+    t0, up, down = top(0.0), top(-amp), top(amp)
+    return dict(A=amp, w=2 * math.pi / period, T=period, g=env["gravity"], rho=rho, L=line["length"],
+                mass=line["mass_per_length"] + rho * line["ca_normal"] * math.pi * line["outer_diameter"] ** 2 / 4,
+                cdd=line["cd_normal"] * line["outer_diameter"], T0=t0, Rqs=abs(up - down) / (2 * t0),
+                kappa=d["max_curvature"], lam=d["touchdown_bending_length"])
+
+
+def mesh_error(q: dict, n: int) -> float:
+    """The still-water mesh terms of (16.2) at n elements."""
+    h = q["L"] / n
+    e = C_K * (h * q["kappa"]) ** 4
+    if q["lam"]:
+        e += min(C_K2 * (h / q["lam"]) ** 2, C_C * (h / q["lam"]) ** 4)
+    return e
+
+
+def step_points(rows: list, case: str, q: dict, kinds=("grid",)) -> list:
+    """(n, Δt, e, e less the mesh terms) of a heave case's points of the given kinds (the grid's; with
+    "ladder", the steps between them too) the step term must bound: at least 75 steps a period, above
+    the references' floor."""
+    m = [r for r in rows if r["case"] == case and r["completed"] == "True"]
+    ref = next(r for r in m if r["kind"] == "reference")
+    out = []
+    for r in m:
+        if r["kind"] not in kinds:
+            continue
+        n, dt = int(r["n_elements"]), float(r["time_step"])
+        if dt * A.STEPS_PER_PERIOD > q["T"] * (1 + 1e-9):
+            continue
+        e = A.error(r, ref)
+        if e >= FLOOR:
+            out.append((n, dt, e, e - mesh_error(q, n)))
+    return out
+
+
+def step_envelopes(cases: dict, scale, c: float) -> dict:
+    """Each case's envelope constant of the step term scale(q) (ω Δt)^c: the smallest that bounds all
+    its points (those the mesh terms bound alone need none). cases: name -> (q, points)."""
+    return {k: max([y / (scale(q) * (q["w"] * dt) ** c) for (_, dt, _, y) in p if y > 0], default=0.0)
+            for k, (q, p) in cases.items()}
+
+
+def spread(envelopes: dict) -> float:
+    """The largest case constant over the smallest: 1 if one constant fits every case alike."""
+    v = [x for x in envelopes.values() if x > 0]
+    return max(v) / min(v)
+
+
+def still_main(binary: str, runs: str, ladder: bool = False) -> int:
+    rows = list(csv.DictReader(open(runs)))
+    cases = {}
+    for case in STEP_CASES:
+        q = step_scales(binary, case)
+        cases[case] = (q, step_points(rows, case, q, ("grid", "ladder") if ladder else ("grid",)))
+        print(f"{case}: A {q['A']} m, T {q['T']:g} s, T0 {q['T0'] / 1e3:.2f} kN, quasi-static swing {q['Rqs']:.4f}, "
+              f"{len(cases[case][1])} points")
+        for name, (_, f) in STEP_FORMS.items():
+            print(f"  {name}: M = {f(q):.4g}")
+    print("form, exponent c: spread (largest case constant over the smallest); each case's constant")
+    for name, (what, f) in STEP_FORMS.items():
+        for c in STEP_EXPONENTS:
+            env = step_envelopes(cases, f, c)
+            print(f"{name:13s} c {c:4.2f}: spread {spread(env):6.2f}; "
+                  + ", ".join(f"{k} {v:.3g}" for k, v in env.items()) + f"  [{what}]")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="riser-tools accuracy-fit", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", default="target/fasttest/riser")
     ap.add_argument("--runs", default="docs/accuracy_runs.csv")
+    ap.add_argument("--still", action="store_true",
+                    help="the still-water step term's candidate forms instead (docs/theory.md 16.3)")
+    ap.add_argument("--ladder", action="store_true",
+                    help="with --still: the ladder's steps between the grid's too (riser-tools accuracy --phase ladder)")
     ap.add_argument("constants", nargs="*", type=float, help="C_wt C_wk C_wk2 E_w E_c")
     args = ap.parse_args(argv)
+    if args.still:
+        return still_main(args.bin, args.runs, args.ladder)
     c = tuple(args.constants) if len(args.constants) == 5 else CONSTANTS
     pts = points(args.bin, args.runs)
     print("constants: " + ", ".join(f"{n} {v:g}" for n, v in zip(NAMES, c)))
