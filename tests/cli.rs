@@ -474,3 +474,68 @@ fn the_stress_range_of_a_stretched_line_is_its_tension_range_over_the_wall() {
     assert_eq!(v["steady"]["stress_range"].as_f64(), Some(largest));
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// The steady window waits for the sea as for the motion (theory §12.3):
+/// one period after the sea's ramp (a 12 s wave, ramped over 12 s: from
+/// 24 s), the later of the two with a heave (20 s ramp and period: 40 s),
+/// and in still water without motion the second half of the run; the
+/// default's statistics are those of the explicit window, bit for bit.
+#[test]
+fn the_steady_window_waits_for_the_sea_and_in_still_water_is_the_second_half() {
+    let base = ["run", "catenary", "--set", "n_elements=10", "--set", "time_step=0.1", "--duration", "60", "--json"];
+    let sea = ["--set", "wave_kind=airy", "--set", "wave_height=4", "--set", "wave_period=12"];
+    let window = |extra: &[&str]| json(&riser(&[&base[..], extra].concat()))["steady"].clone();
+    let in_waves = window(&sea);
+    assert_eq!(in_waves["window"], serde_json::json!([24.0, 60.0]));
+    assert_eq!(in_waves, window(&[&sea[..], &["--window", "24,60"]].concat()));
+    let with_heave = window(&[&sea[..], &["--heave", "2.5,20"]].concat());
+    assert_eq!(with_heave["window"], serde_json::json!([40.0, 60.0]));
+    assert_eq!(window(&[])["window"], serde_json::json!([30.0, 60.0]));
+}
+
+/// Fewer than 20 steps a period of the motion warns (theory §12.3), and
+/// the response shows why: at 10 steps a period (dt 2 s, a 20 s heave) the
+/// steady window's largest top tension is more than 5 % off the run at
+/// 200 steps a period (10 % measured), where 40 steps (0.5 s) are within
+/// 0.2 % (0.09 %) and do not warn. A sea's period warns the same, in
+/// statics too.
+#[test]
+fn a_time_step_of_fewer_than_twenty_a_period_warns_and_misses_the_response() {
+    let run = |dt: &str| {
+        let v = json(&riser(&[&SMALL_RUN[..], &["--json", "--set", &format!("time_step={dt}")]].concat()));
+        let max = v["steady"]["top_tension"][2].as_f64().unwrap();
+        let warned = v["steady"]["warnings"].as_array().unwrap().iter().any(|w| {
+            let w = w.as_str().unwrap();
+            w.contains("steps a period of the hang-off's 20 s motion") && w.contains("time_step <= 1.000 s")
+        });
+        (max, warned)
+    };
+    let (fine, coarse, long) = (run("0.1"), run("0.5"), run("2"));
+    assert!(!fine.1 && !coarse.1 && long.1, "{fine:?} {coarse:?} {long:?}");
+    assert!((coarse.0 - fine.0).abs() < 2e-3 * fine.0, "{coarse:?} {fine:?}");
+    assert!((long.0 - fine.0).abs() > 5e-2 * fine.0, "{long:?} {fine:?}");
+    let sea = ["--set", "wave_kind=airy", "--set", "wave_height=2", "--set", "wave_period=10", "--json"];
+    let statics = |dt: &str| {
+        json(&riser(&[&["statics", "catenary", "--set", &format!("time_step={dt}")], &sea[..]].concat()))["warnings"]
+            .to_string()
+    };
+    assert!(statics("1").contains("steps a period of the sea's 10 s motion"), "{}", statics("1"));
+    assert!(!statics("0.5").contains("steps a period"), "{}", statics("0.5"));
+}
+
+/// A line lighter than the water it displaces warns, naming by how much
+/// (the catenary with its diameter given 10x: buoyancy ρ g π D²/4 L above
+/// the weight m g L, to the printed digit); the lazy wave, whose modules
+/// lift a part of a heavy line, does not.
+#[test]
+fn a_line_that_floats_warns_and_a_lazy_wave_does_not() {
+    let scene = riser::scene::Scene::builtin("catenary").unwrap();
+    let (l, m, d) = (scene.line.length, scene.line.mass_per_length, 10.0 * scene.line.outer_diameter);
+    let env = &scene.environment;
+    let up = (env.water_density * std::f64::consts::PI * d * d / 4.0 - m) * env.gravity * l;
+    let v = json(&riser(&["statics", "catenary", "--json", "--set", &format!("outer_diameter={d}")]));
+    let w = v["warnings"].to_string();
+    assert!(w.contains(&format!("the line floats: its buoyancy exceeds its weight by {:.3} kN", up / 1e3)), "{w}");
+    let lazy = json(&riser(&["statics", "lazy_wave", "--json"]))["warnings"].to_string();
+    assert!(!lazy.contains("floats"), "{lazy}");
+}

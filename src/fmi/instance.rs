@@ -2,7 +2,7 @@
 //! Co-Simulation state machine (one table, checked in one place), the run,
 //! saved states. Nothing here is `unsafe`.
 
-use super::input_path::{Coupling, HISTORY_VALUES, InputHistory, VesselInputs};
+use super::input_path::{Coupling, HISTORY_VALUES, InputHistory, VELOCITY_DESIGN, VesselInputs};
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
@@ -169,6 +169,11 @@ pub struct Instance {
     history: InputHistory,
     /// The coupling modes of the axes last logged (the log says which is in use).
     logged_modes: Option<[Coupling; 4]>,
+    /// Whether the log has said, once, that long steps want the velocities.
+    hinted_velocities: bool,
+    /// Whether the log has said, once, that the hang-off went beyond the
+    /// line's reach from the anchor.
+    warned_reach: bool,
     sim: Option<Simulation>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
@@ -247,6 +252,8 @@ impl Instance {
             inputs: [0.0; N_INPUTS],
             history: InputHistory::new(),
             logged_modes: None,
+            hinted_velocities: false,
+            warned_reach: false,
             sim: None,
             step_start: None,
             scene: None,
@@ -268,6 +275,8 @@ impl Instance {
         self.inputs = [0.0; N_INPUTS];
         self.history = InputHistory::new();
         self.logged_modes = None;
+        self.hinted_velocities = false;
+        self.warned_reach = false;
         self.sim = None;
         self.step_start = None;
         self.scene = None;
@@ -525,6 +534,59 @@ impl Instance {
         self.log(Status::Ok, Category::Events, &msg);
     }
 
+    /// Says once, at a communication step of [`VELOCITY_DESIGN`] s or longer,
+    /// when a moving axis is driven by its displacement input alone: the
+    /// path then extrapolates displacements only, whose error at long steps
+    /// moves even the mean tension (the catenary heaved 2.5 m / 20 s at
+    /// 0.5 s: +0.42 %; with the velocities set as well, the path fits both,
+    /// docs/theory.md §7.4).
+    fn hint_velocities(&mut self, coupling: Coupling, h: f64, inp: &VesselInputs) {
+        if self.hinted_velocities || h < VELOCITY_DESIGN {
+            return;
+        }
+        let m = self.history.modes(coupling);
+        let names = ["heave", "surge", "sway"];
+        let alone: Vec<&str> =
+            (0..3).filter(|&a| m[a] == Coupling::Displacement && inp.u[a] != 0.0).map(|a| names[a]).collect();
+        if alone.is_empty() {
+            return;
+        }
+        self.hinted_velocities = true;
+        let msg = format!(
+            "communication step {h} s with {} from the displacement input alone: at steps of {VELOCITY_DESIGN} s \
+             and longer the path between the samples, extrapolated from displacements only, moves even the mean \
+             tension (0.4 % at 0.5 s on the catenary heaved 2.5 m / 20 s); set the velocity inputs too \
+             ({}): the path then fits both",
+            alone.join(", "),
+            alone.iter().map(|a| format!("{a}_velocity")).collect::<Vec<_>>().join(", ")
+        );
+        self.log(Status::Ok, Category::Events, &msg);
+    }
+
+    /// Warns once when the hang-off at `t` s is farther from the anchor than
+    /// the line's unstretched length: the line can only hang straight and
+    /// stretched (most often a displacement in the wrong unit or an offset
+    /// given twice); the step itself is kept (the model takes the stretch).
+    fn warn_reach(&mut self, t: f64) {
+        let (Some(sim), Some(scene)) = (self.sim.as_ref(), self.scene.as_ref()) else { return };
+        if self.warned_reach {
+            return;
+        }
+        let hang_off = scene.hang_off() + sim.state.hang_off.displacement;
+        let span = (scene.anchor() - hang_off).norm();
+        if span > scene.line.length {
+            self.warned_reach = true;
+            let msg = format!(
+                "at t = {t} s the hang-off is {span:.2} m from the anchor, beyond the line's unstretched length {} \
+                 m: the line is stretched by at least {:.1} %; check the vessel's inputs (units: m and rad) and the \
+                 hang-off's offset",
+                scene.line.length,
+                100.0 * (span / scene.line.length - 1.0)
+            );
+            self.log(Status::Warning, Category::Warning, &msg);
+        }
+    }
+
     /// The inputs: the displacements (heave, surge, sway), their
     /// velocities, the angles, the angular velocities.
     fn split_inputs(&self) -> VesselInputs {
@@ -555,6 +617,7 @@ impl Instance {
         let coupling = self.coupling();
         let path = self.history.plan(coupling, &sim.vessel, now, h, &inp, &sim.state.hang_off);
         self.log_modes(coupling);
+        self.hint_velocities(coupling, h, &inp);
         let motion = |s: f64| path.at(s);
         let t_end = now + h;
         if t_end <= now {
@@ -617,6 +680,7 @@ impl Instance {
         self.outputs = Some(outputs);
         match result {
             Ok(()) => {
+                self.warn_reach(t_end);
                 self.history.commit(now, &inp, &path);
                 self.last_successful_time = t_end;
                 self.last_status = Status::Ok;

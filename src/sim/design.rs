@@ -271,10 +271,56 @@ impl Design {
         let touchdown_s = engine.outputs(state).touchdown_s;
         let numbers = self.numbers(engine, state, touchdown_s);
         let mut warnings: Vec<String> = reach_warning(scene).into_iter().collect();
+        warnings.extend(self.buoyant_warning(scene));
         warnings.extend(self.warnings(&numbers, &engine.line_points(state)));
         warnings.extend(crate::loads::waves::warnings(scene));
+        if let Ok(Some((_, period))) = crate::loads::waves::ramp_and_period(scene) {
+            warnings.extend(steps_per_period_warning("the sea's", period, scene.analysis.time_step));
+        }
         (numbers, warnings)
     }
+
+    /// A warning when the line as a whole floats: its buoyancy (the
+    /// displaced water's weight, modules included) exceeds its weight, so
+    /// that it pushes the hang-off up. A lazy wave's modules lift a part of
+    /// a heavy line; a line lighter than water all along is most often a
+    /// diameter or a mass given in the wrong unit.
+    pub fn buoyant_warning(&self, scene: &Scene) -> Option<String> {
+        let (rho, g) = (scene.environment.water_density, scene.environment.gravity);
+        let h = self.length / self.n_el as f64;
+        let net_up: f64 = (0..self.n_el)
+            .map(|e| self.props.at(e))
+            .map(|p| (rho * p.displaced_area - p.mass_per_length) * g * h)
+            .sum();
+        (net_up > 0.0).then(|| {
+            format!(
+                "the line floats: its buoyancy exceeds its weight by {:.3} kN over its {} m (weight in water {:.3} \
+                 kN); it pushes the hang-off up: check the outer diameter, the mass per length and their units",
+                net_up / 1e3,
+                self.length,
+                -net_up / 1e3
+            )
+        })
+    }
+}
+
+/// The fewest time steps a period of a motion or a sea without a warning:
+/// below, the response is not resolved and the step's numerical dissipation
+/// (ρ∞) damps it (the accuracy knob takes at least 75, docs/theory.md §16.2).
+pub const STEPS_PER_PERIOD: f64 = 20.0;
+
+/// A warning when `time_step` (s) takes fewer than [`STEPS_PER_PERIOD`]
+/// steps a `period` (s) of `what` ("the sea's", "the heave's", …).
+pub fn steps_per_period_warning(what: &str, period: f64, time_step: f64) -> Option<String> {
+    let steps = period / time_step;
+    (period > 0.0 && steps < STEPS_PER_PERIOD).then(|| {
+        format!(
+            "time_step {time_step} s takes {steps:.1} steps a period of {what} {period} s motion, fewer than \
+             {STEPS_PER_PERIOD:.0}: the line's response to it is not resolved and the step's numerical damping \
+             takes it down; use time_step <= {:.3} s (or set accuracy)",
+            period / STEPS_PER_PERIOD
+        )
+    })
 }
 
 /// The warning for an anchor beyond the line's unstretched reach from the

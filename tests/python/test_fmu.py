@@ -289,3 +289,59 @@ def test_implausible_models_warn_in_the_log_at_initialisation(fmu_path, unzipped
             assert e in log, (strings, reals, integers, log)
         if not expected:
             assert "warning" not in log.lower(), (strings, log)
+
+
+STEPPING_CHILD = r"""
+import json, math, sys
+from fmpy import read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+md = read_model_description(fmu_path)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+for reals, integers, h, n, velocity in cases:
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="stepping")
+    s.instantiate(loggingOn=True)
+    print("@@begin", flush=True)
+    for k, v in reals.items():
+        s.setReal([vr[k]], [v])
+    for k, v in integers.items():
+        s.setInteger([vr[k]], [v])
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    w, t = 2 * math.pi / 10.0, 0.0
+    for _ in range(n):
+        s.setReal([vr["heave"]], [2.5 * math.sin(w * t)])
+        if velocity:
+            s.setReal([vr["heave_velocity"]], [2.5 * w * math.cos(w * t)])
+        s.doStep(currentCommunicationPoint=t, communicationStepSize=h)  # fmpy raises on an error status
+        t += h
+    print("@@end", flush=True)
+    s.terminate()
+    s.freeInstance()
+"""
+
+
+def test_the_log_says_when_long_steps_want_the_velocities_and_when_the_line_is_beyond_reach(fmu_path, unzipped):
+    """The first hour (docs/theory.md §7.4, §12.3): at a communication step of 0.21 s or longer
+    with the heave's displacement alone, the log says once to set its velocity too (not with the
+    velocity set, not at 0.1 s); a hang-off moved farther from the anchor than the line's length
+    (the catenary's anchor 70 m out: 99.0 m away at rest, 100.8 m at the heave's 2.5 m crest)
+    warns once, naming the distance; at the default anchor (92.2 m, 94.6 m at the crest) not."""
+    coarse = {"n_elements": 10}
+    cases = [
+        ({}, coarse, 0.5, 6, False, ["from the displacement input alone", "heave_velocity"]),
+        ({}, coarse, 0.5, 6, True, []),
+        ({}, coarse, 0.1, 30, False, []),
+        ({"anchor_x": 70.0}, coarse, 0.1, 30, True, ["m from the anchor, beyond the line's unstretched length 100"]),
+    ]
+    p = subprocess.run([sys.executable, "-c", STEPPING_CHILD, fmu_path, unzipped,
+                        json.dumps([c[:5] for c in cases])], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    logs = [chunk.split("@@end")[0] for chunk in p.stdout.split("@@begin")[1:]]
+    assert len(logs) == len(cases), p.stdout
+    for (reals, integers, h, n, velocity, expected), log in zip(cases, logs):
+        for e in expected:
+            assert log.count(e) == 1, (reals, h, velocity, log)
+        if not expected:
+            assert "displacement input alone" not in log and "from the anchor" not in log, (reals, h, log)

@@ -219,8 +219,9 @@ struct RunCli {
     /// Simulated time, s.
     #[arg(long, value_name = "D", allow_negative_numbers = true)]
     duration: f64,
-    /// The steady window of the statistics, s (default: from the end of the ramp plus one
-    /// period of the slowest motion to the end of the run).
+    /// The steady window of the statistics, s (default: to the end of the run from one
+    /// period of the slowest motion after its ramp and one period of the sea after the
+    /// sea's ramp, whichever is later; in still water without motion, the second half).
     #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
     window: Option<(f64, f64)>,
     /// Times (s) at which shapes.csv records the shape; default: 8 over the last (longest) period.
@@ -232,7 +233,8 @@ struct RunCli {
     /// Print one JSON summary instead of the text summary.
     #[arg(long)]
     json: bool,
-    /// Write timeseries.csv and shapes.csv into this directory.
+    /// Write timeseries.csv and shapes.csv into this directory (with stress_range.csv for a
+    /// steel tube, touchdown.svg on a seabed).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
 }
@@ -597,14 +599,19 @@ struct RunArgs {
 }
 
 /// The steady window [t0, t1] of a run (s) and, when the run is too short
-/// for one, a warning: the default starts one period of the slowest motion
-/// after the ramp (the start's transients have died out by then with the
-/// default ρ∞ = 0.8: docs/figures/abrupt_vs_smooth.png).
-fn steady_window(asked: Option<(f64, f64)>, ramp: f64, period: f64, duration: f64) -> ((f64, f64), Option<String>) {
+/// for one, a warning: the default starts `settled` s after t = 0, one
+/// period of the slowest motion after its ramp and one period of the sea
+/// after the sea's (the start's transients have died out by then with the
+/// default ρ∞ = 0.8: docs/figures/abrupt_vs_smooth.png); without motion
+/// or sea (`None`: still water, the line rings from the current's start
+/// only) the second half of the run.
+fn steady_window(asked: Option<(f64, f64)>, settled: Option<f64>, duration: f64) -> ((f64, f64), Option<String>) {
     if let Some(w) = asked {
         return (w, None);
     }
-    let t0 = ramp + period;
+    let Some(t0) = settled else {
+        return ((0.5 * duration, duration), None);
+    };
     if t0 < duration {
         ((t0, duration), None)
     } else {
@@ -702,8 +709,17 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let e0 = sim.initial_energy;
     let design = riser::sim::design::Design::new(&scene);
     let (static_design, mut warnings) = design.report(&scene, &sim.integrator, &sim.state);
-    let ((w0, w1), short) = steady_window(window, ramp, period, duration);
+    // the steady window waits for the slower of the motion and the sea
+    let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
+    let settled =
+        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
+    let ((w0, w1), short) = steady_window(window, settled, duration);
     warnings.extend(short);
+    // a step too long for the shortest motion (the sea's: Design::report)
+    let shortest = motions.all().into_iter().flatten().map(|m| m.1).filter(|p| *p > 0.0).reduce(f64::min);
+    if let Some(p) = shortest {
+        warnings.extend(riser::sim::design::steps_per_period_warning("the hang-off's", p, scene.analysis.time_step));
+    }
     let mut stress = riser::sim::design::StressRange::default();
     let mut envelope = riser::sim::design::Envelope::default();
     let track_stress = design.has_stresses();

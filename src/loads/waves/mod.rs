@@ -391,12 +391,30 @@ pub fn sea_of(scene: &Scene, start: f64) -> Result<Option<Sea>, SeaError> {
         return Ok(None);
     };
     let components = components_of(w)?;
-    let duration = w.ramp.unwrap_or(match w.kind {
+    let duration = w.ramp.unwrap_or(period_of(w, &components));
+    Ok(Some(Sea::new(components, settings_of(scene, w, Ramp { start, duration }))))
+}
+
+/// The sea's period, s: a regular wave's T, a spectrum's T_p, a table's
+/// peak period (that of its largest component).
+fn period_of(w: &WavesSpec, components: &[Component]) -> f64 {
+    match w.kind {
         WaveKind::Airy => w.period.unwrap_or(0.0),
         WaveKind::Jonswap | WaveKind::PiersonMoskowitz => w.tp.unwrap_or(0.0),
-        _ => peak_period(&components),
-    });
-    Ok(Some(Sea::new(components, settings_of(scene, w, Ramp { start, duration }))))
+        _ => peak_period(components),
+    }
+}
+
+/// The scene's sea's ramp and period, s (None: still water): the ramp
+/// grows the sea from t = 0 over the first (`ramp`, default one period);
+/// the period is that of [`period_of`]. What `riser run` waits for before its
+/// steady window.
+pub fn ramp_and_period(scene: &Scene) -> Result<Option<(f64, f64)>, SeaError> {
+    let Some(w) = scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) else {
+        return Ok(None);
+    };
+    let period = period_of(w, &components_of(w)?);
+    Ok(Some((w.ramp.unwrap_or(period), period)))
 }
 
 fn settings_of(scene: &Scene, w: &WavesSpec, ramp: Ramp) -> SeaSettings {
