@@ -2,15 +2,19 @@
 //! of the top tension the user accepts, the numerics that reach it at the
 //! least cost by riser's own error model,
 //!
-//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_t (A/A₀) (ω Δt)^{3/2},
+//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_d (A ω²/g) (h k_d)² + C_t (A/A₀) (ω Δt)^{3/2},
 //!
 //! h = L/n the element length, κ the largest curvature of the static line
 //! (the sharpest bend the elements must follow: a sag or hog bend), λ =
 //! √(EI/T) the bending length at the static touchdown (the seabed term, only
 //! where the line rests on the seabed), ω = 2π/T and A the period and
-//! amplitude of the hang-off's motion, A₀ = 10 m; C_κ, C_c, C_t are the
-//! envelopes of the study `riser-tools accuracy` (docs/accuracy.md) over the
-//! built-in scenes and the Lowe & Langley jumper. The choice asks for e ≤
+//! amplitude of the hang-off's motion, A₀ = 10 m, k_d the largest wave number
+//! along the suspended static line of a transverse wave at ω (EI k⁴ + T k² =
+//! (m + m_a) ω²: the mesh's error of the line's response to the motion, which
+//! the long steps' dissipation hides and the short ones let through); C_κ,
+//! C_c, C_d, C_t are the envelopes of the study `riser-tools accuracy`
+//! (docs/accuracy.md) over the grid and the ladder of the built-in scenes
+//! and the Lowe & Langley jumper. The choice asks for e ≤
 //! target / [`SAFETY`] on discrete ladders of n and Δt, cheapest by
 //! [`cost`]; the Newton tolerance is [`TOLERANCE_PER_TARGET`] times the
 //! target. What the model was not calibrated on is refused
@@ -52,8 +56,18 @@ pub const C_CURVATURE: f64 = 7e-4;
 /// The seabed constant C_c of C_c (h/λ)⁴ (the bound of the fine meshes).
 pub const C_CONTACT: f64 = 0.17;
 /// The seabed constant C_c2 of C_c2 (h/λ)² (the bound of the coarse meshes;
-/// each bound holds at every grid point, the smaller is taken).
-pub const C_CONTACT2: f64 = 7.6e-3;
+/// each bound holds at every grid and ladder point, the smaller is taken):
+/// the steel catenary's 100 elements (h/λ = 0.235) at 0.015 s, 5.4e-4
+/// (0.0090; the grid's 80 elements alone gave 7.6e-3).
+pub const C_CONTACT2: f64 = 9.1e-3;
+/// The dynamic mesh constant C_d of C_d (A ω²/g) (h k_d)² (docs/theory.md
+/// 16.2: the mesh's error of the line's response to the motion, which the
+/// static curvature's C_κ (h κ)⁴ does not see): the envelope over the
+/// grid and the ladder points with at least 75 steps a period, Δt ≥ 0.0125 s
+/// and e ≥ 4e-5, less the other terms (the lazy wave's 40 elements at
+/// 0.02 s, 4.5e-5: 0.0092; the catenary at 10 s, 20 elements at 0.015 s,
+/// 9.5e-5: 0.0046, and 10 elements at 0.02 s, 2.0e-4: 0.0039).
+pub const C_DYNAMIC_MESH: f64 = 0.0092;
 /// The temporal constant C_t of C_t (A/A₀) (ω Δt)^{3/2}.
 pub const C_TIME: f64 = 0.3;
 /// The amplitude A₀ of the temporal term, m (the study's largest).
@@ -140,9 +154,11 @@ pub const MAX_WAVE_STEEPNESS: f64 = 0.065;
 /// The element counts the choice takes from.
 pub const ELEMENT_LADDER: [usize; 20] =
     [10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100, 120, 160, 200, 240, 320, 400, 480, 640, 800];
-/// The time steps the choice takes from, s (0.2 s is the study's longest).
-pub const STEP_LADDER: [f64; 14] =
-    [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01, 0.0075, 0.005];
+/// The time steps the choice takes from, s: from the study's longest, 0.2 s,
+/// down to its references' step, 0.0125 s (docs/theory.md §16.3: below it the
+/// errors are the references' own floor, 3–8e-5, which no term of the model
+/// follows, and the lazy wave at 30 s buckles in its sag bend at 0.01 s).
+pub const STEP_LADDER: [f64; 11] = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125];
 
 /// The hang-off's motion the choice is for: its shortest period and largest
 /// translation amplitude.
@@ -209,6 +225,14 @@ pub struct Scales {
     pub current_ratio: f64,
     /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
     pub touchdown_bending_length: Option<f64>,
+    /// k_d: the largest wave number, along the suspended static line, of a
+    /// transverse wave at the motion's frequency, EI k⁴ + T k² = (m + m_a) ω²
+    /// (docs/theory.md 16.2; 2π/k_d the response's shortest wavelength), rad/m
+    /// (0 without a motion).
+    pub dynamic_wave_number: f64,
+    /// A ω²/g: the hang-off's acceleration over gravity, which drives the
+    /// line's dynamic response.
+    pub acceleration_ratio: f64,
     /// The sea's scales (None: still water).
     pub waves: Option<WaveScales>,
 }
@@ -262,8 +286,9 @@ impl Choice {
         let mark = |p: bool| if p { " (set)" } else { "" };
         format!(
             "accuracy {:e}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error model: {:.1e} from \
-             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, + {:.1e} \
-             from the step, omega dt = {:.4} {})",
+             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, h k_d = \
+             {:.3} with the motion's wave number {:.4} rad/m and A omega^2/g = {:.4}, + {:.1e} from the step, omega dt = \
+             {:.4} {})",
             self.target,
             self.n_elements,
             mark(self.pinned.n_elements),
@@ -282,6 +307,9 @@ impl Choice {
                     self.scales.length / self.n_elements as f64 / l
                 ))
                 .unwrap_or_default(),
+            self.scales.length / self.n_elements as f64 * self.scales.dynamic_wave_number,
+            self.scales.dynamic_wave_number,
+            self.scales.acceleration_ratio,
             self.predicted_time,
             self.scales.omega * self.time_step,
             self.excitation.describe()
@@ -309,7 +337,9 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
     let h = s.length / n as f64;
     let contact =
         s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
-    let still = C_CURVATURE * (h * s.curvature).powi(4) + contact;
+    // (16.2): the mesh's error of the response to the motion
+    let dynamic = C_DYNAMIC_MESH * s.acceleration_ratio * (h * s.dynamic_wave_number).powi(2);
+    let still = C_CURVATURE * (h * s.curvature).powi(4) + contact + dynamic;
     match &s.waves {
         // no motion, no sea: the current's start is what the window holds
         None if s.amplitude == 0.0 => still + C_STILL_CURRENT * s.current_ratio,
@@ -582,14 +612,38 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         let ei = scene.line.bending_stiffness;
         (t > 0.0).then(|| (ei / t).sqrt())
     });
+    // k_d (16.2): on the suspended line (to the touchdown), the tension
+    // taken as at least 0 (the lazy wave's sag bend is about slack: the
+    // bending stiffness bounds k there)
+    let omega = 2.0 * std::f64::consts::PI / excitation.period;
+    let (line, env) = (&scene.line, &scene.environment);
+    let inertia = line.mass_per_length
+        + env.water_density * line.ca_normal * std::f64::consts::PI * line.outer_diameter.powi(2) / 4.0;
+    let wave_number = |t: f64| {
+        let (ei, t) = (line.bending_stiffness, t.max(0.0));
+        ((-t + (t * t + 4.0 * ei * inertia * omega * omega).sqrt()) / (2.0 * ei)).sqrt()
+    };
+    let dynamic_wave_number = if excitation.amplitude == 0.0 || omega == 0.0 {
+        0.0
+    } else {
+        rep.shape
+            .iter()
+            .filter(|r| d.touchdown_s.is_none_or(|s_td| r.s <= s_td + 1e-9))
+            .map(|r| wave_number(r.tension))
+            .fold(0.0, f64::max)
+    };
+    let acceleration_ratio =
+        if excitation.amplitude == 0.0 { 0.0 } else { excitation.amplitude * omega * omega / env.gravity };
     Ok(Scales {
         curvature: d.max_curvature,
         curvature_s: d.max_curvature_s,
-        omega: 2.0 * std::f64::consts::PI / excitation.period,
+        omega,
         amplitude: excitation.amplitude,
         length: scene.line.length,
         current_ratio: current_load_ratio(scene, &rep.shape),
         touchdown_bending_length,
+        dynamic_wave_number,
+        acceleration_ratio,
         waves: wave_scales(scene)?.map(|w| {
             let (load_ratio, current_ratio) = wave_load_ratios(scene, &rep.shape, &w);
             WaveScales { load_ratio, current_ratio, ..w }
@@ -731,12 +785,18 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
             if pinned.n_elements {
                 an.n_elements
             } else {
-                *ELEMENT_LADDER.iter().find(|&&n| space_error(&s, n) <= budget).unwrap_or(&ELEMENT_LADDER[19])
+                *ELEMENT_LADDER
+                    .iter()
+                    .find(|&&n| space_error(&s, n) <= budget)
+                    .unwrap_or(&ELEMENT_LADDER[ELEMENT_LADDER.len() - 1])
             },
             if pinned.time_step {
                 an.time_step
             } else {
-                *STEP_LADDER.iter().find(|&&dt| time_error(&s, dt) <= budget).unwrap_or(&STEP_LADDER[13])
+                *STEP_LADDER
+                    .iter()
+                    .find(|&&dt| time_error(&s, dt) <= budget)
+                    .unwrap_or(&STEP_LADDER[STEP_LADDER.len() - 1])
             },
         ),
         None => {
