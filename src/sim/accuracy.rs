@@ -2,19 +2,19 @@
 //! of the top tension the user accepts, the numerics that reach it at the
 //! least cost by riser's own error model,
 //!
-//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_d (A ω²/g) (h k_d)² + C_t (A/A₀) (ω Δt)^{3/2},
+//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_d (A ω²/g) (h κ)³ + C_t (A/A₀) (ω Δt)^{3/2},
 //!
 //! h = L/n the element length, κ the largest curvature of the static line
 //! (the sharpest bend the elements must follow: a sag or hog bend), λ =
 //! √(EI/T) the bending length at the static touchdown (the seabed term, only
 //! where the line rests on the seabed), ω = 2π/T and A the period and
-//! amplitude of the hang-off's motion, A₀ = 10 m, k_d the largest wave number
-//! along the suspended static line of a transverse wave at ω (EI k⁴ + T k² =
-//! (m + m_a) ω²: the mesh's error of the line's response to the motion, which
-//! the long steps' dissipation hides and the short ones let through); C_κ,
-//! C_c, C_d, C_t are the envelopes of the study `riser-tools accuracy`
-//! (docs/accuracy.md) over the grid and the ladder of the built-in scenes
-//! and the Lowe & Langley jumper. The choice asks for e ≤
+//! amplitude of the hang-off's motion, A₀ = 10 m, g gravity: C_d (A ω²/g)
+//! (h κ)³ is the mesh's error of the line's response to the motion (the
+//! hang-off's acceleration drives the bend, which the elements follow; the
+//! long steps' dissipation hides it, the short ones let it through), which
+//! the static C_κ (h κ)⁴ does not see; C_κ, C_c2, C_c, C_d, C_t are the
+//! envelopes of the study `riser-tools accuracy` (docs/accuracy.md) over the
+//! grid and the ladder of the built-in scenes and the Lowe & Langley jumper. The choice asks for e ≤
 //! target / [`SAFETY`] on discrete ladders of n and Δt, cheapest by
 //! [`cost`]; the Newton tolerance is [`TOLERANCE_PER_TARGET`] times the
 //! target. What the model was not calibrated on is refused
@@ -57,17 +57,18 @@ pub const C_CURVATURE: f64 = 7e-4;
 pub const C_CONTACT: f64 = 0.17;
 /// The seabed constant C_c2 of C_c2 (h/λ)² (the bound of the coarse meshes;
 /// each bound holds at every grid and ladder point, the smaller is taken):
-/// the steel catenary's 100 elements (h/λ = 0.235) at 0.015 s, 5.4e-4
-/// (0.0090; the grid's 80 elements alone gave 7.6e-3).
-pub const C_CONTACT2: f64 = 9.1e-3;
-/// The dynamic mesh constant C_d of C_d (A ω²/g) (h k_d)² (docs/theory.md
+/// the steel catenary at 10 s, 20 elements (h/λ = 1.17) at 0.025 s, 1.3e-2
+/// (0.0093), and at 15 s its 100 elements (h/λ = 0.235) at 0.015 s, 5.4e-4
+/// (0.0090; the grid's points at 15 s alone gave 7.6e-3).
+pub const C_CONTACT2: f64 = 9.3e-3;
+/// The dynamic mesh constant C_d of C_d (A ω²/g) (h κ)³ (docs/theory.md
 /// 16.2: the mesh's error of the line's response to the motion, which the
-/// static curvature's C_κ (h κ)⁴ does not see): the envelope over the
-/// grid and the ladder points with at least 75 steps a period, Δt ≥ 0.0125 s
-/// and e ≥ 4e-5, less the other terms (the lazy wave's 40 elements at
-/// 0.02 s, 4.5e-5: 0.0092; the catenary at 10 s, 20 elements at 0.015 s,
-/// 9.5e-5: 0.0046, and 10 elements at 0.02 s, 2.0e-4: 0.0039).
-pub const C_DYNAMIC_MESH: f64 = 0.0092;
+/// static curvature's C_κ (h κ)⁴ does not see): the envelope over the grid
+/// and the ladder points with at least 75 steps a period, Δt ≥ 0.0125 s and
+/// e ≥ 4e-5, less the other terms (the catenary at 10 s, 20 elements at
+/// 0.015 s, 9.5e-5: 0.049; the next, 0.023, the lazy wave at 10 s, 40
+/// elements at 0.02 s, 2.9e-4, and the jumper at 10 s, 20 at 0.015 s).
+pub const C_DYNAMIC_MESH: f64 = 0.05;
 /// The temporal constant C_t of C_t (A/A₀) (ω Δt)^{3/2}.
 pub const C_TIME: f64 = 0.3;
 /// The amplitude A₀ of the temporal term, m (the study's largest).
@@ -225,11 +226,6 @@ pub struct Scales {
     pub current_ratio: f64,
     /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
     pub touchdown_bending_length: Option<f64>,
-    /// k_d: the largest wave number, along the suspended static line, of a
-    /// transverse wave at the motion's frequency, EI k⁴ + T k² = (m + m_a) ω²
-    /// (docs/theory.md 16.2; 2π/k_d the response's shortest wavelength), rad/m
-    /// (0 without a motion).
-    pub dynamic_wave_number: f64,
     /// A ω²/g: the hang-off's acceleration over gravity, which drives the
     /// line's dynamic response.
     pub acceleration_ratio: f64,
@@ -289,9 +285,8 @@ impl Choice {
         let mark = |p: bool| if p { " (set)" } else { "" };
         format!(
             "accuracy {:e}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error model: {:.1e} from \
-             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, h k_d = \
-             {:.3} with the motion's wave number {:.4} rad/m and A omega^2/g = {:.4}, + {:.1e} from the step, omega dt = \
-             {:.4} {})",
+             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, the \
+             motion's A omega^2/g = {:.4}, + {:.1e} from the step, omega dt = {:.4} {})",
             self.target,
             self.n_elements,
             mark(self.pinned.n_elements),
@@ -310,8 +305,6 @@ impl Choice {
                     self.scales.length / self.n_elements as f64 / l
                 ))
                 .unwrap_or_default(),
-            self.scales.length / self.n_elements as f64 * self.scales.dynamic_wave_number,
-            self.scales.dynamic_wave_number,
             self.scales.acceleration_ratio,
             self.predicted_time,
             self.scales.omega * self.time_step,
@@ -341,7 +334,7 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
     let contact =
         s.touchdown_bending_length.map_or(0.0, |l| (C_CONTACT2 * (h / l).powi(2)).min(C_CONTACT * (h / l).powi(4)));
     // (16.2): the mesh's error of the response to the motion
-    let dynamic = C_DYNAMIC_MESH * s.acceleration_ratio * (h * s.dynamic_wave_number).powi(2);
+    let dynamic = C_DYNAMIC_MESH * s.acceleration_ratio * (h * s.curvature).powi(3);
     let still = C_CURVATURE * (h * s.curvature).powi(4) + contact + dynamic;
     match &s.waves {
         // no motion, no sea: the current's start is what the window holds
@@ -630,28 +623,12 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         let ei = scene.line.bending_stiffness;
         (t > 0.0).then(|| (ei / t).sqrt())
     });
-    // k_d (16.2): on the suspended line (to the touchdown), the tension
-    // taken as at least 0 (the lazy wave's sag bend is about slack: the
-    // bending stiffness bounds k there)
     let omega = 2.0 * std::f64::consts::PI / excitation.period;
-    let (line, env) = (&scene.line, &scene.environment);
-    let inertia = line.mass_per_length
-        + env.water_density * line.ca_normal * std::f64::consts::PI * line.outer_diameter.powi(2) / 4.0;
-    let wave_number = |t: f64| {
-        let (ei, t) = (line.bending_stiffness, t.max(0.0));
-        ((-t + (t * t + 4.0 * ei * inertia * omega * omega).sqrt()) / (2.0 * ei)).sqrt()
-    };
-    let dynamic_wave_number = if excitation.amplitude == 0.0 || omega == 0.0 {
+    let acceleration_ratio = if excitation.amplitude == 0.0 {
         0.0
     } else {
-        rep.shape
-            .iter()
-            .filter(|r| d.touchdown_s.is_none_or(|s_td| r.s <= s_td + 1e-9))
-            .map(|r| wave_number(r.tension))
-            .fold(0.0, f64::max)
+        excitation.amplitude * omega * omega / scene.environment.gravity
     };
-    let acceleration_ratio =
-        if excitation.amplitude == 0.0 { 0.0 } else { excitation.amplitude * omega * omega / env.gravity };
     Ok(Scales {
         curvature: d.max_curvature,
         curvature_s: d.max_curvature_s,
@@ -660,7 +637,6 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         length: scene.line.length,
         current_ratio: current_load_ratio(scene, &rep.shape),
         touchdown_bending_length,
-        dynamic_wave_number,
         acceleration_ratio,
         top_tension: rep.shape.first().map_or(f64::NAN, |r| r.tension),
         waves: wave_scales(scene)?.map(|w| {

@@ -42,6 +42,12 @@ CASES = {
     "lowe_langley_jumper": ("docs/cases/lowe_langley_jumper.toml", 10.0, 27.0, [20, 40, 80, 160]),
     # the model's shortest period (MIN_PERIOD)
     "catenary_T10": ("catenary", 2.5, 10.0, [10, 20, 40, 80]),
+    # the design motion (2.5 m at 10 s, what `riser statics` and the FMU choose for) on the other lines: the
+    # mesh's error of the motion (docs/theory.md 16.2, C_d) where the line's slack sag bend (the lazy wave) or
+    # low tension (the jumper) shortens the response's wavelength
+    "lazy_wave_T10": ("lazy_wave", 2.5, 10.0, [10, 20, 40, 80]),
+    "steel_catenary_T10": ("steel_catenary", 2.5, 10.0, [20, 40, 80, 160]),
+    "lowe_langley_jumper_T10": ("docs/cases/lowe_langley_jumper.toml", 2.5, 10.0, [20, 40, 80, 160]),
     # the model's largest amplitude (MAX_AMPLITUDE) on the catenary: the step term's amplitude, separated
     # from the line (the jumper is the only other case with 10 m)
     "catenary_A10": ("catenary", 10.0, 20.0, [10, 20, 40, 80]),
@@ -80,7 +86,8 @@ STEPS = [0.2, 0.1, 0.05, 0.025]
 # steps a period, against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4)
 LADDER_STEPS = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
 LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [100, 160],
-          "lowe_langley_jumper": [10, 16, 20]}
+          "lowe_langley_jumper": [10, 16, 20], "lazy_wave_T10": [20, 40], "lowe_langley_jumper_T10": [10, 20],
+          "steel_catenary_T10": [80, 160]}
 LADDER_TOL = 1e-9
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
