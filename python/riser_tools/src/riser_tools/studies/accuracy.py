@@ -95,7 +95,8 @@ TARGETS = [1e-2, 1e-3, 1e-4]
 # accepts, not only the three; each heave case (without a sea) is run at each of these as well
 INTERMEDIATE_TARGETS = [5e-3, 2e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1.2e-4]
 EXTRA_TARGETS = {c: INTERMEDIATE_TARGETS for c in
-                 ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10")}
+                 ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
+                  "steel_catenary_T10", "lowe_langley_jumper_T10")}
 FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
