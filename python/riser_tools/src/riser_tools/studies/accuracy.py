@@ -20,7 +20,8 @@ Grid phase: per calibration case, the reference (the finest mesh and step below,
 at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them; the verify phase's
 runs are always made afresh, replacing the stored ones),
 copied to docs/accuracy_runs.csv. Verify phase: the same runs with only `--set accuracy=...`
-(1e-2, 1e-3, 1e-4) against the same reference: what riser chose, its error and its wall time
+(1e-2, 1e-3, 1e-4; the heave cases without a sea also INTERMEDIATE_TARGETS, 5e-3 to 1.2e-4, between
+them) against the same reference: what riser chose, its error and its wall time
 against the cheapest grid cell that reaches the target; the same csv and
 docs/accuracy.md.
 """
@@ -284,7 +285,10 @@ def write_doc(rows, docs, binary):
              "is left of the current's start (the floor E_s F_c of docs/theory.md §16.2); the model covers every "
              "step there. catenary_A10 (10 m at "
              "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
-             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. The ladder "
+             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. "
+             "lazy_wave_T10, steel_catenary_T10 and lowe_langley_jumper_T10: the design motion (2.5 m at 10 s, what "
+             "`riser statics` and the FMU choose for) on the other lines, in the calibration since the mesh term of the "
+             "motion (docs/theory.md §16.2, C_d). The ladder "
              "tables (the heave cases without a sea): the meshes the knob chooses and the grid's coarsest at every step of "
              "the knob's own ladder from 0.2 to 0.01 s (at least 75 steps a period), each against the model's prediction "
              "for the same numerics (`--set accuracy=1e-2` with n_elements and time_step pinned): the points between the "
