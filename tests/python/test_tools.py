@@ -246,14 +246,16 @@ def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin
 
 def test_the_ladder_runs_every_knob_step_with_75_steps_a_period(monkeypatch):
     """riser-tools accuracy --phase ladder: each heave case's meshes at every step of the knob's
-    STEP_LADDER (src/sim/accuracy.rs) from 0.2 to 0.01 s that leaves at least 75 steps a period of
-    its motion: the catenary at 10 s from 0.1 s (10/75 = 0.133 s), at 20 s from 0.2 s."""
+    STEP_LADDER (src/sim/accuracy.rs), from 0.2 s down to its shortest, 0.0125 s (the references'),
+    and at 0.01 s, the step below it that the knob no longer takes, that leaves at least 75 steps a
+    period of its motion: the catenary at 10 s from 0.1 s (10/75 = 0.133 s), at 20 s from 0.2 s."""
     from riser_tools.studies import accuracy as A
 
     text = open(A.Path(__file__).resolve().parents[2] / "src" / "sim" / "accuracy.rs").read()
     ladder = text[text.index("pub const STEP_LADDER"):].split("[", 2)[2].split("]")[0]
     knob = [float(x) for x in ladder.split(",")]
-    assert A.LADDER_STEPS == [dt for dt in knob if dt >= 0.01]
+    assert knob[-1] == A.REF_STEP == 0.0125
+    assert A.LADDER_STEPS == knob + [0.01]
     calls = []
     monkeypatch.setattr(A, "one", lambda binary, path, rows, case, kind, n, dt, tol: calls.append((case, n, dt)))
     A.ladder("riser", None, [])

@@ -350,6 +350,7 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
             "max_curvature": c.scales.curvature,
             "max_curvature_s": c.scales.curvature_s,
             "touchdown_bending_length": c.scales.touchdown_bending_length,
+            "acceleration_ratio": c.scales.acceleration_ratio,
             "motion_period": c.excitation.period,
             "motion_amplitude": c.excitation.amplitude,
             "wave_omega": c.scales.waves.map(|w| w.omega),

@@ -20,7 +20,8 @@ Grid phase: per calibration case, the reference (the finest mesh and step below,
 at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them; the verify phase's
 runs are always made afresh, replacing the stored ones),
 copied to docs/accuracy_runs.csv. Verify phase: the same runs with only `--set accuracy=...`
-(1e-2, 1e-3, 1e-4) against the same reference: what riser chose, its error and its wall time
+(1e-2, 1e-3, 1e-4; the heave cases without a sea also INTERMEDIATE_TARGETS, 5e-3 to 1.2e-4, between
+them) against the same reference: what riser chose, its error and its wall time
 against the cheapest grid cell that reaches the target; the same csv and
 docs/accuracy.md.
 """
@@ -42,6 +43,12 @@ CASES = {
     "lowe_langley_jumper": ("docs/cases/lowe_langley_jumper.toml", 10.0, 27.0, [20, 40, 80, 160]),
     # the model's shortest period (MIN_PERIOD)
     "catenary_T10": ("catenary", 2.5, 10.0, [10, 20, 40, 80]),
+    # the design motion (2.5 m at 10 s, what `riser statics` and the FMU choose for) on the other lines: the
+    # mesh's error of the motion (docs/theory.md 16.2, C_d) where the line's slack sag bend (the lazy wave) or
+    # low tension (the jumper) shortens the response's wavelength
+    "lazy_wave_T10": ("lazy_wave", 2.5, 10.0, [10, 20, 40, 80]),
+    "steel_catenary_T10": ("steel_catenary", 2.5, 10.0, [20, 40, 80, 160]),
+    "lowe_langley_jumper_T10": ("docs/cases/lowe_langley_jumper.toml", 2.5, 10.0, [20, 40, 80, 160]),
     # the model's largest amplitude (MAX_AMPLITUDE) on the catenary: the step term's amplitude, separated
     # from the line (the jumper is the only other case with 10 m)
     "catenary_A10": ("catenary", 10.0, 20.0, [10, 20, 40, 80]),
@@ -75,17 +82,22 @@ CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
 # The ladder (docs/theory.md §16.3, "Between the grid's steps"): the knob chooses its step from
 # src/sim/accuracy.rs STEP_LADDER, not only from the grid's four; the heave cases' meshes it chooses
-# (and the grid's coarsest) at every ladder step from 0.2 to 0.01 s with at least 75 steps a period,
-# against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4)
+# (and the grid's coarsest) at every ladder step from 0.2 to 0.0125 s (the ladder's shortest, the
+# references' step) and at 0.01 s, the step below it that the knob no longer takes, with at least 75
+# steps a period, against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4)
 LADDER_STEPS = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
 LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [100, 160],
-          "lowe_langley_jumper": [10, 16, 20]}
+          "lowe_langley_jumper": [10, 16, 20], "lazy_wave_T10": [20, 40], "lowe_langley_jumper_T10": [10, 20],
+          "steel_catenary_T10": [80, 160]}
 LADDER_TOL = 1e-9
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
-# targets between the three, where the ladder shows the model below the error (docs/theory.md §16.3):
-# the catenary at 10 s chooses 10 elements at 0.02 s for 1.8e-4 to 2.3e-4
-EXTRA_TARGETS = {"catenary_T10": [2e-4]}
+# targets between the three (docs/theory.md §16.3, "Between the targets"): the knob must meet every target it
+# accepts, not only the three; each heave case (without a sea) is run at each of these as well
+INTERMEDIATE_TARGETS = [5e-3, 2e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1.2e-4]
+EXTRA_TARGETS = {c: INTERMEDIATE_TARGETS for c in
+                 ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
+                  "steel_catenary_T10", "lowe_langley_jumper_T10")}
 FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
@@ -273,12 +285,17 @@ def write_doc(rows, docs, binary):
              "is left of the current's start (the floor E_s F_c of docs/theory.md §16.2); the model covers every "
              "step there. catenary_A10 (10 m at "
              "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
-             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. The ladder "
+             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. "
+             "lazy_wave_T10, steel_catenary_T10 and lowe_langley_jumper_T10: the design motion (2.5 m at 10 s, what "
+             "`riser statics` and the FMU choose for) on the other lines, in the calibration since the mesh term of the "
+             "motion (docs/theory.md §16.2, C_d). The ladder "
              "tables (the heave cases without a sea): the meshes the knob chooses and the grid's coarsest at every step of "
              "the knob's own ladder from 0.2 to 0.01 s (at least 75 steps a period), each against the model's prediction "
              "for the same numerics (`--set accuracy=1e-2` with n_elements and time_step pinned): the points between the "
-             "grid's four steps a choice may land on (docs/theory.md §16.3). catenary_T10 is also checked at accuracy 2e-4, "
-             "between the targets, where its ladder shows the model below the error.", ""]
+             "grid's four steps a choice may land on (docs/theory.md §16.3); 0.01 s, below the knob's shortest step "
+             "(0.0125 s, the references'), shows why it is not taken. The heave cases without a sea are also checked "
+             "between the targets, at " + ", ".join(f"{t:g}" for t in INTERMEDIATE_TARGETS) + " (each case's last table, "
+             "by target).", ""]
     for case, (scene, amp, period, _) in CASES.items():
         mine = [r for r in rows if r["case"] == case]
         ref = next((r for r in mine if r["kind"] == "reference"), None)
@@ -327,7 +344,7 @@ def write_doc(rows, docs, binary):
                               f"{pe:.1e}" if pe is not None else "?"]
                 if any(cells):
                     lines.append(f"| {dt:g} | " + " | ".join(cells) + " |")
-        acc_rows = [r for r in mine if r["kind"] == "accuracy"]
+        acc_rows = sorted((r for r in mine if r["kind"] == "accuracy"), key=lambda r: -float(r["accuracy"]))
         if acc_rows:
             lines += ["", "| accuracy | chosen n, dt, tol | predicted | error | work (wall) | cheapest grid cell "
                       "reaching it | its work | cost ratio | cost ratio, covered cells |",
