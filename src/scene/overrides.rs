@@ -255,7 +255,9 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
             return Err(SceneError::Override {
                 name: name.into(),
                 message: format!(
-                    "unknown parameter; known: {}",
+                    "unknown parameter{}; known: {}",
+                    closest(name, PARAMETER_NAMES.iter().map(|p| p.0))
+                        .map_or(String::new(), |c| format!(" (did you mean {c}?)")),
                     PARAMETER_NAMES.iter().map(|p| p.0).collect::<Vec<_>>().join(", ")
                 ),
             });
@@ -435,5 +437,43 @@ fn get_wave(s: &Scene, name: &str) -> Option<String> {
         })),
         "water_depth" => num(w.depth.unwrap_or(0.0)),
         _ => None,
+    }
+}
+
+/// The name of `names` nearest `name` by edit distance (insertions,
+/// deletions, substitutions), if within a third of its length (at least 2):
+/// the suggestion for a misspelt `--set` name.
+fn closest<'a>(name: &str, names: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let a: Vec<char> = name.chars().collect();
+    let distance = |b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.iter().enumerate() {
+            let mut diagonal = row[0];
+            row[0] = i + 1;
+            for (j, cb) in b.iter().enumerate() {
+                let next = (diagonal + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
+                diagonal = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    let limit = (a.len() / 3).max(2);
+    names.map(|n| (distance(n), n)).filter(|(d, _)| *d <= limit).min_by_key(|(d, _)| *d).map(|(_, n)| n)
+}
+
+#[cfg(test)]
+mod suggestion_tests {
+    use super::closest;
+
+    #[test]
+    fn a_misspelt_name_gets_the_nearest_known_one_and_a_stranger_none() {
+        let names = ["n_elements", "time_step", "wave_hs", "wave_tp", "outer_diameter"];
+        assert_eq!(closest("n_elemnts", names.into_iter()), Some("n_elements"));
+        assert_eq!(closest("timestep", names.into_iter()), Some("time_step"));
+        assert_eq!(closest("wave_Hs", names.into_iter()), Some("wave_hs"));
+        assert_eq!(closest("outer_diamter", names.into_iter()), Some("outer_diameter"));
+        assert_eq!(closest("gravity_of_mars", names.into_iter()), None);
     }
 }
