@@ -407,8 +407,8 @@ fn period_of(w: &WavesSpec, components: &[Component]) -> f64 {
 
 /// The scene's sea's ramp and period, s (None: still water): the ramp
 /// grows the sea from t = 0 over the first (`ramp`, default one period);
-/// the period is a regular wave's T, a spectrum's T_p, a table's peak period. What `riser run` waits for before its
-/// steady window.
+/// the period is a regular wave's T, a spectrum's T_p, a table's peak
+/// period. What `riser run` waits for before its steady window.
 pub fn ramp_and_period(scene: &Scene) -> Result<Option<(f64, f64)>, SeaError> {
     let Some(w) = scene.waves.as_ref().filter(|w| w.kind != WaveKind::None) else {
         return Ok(None);
