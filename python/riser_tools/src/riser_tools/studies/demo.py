@@ -90,7 +90,14 @@ def main(argv: Sequence[str] | None = None) -> None:
     plt.close(fig)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     a1.plot(s["t"], tt / 1e3, lw=0.8)
+    # the steady window the summary reads, and the end of the motion's ramp
+    a1.axvspan(t0, args.duration, color="tab:green", alpha=0.08, label=f"steady window {t0:g} to {args.duration:g} s")
+    if args.ramp > 0:
+        a1.axvline(args.ramp, color="0.5", lw=0.8, ls="--", label=f"end of the ramp ({args.ramp:g} s)")
     a1.set_ylabel("top tension (kN)")
+    a1.set_title(f"catenary riser (FMU), heave {motion.amplitude:g} m / {motion.period:g} s: top tension and "
+                 "energy", fontsize=10)
+    a1.legend(loc="lower left", fontsize=8)
     a1.grid(True, alpha=0.3)
     for n in ["total_energy", "work_top", "work_hydro"]:
         a2.plot(s["t"], (s[n] - (s[n][0] if n == "total_energy" else 0)) / 1e3, label=n)
