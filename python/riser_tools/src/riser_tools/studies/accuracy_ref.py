@@ -1,19 +1,27 @@
 """The references' floor of the accuracy study, examined (docs/accuracy.md, last section).
 
-    riser-tools accuracy-ref [--bin target/fasttest/riser] [--phase run|report|all] [--case C ...]
+    riser-tools accuracy-ref [--bin target/fasttest/riser] [--phase run|bias|report|all] [--case C ...]
                              [--steps 0.00625,0.003125] [--max-wall 60]
 
 Run phase: the heave cases' references (`riser-tools accuracy`, riser_tools.studies.accuracy: the same
 `command()`, scene, heave, duration and steady window; the reference mesh, 2x the grid's finest, tolerance
 1e-10) at shorter steps than the study's 0.0125 s, rows appended to out/accuracy_ref/fine.csv (a rerun reuses
-them) and copied to docs/accuracy_references_fine.csv. A step is skipped when the case's run at the step before
-took more than --max-wall seconds of solve wall time times 2.5 (the next would take about twice as long).
+them) and copied to docs/accuracy_references_fine.csv. A step is skipped when 2.5 times the solve wall time of the
+case's run at the step before exceeds --max-wall s (the next takes about twice as long; the committed runs:
+--max-wall 100, two cases at a time on a 2-core machine).
+
+Bias phase: each case's reference rerun at 0.0125 s with --out; from its top tension series, the window's time
+mean (trapezoid) and, for every step of the grid, ladder and references, the mean `riser run` reports (the
+arithmetic mean of the samples at k dt in the window, both ends included) less it: the sampling bias, O(dt),
+written to docs/accuracy_mean_bias.csv.
 
 Report phase (markdown on stdout): per case the steady window's top tension min / mean / max at 0.025 s (the
 study's check_step), 0.0125 s (its reference) and the fine steps, the successive differences over max_ref and
 the observed order p = log2(d_coarse / d_fine); then every grid and ladder cell of docs/accuracy_runs.csv
 against the study's reference and against the finest new one (the error of the study, eq. 16.1, and its mean
-alone), and the targets' "cheapest grid cell reaching it" and cost ratios under both references.
+alone; and the finest reference's extremes with the time mean, each run's mean less its bias), the smallest /
+median / largest error of the cells at 0.025 s and shorter, and the targets' "cheapest grid cell reaching it"
+and cost ratios under the three measures. The write-up: docs/accuracy.md, "The references' floor, examined".
 """
 from __future__ import annotations
 
@@ -92,8 +100,8 @@ def bias_phase(binary, runs, cases, out):
         t, f, (w0, w1) = series_of(binary, case)
         m = time_mean(t, f, w0, w1)
         tmax = max(x for x, y in zip(f, t) if w0 - 1e-9 <= y <= w1 + 1e-9)
-        dts = sorted({float(r["time_step"]) for r in runs if r["case"] == case and r["time_step"] not in ("", "refused")}
-                     | set(FINE_STEPS) | {0.025, 0.0125}, reverse=True)
+        dts = {float(r["time_step"]) for r in runs if r["case"] == case and r["time_step"] not in ("", "refused")}
+        dts = sorted(dts | set(FINE_STEPS) | {0.025, 0.0125}, reverse=True)
         for dt in dts:
             sm, n = sampled_mean(t, f, w0, w1, dt)
             rows.append({"case": case, "time_step": dt, "samples": n, "time_mean": m, "window_start": f[t.index(min(
