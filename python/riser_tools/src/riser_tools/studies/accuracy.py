@@ -98,6 +98,7 @@ INTERMEDIATE_TARGETS = [5e-3, 2e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1.2e-4]
 EXTRA_TARGETS = {c: INTERMEDIATE_TARGETS for c in
                  ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
                   "steel_catenary_T10", "lowe_langley_jumper_T10")}
+FLOOR_HEADING = "## The references' floor, examined"
 FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
@@ -370,7 +371,10 @@ def write_doc(rows, docs, binary):
                              f"({float(r['wall_s']):.2f} s) | {b[0]} | {b[1]} | {b[2]} | "
                              + (f"{work(r) / work(best_cov):.2f} |" if best_cov else "none |"))
         lines.append("")
-    (docs / "accuracy.md").write_text("\n".join(lines) + "\n")
+    # the hand-written section of `riser-tools accuracy-ref` (the references' floor) is kept at the end
+    old = (docs / "accuracy.md").read_text() if (docs / "accuracy.md").exists() else ""
+    kept = old[old.index(FLOOR_HEADING):] if FLOOR_HEADING in old else ""
+    (docs / "accuracy.md").write_text("\n".join(lines) + "\n" + kept)
 
 
 def main(argv=None):
