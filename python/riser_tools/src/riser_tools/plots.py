@@ -14,12 +14,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def statics(shape: Mapping[str, np.ndarray], dst: str | Path) -> None:
-    """shape.csv of `riser statics --out` (columns S, x, z, tension): the shape and the tension along it."""
+def statics(shape: Mapping[str, np.ndarray], dst: str | Path, title: str | None = None,
+            surface_z: float | None = None) -> None:
+    """shape.csv of `riser statics --out` (columns S, x, z, tension): the shape and the tension along it,
+    with the mean water level at `surface_z` (m; None: not drawn) and `title` over both."""
     s, x, z, t = shape["S"], shape["x"], shape["z"], shape["tension"] / 1e3
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    if surface_z is not None:
+        ax1.axhline(surface_z, color="tab:blue", lw=0.8, alpha=0.5, ls="--", label="mean water level")
     ax1.plot(x, z, "-", color="C0", lw=2)
     ax1.plot([x[0], x[-1]], [z[0], z[-1]], "ks", ms=6)
+    if surface_z is not None:
+        ax1.legend(loc="upper right", fontsize=8)
     ax1.set_xlabel("x [m]")
     ax1.set_ylabel("z [m]")
     ax1.set_title("static shape")
@@ -30,6 +36,8 @@ def statics(shape: Mapping[str, np.ndarray], dst: str | Path) -> None:
     ax2.set_ylabel("effective tension [kN]")
     ax2.set_title("tension along the line")
     ax2.grid(True, alpha=0.4)
+    if title:
+        fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(dst, dpi=120)
     plt.close(fig)
@@ -74,10 +82,17 @@ def shapes_csv_curves(rows: Sequence[Mapping[str, str]]) -> list[tuple[float, np
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """`riser-tools plot-statics shape.csv shape.png`: the figure of `riser statics --out DIR`."""
+    """`riser-tools plot-statics shape.csv shape.png [--title T] [--surface-z Z]`: the figure of
+    `riser statics --out DIR` (with the mean water level at Z m if given)."""
+    import argparse
+
     from .cli import read_columns
-    args = list(sys.argv[1:] if argv is None else argv)
-    if len(args) != 2:
-        sys.exit("usage: riser-tools plot-statics shape.csv shape.png")
-    statics(read_columns(args[0]), args[1])
-    print(f"wrote {args[1]}")
+    ap = argparse.ArgumentParser(prog="riser-tools plot-statics", description=main.__doc__)
+    ap.add_argument("shape_csv")
+    ap.add_argument("png")
+    ap.add_argument("--title", default=None, help="the figure's title (e.g. the scene's name)")
+    ap.add_argument("--surface-z", type=float, default=None,
+                    help="the mean water level, m (the scene's water_surface_z; not drawn if not given)")
+    args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+    statics(read_columns(args.shape_csv), args.png, title=args.title, surface_z=args.surface_z)
+    print(f"wrote {args.png}")
