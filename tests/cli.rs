@@ -294,14 +294,21 @@ fn ramp_zero_is_the_papers_abrupt_start_bit_for_bit() {
     let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 0.0 };
     sim.start(heave.at(0.0));
     let n = riser::sim::internal_steps(60.0, 0.1).unwrap();
-    let mut tension = vec![sim.outputs().top_tension];
+    let mut samples = vec![(sim.outputs().time, sim.outputs().top_tension)];
     for k in 1..=n {
         sim.advance_to(riser::sim::internal_step_end(0.0, 60.0, 0.1, k, n), &|t| heave.at(t)).unwrap();
-        tension.push(sim.outputs().top_tension);
+        samples.push((sim.outputs().time, sim.outputs().top_tension));
     }
+    let tension: Vec<f64> = samples.iter().map(|s| s.1).collect();
     let max = tension.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     let min = tension.iter().cloned().fold(f64::INFINITY, f64::min);
-    let mean = tension.iter().sum::<f64>() / tension.len() as f64;
+    // the time mean, the trapezoid rule over the run
+    let (mut integral, mut span) = (0.0, 0.0);
+    for w in samples.windows(2) {
+        integral += 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0);
+        span += w[1].0 - w[0].0;
+    }
+    let mean = integral / span;
     assert_eq!(cli["ramp"].as_f64(), Some(0.0));
     assert_eq!(cli["top_tension"], serde_json::json!({"min": min, "mean": mean, "max": max}));
     // the velocity jump: a peak far above the static tension

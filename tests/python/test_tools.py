@@ -227,10 +227,11 @@ def test_a_step_form_that_generates_the_points_has_spread_one():
 
 
 def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin):
-    """docs/theory.md 16.3, "The step term's form": over the committed runs, (A/A0)(ω Δt)^{3/2}'s
-    constant spreads 3.1-fold over the five calibration cases; the hang-off's acceleration, the
-    line's rigid-body inertia, the drag and the quasi-static swing each spread it 7- to 71-fold at
-    the same exponent."""
+    """docs/theory.md 16.3, "The step term's form": over the committed runs (the window's mean a
+    time mean), (A/A0)(ω Δt)^{3/2}'s constant spreads 5.45-fold over the five calibration cases
+    (3.1 with the sampled mean, whose bias it partly fitted); the hang-off's acceleration, the
+    line's rigid-body inertia, the drag and the quasi-static swing each spread it 7.4- to 124-fold
+    at the same exponent."""
     from riser_tools.studies import accuracy_fit as F
 
     rows = list(F.csv.DictReader(open(F.A.Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv")))
@@ -239,7 +240,7 @@ def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin
         q = F.step_scales(riser_bin, case)
         cases[case] = (q, F.step_points(rows, case, q))
     spreads = {name: F.spread(F.step_envelopes(cases, f, 1.5)) for name, (_, f) in F.STEP_FORMS.items()}
-    assert spreads["amplitude"] == pytest.approx(3.13, abs=0.01)
+    assert spreads["amplitude"] == pytest.approx(5.45, abs=0.01)
     assert min(spreads, key=spreads.get) == "amplitude"
     assert all(v > 7.0 for k, v in spreads.items() if k != "amplitude"), spreads
 

@@ -627,14 +627,35 @@ fn steady_window(asked: Option<(f64, f64)>, settled: Option<f64>, duration: f64)
 }
 
 /// min, mean and max of `v` (NaN when empty).
-fn min_mean_max(v: impl Iterator<Item = f64> + Clone) -> [f64; 3] {
-    let n = v.clone().count();
+/// The min, time mean and max of `(t, y)` samples in time order (a window of
+/// the run's output series). The mean is the trapezoid rule's ∫ y dt over the
+/// samples' span: the arithmetic mean of the samples with both ends included
+/// carries an O(Δt) bias, (y_end − ȳ) Δt / W over a window W, as large as the
+/// integrator's own error at 1e-4 (docs/accuracy.md, "The references' floor").
+/// A NaN `y` is a gap: the intervals at either side of it do not count (the
+/// touchdown point while the line is off the seabed). With no interval left,
+/// the mean is the samples' (one sample: itself).
+fn min_mean_max(v: impl Iterator<Item = (f64, f64)> + Clone) -> [f64; 3] {
+    let present = v.clone().filter(|(_, y)| !y.is_nan());
+    let n = present.clone().count();
     if n == 0 {
         return [f64::NAN; 3];
     }
-    let min = v.clone().fold(f64::INFINITY, f64::min);
-    let max = v.clone().fold(f64::NEG_INFINITY, f64::max);
-    [min, v.sum::<f64>() / n as f64, max]
+    let min = present.clone().map(|(_, y)| y).fold(f64::INFINITY, f64::min);
+    let max = present.clone().map(|(_, y)| y).fold(f64::NEG_INFINITY, f64::max);
+    let (mut integral, mut span) = (0.0, 0.0);
+    let mut prev: Option<(f64, f64)> = None;
+    for (t, y) in v {
+        if let Some((t0, y0)) = prev
+            && !(y.is_nan() || y0.is_nan())
+        {
+            integral += 0.5 * (y0 + y) * (t - t0);
+            span += t - t0;
+        }
+        prev = Some((t, y));
+    }
+    let mean = if span > 0.0 { integral / span } else { present.map(|(_, y)| y).sum::<f64>() / n as f64 };
+    [min, mean, max]
 }
 
 fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
@@ -788,15 +809,16 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     progress.finish();
     let solve_wall = solve_start.elapsed().as_secs_f64();
     let wall = wall0.elapsed().as_secs_f64();
-    let [t_min, t_mean, t_max] = min_mean_max(series.iter().map(|o| o.top_tension));
+    let [t_min, t_mean, t_max] = min_mean_max(series.iter().map(|o| (o.time, o.top_tension)));
     let steady: Vec<&Outputs> = series.iter().filter(|o| in_window(o.time)).collect();
-    let steady_tension = min_mean_max(steady.iter().map(|o| o.top_tension));
+    let steady_tension = min_mean_max(steady.iter().map(|o| (o.time, o.top_tension)));
     let steady_min_tension = steady.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
     let whole_min_tension = series.iter().map(|o| o.min_tension).fold(f64::INFINITY, f64::min);
     let stress_range = stress.largest();
-    let angle = min_mean_max(steady.iter().map(|o| o.hang_off_angle));
-    let contact: Vec<f64> = steady.iter().map(|o| o.touchdown_s).filter(|s| *s < length).collect();
-    let td_range = (!contact.is_empty()).then(|| min_mean_max(contact.iter().copied()));
+    let angle = min_mean_max(steady.iter().map(|o| (o.time, o.hang_off_angle)));
+    // off the seabed: a gap in the touchdown's statistics
+    let touchdown = steady.iter().map(|o| (o.time, if o.touchdown_s < length { o.touchdown_s } else { f64::NAN }));
+    let td_range = touchdown.clone().any(|(_, s)| !s.is_nan()).then(|| min_mean_max(touchdown));
     if steady_min_tension < 0.0 {
         warnings.push(format!(
             "the line goes into compression in the steady window: the smallest axial force is {:.3} kN",
@@ -1055,5 +1077,45 @@ fn main() -> ExitCode {
             eprintln!("riser: error: {msg}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::min_mean_max;
+
+    /// The window's mean is the time mean: on y = a + b cos(ω t) sampled over
+    /// two whole periods it is a (the trapezoid rule is exact for a periodic
+    /// trigonometric polynomial over its period, to rounding), where the
+    /// samples' arithmetic mean with both ends is off by (y_end − a) Δt / W.
+    #[test]
+    fn the_mean_is_the_time_mean_not_the_samples() {
+        let (a, b, period, dt): (f64, f64, f64, f64) = (140e3, 4e3, 20.0, 0.1);
+        let n = (2.0 * period / dt).round() as usize;
+        let w = 2.0 * std::f64::consts::PI / period;
+        let samples: Vec<(f64, f64)> = (0..=n).map(|k| k as f64 * dt).map(|t| (t, a + b * (w * t).cos())).collect();
+        let [min, mean, max] = min_mean_max(samples.iter().copied());
+        assert!((mean - a).abs() <= 1e-9 * a, "time mean {mean} against {a}");
+        assert_eq!((min, max), (a - b, a + b));
+        let arithmetic = samples.iter().map(|s| s.1).sum::<f64>() / samples.len() as f64;
+        // n + 1 samples, n of them a whole number of periods (sum n a), the
+        // last one more at the peak: a + b / (n + 1) ≈ a + b Δt / W
+        let bias = b / (n + 1) as f64;
+        assert!(((arithmetic - a) - bias).abs() <= 1e-6 * bias, "{arithmetic}: the bias this replaces");
+    }
+
+    /// A NaN is a gap: the intervals next to it do not count. A linear ramp
+    /// with a gap in the middle: each piece's time mean, weighted by its span.
+    #[test]
+    fn a_gap_leaves_its_intervals_out() {
+        let nan = f64::NAN;
+        let s = [(0.0, 0.0), (1.0, 1.0), (2.0, nan), (3.0, 3.0), (4.0, 4.0), (5.0, 5.0)];
+        let [min, mean, max] = min_mean_max(s.iter().copied());
+        // [0, 1]: mean 0.5, span 1; [3, 5]: mean 4, span 2
+        assert_eq!((min, max), (0.0, 5.0));
+        assert!((mean - (0.5 + 4.0 * 2.0) / 3.0).abs() < 1e-15, "{mean}");
+        // one sample: itself; none: NaN
+        assert_eq!(min_mean_max([(1.0, 7.0)].into_iter()), [7.0; 3]);
+        assert!(min_mean_max([(1.0, nan)].into_iter()).iter().all(|x| x.is_nan()));
     }
 }

@@ -160,7 +160,11 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
         red = out["reductions"]
         tt = res["top_tension"][win]
         red["top_tension_min"] = float(tt.min())
-        red["top_tension_mean"] = float(tt.mean())
+        # the time mean (trapezoid), as `riser run` reports it: the samples' own mean with both
+        # ends carries an O(dt) bias, (T_end - mean) dt / W
+        tw = res["time"][win]
+        span = float(tw[-1] - tw[0])
+        red["top_tension_mean"] = float(np.trapezoid(tt, tw) / span) if span > 0 else float(tt.mean())
         red["top_tension_max"] = float(tt.max())
         red["min_tension_min"] = float(res["min_tension"][win].min())
         red["energy_balance_relative"] = energy_balance_relative(res)

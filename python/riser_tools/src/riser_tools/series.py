@@ -17,6 +17,13 @@ def window_stats(t: np.ndarray, y: np.ndarray, start: float) -> tuple[float, flo
     return float(np.mean(y[m])), float(np.min(y[m])), float(np.max(y[m]))
 
 
+def time_mean(t: np.ndarray, y: np.ndarray) -> float:
+    """The time mean of y over the span of t (trapezoid rule), as `riser run` reports its
+    window's mean; a single sample: itself."""
+    span = float(t[-1] - t[0])
+    return float(np.trapezoid(y, t) / span) if span > 0 else float(np.mean(y))
+
+
 def centred_average(x: np.ndarray, n: int) -> np.ndarray:
     """Centred moving average over n + 1 samples (n even); NaN within n/2 of the ends."""
     ker = np.ones(n + 1) / (n + 1)

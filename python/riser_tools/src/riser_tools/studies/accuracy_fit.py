@@ -39,7 +39,7 @@ import tomllib
 from . import accuracy as A
 
 # the still-water constants of src/sim/accuracy.rs (C_CURVATURE, C_TIME, C_DYNAMIC_MESH)
-C_K, C_T, C_D = 7e-4, 0.3, 0.05
+C_K, C_T, C_D = 7e-4, 0.21, 0.03
 # the wave constants of src/sim/accuracy.rs: C_WAVE_TIME, C_WAVE_MESH, C_WAVE_MESH2, WAVE_FLOOR,
 # C_CURRENT_RINGING
 CONSTANTS = (0.05, 0.05, 0.018, 3.5e-5, 7.5e-3)

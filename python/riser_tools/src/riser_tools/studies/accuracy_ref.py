@@ -22,6 +22,11 @@ against the study's reference and against the finest new one (the error of the s
 alone; and the finest reference's extremes with the time mean, each run's mean less its bias), the smallest /
 median / largest error of the cells at 0.025 s and shorter, and the targets' "cheapest grid cell reaching it"
 and cost ratios under the three measures. The write-up: docs/accuracy.md, "The references' floor, examined".
+
+The bias and report phases take runs whose window mean is the samples' average with both ends, as `riser run`
+reported it until it reported the time mean (`--runs`: `git show b7668a3:docs/accuracy_runs.csv`, the runs of the
+write-up); on runs made since, the bias they subtract is no longer in the runs' means. The run phase's references
+are of the binary given (the committed ones: time means).
 """
 from __future__ import annotations
 
@@ -281,6 +286,9 @@ def main(argv=None):
     ap.add_argument("--case", action="append", help="only these cases (default: the heave cases)")
     ap.add_argument("--steps", default=",".join(f"{s:g}" for s in FINE_STEPS))
     ap.add_argument("--max-wall", type=float, default=60.0)
+    ap.add_argument("--runs", help="the study's runs for the bias and report phases (default DOCS/accuracy_runs.csv); "
+                    "they assume runs whose window mean is the samples' average, as `riser run` reported it before "
+                    "the time mean: `git show b7668a3:docs/accuracy_runs.csv`")
     args = ap.parse_args(argv)
     cases = args.case or HEAVE_CASES
     out, docs = Path(args.out), Path(args.docs)
@@ -289,7 +297,7 @@ def main(argv=None):
     if args.phase in ("run", "all"):
         run_phase(args.bin, path, cases, [float(s) for s in args.steps.split(",")], args.max_wall)
         shutil.copy(path, docs / "accuracy_references_fine.csv")
-    runs = A.load(docs / "accuracy_runs.csv")
+    runs = A.load(Path(args.runs) if args.runs else docs / "accuracy_runs.csv")
     if args.phase in ("bias", "all"):
         bias_phase(args.bin, runs, cases, docs / "accuracy_mean_bias.csv")
     if args.phase in ("report", "all"):
