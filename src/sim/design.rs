@@ -323,6 +323,41 @@ pub fn steps_per_period_warning(what: &str, period: f64, time_step: f64) -> Opti
     })
 }
 
+/// The warning for a high-frequency oscillation that grows through a run:
+/// the energy the step's high-frequency dissipation (ρ∞ < 1) removes,
+/// `algorithmic` (J, cumulative, at `times` s in order), grows from quarter
+/// to quarter of the run (from the second to the third to the last, the
+/// last's more than 1.5 times the second's) and is more than 1e-4 of
+/// `exchanged` (J, the energy the hang-off and the water exchanged). A start's transient takes
+/// less each quarter; a steady sea the same. The known case (docs/theory.md
+/// §5.10): the lazy wave heaved in its current at steps of 0.00625 s and
+/// shorter with ρ∞ = 0.8 (the quarters' 36, 66 and 215 J at 0.00625 s over
+/// 120 s), and the Lowe & Langley jumper started abruptly in a 10 m wave
+/// (169, 263 and 298 J over 50 s), where the velocity filter feeds an
+/// oscillation that ρ∞ = 1 or structural damping take away.
+pub fn growing_dissipation_warning(times: &[f64], algorithmic: &[f64], exchanged: f64) -> Option<String> {
+    let (t0, t1) = (*times.first()?, *times.last()?);
+    if times.len() != algorithmic.len() || times.len() < 8 || t1 <= t0 {
+        return None;
+    }
+    // the dissipation at the quarter marks, the last sample at or before each
+    let at = |q: f64| {
+        let t = t0 + q * (t1 - t0);
+        let k = times.partition_point(|&x| x <= t + 1e-9 * (t1 - t0)).max(1) - 1;
+        algorithmic[k]
+    };
+    let d = [at(0.25), at(0.5), at(0.75), at(1.0)];
+    let (q2, q3, q4) = (d[1] - d[0], d[2] - d[1], d[3] - d[2]);
+    (q4 > 1.5 * q2 && q4 > q3 && q3 > q2 && q4 > 1e-4 * exchanged).then(|| {
+        format!(
+            "a high-frequency oscillation grows through the run: the step's high-frequency dissipation \
+             (rho_infinity) took {q2:.3e}, {q3:.3e} and {q4:.3e} J in the run's last three quarters; its answers \
+             may not be the line's. Give the line structural damping (--set structural_damping=0.003) or run with \
+             --set rho_infinity=1 (docs/theory.md 5.10)"
+        )
+    })
+}
+
 /// The warning for an anchor beyond the line's unstretched reach from the
 /// hang-off, if it is (docs/theory.md §12.3).
 pub fn reach_warning(scene: &Scene) -> Option<String> {
@@ -441,5 +476,26 @@ impl StressRange {
                 Some(m) if m.0 >= v.0 => Some(m),
                 _ => Some(v),
             })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::growing_dissipation_warning;
+
+    /// The detector on synthetic histories: a dissipation growing like
+    /// e^{t/30} warns; a start's transient (1 − e^{−t/5}) and a steady rate
+    /// (0.5 t) do not; nor does growth below 1e-4 of what was exchanged.
+    #[test]
+    fn a_growing_high_frequency_dissipation_is_warned_of() {
+        let t: Vec<f64> = (0..=1200).map(|k| k as f64 * 0.1).collect();
+        let of = |f: &dyn Fn(f64) -> f64| t.iter().map(|&x| f(x)).collect::<Vec<f64>>();
+        let growing = of(&|x| (x / 30.0).exp());
+        let w = growing_dissipation_warning(&t, &growing, 1e4).expect("growing");
+        assert!(w.contains("structural_damping") && w.contains("rho_infinity=1"), "{w}");
+        assert!(growing_dissipation_warning(&t, &of(&|x| 100.0 * (1.0 - (-x / 5.0).exp())), 1e4).is_none());
+        assert!(growing_dissipation_warning(&t, &of(&|x| 0.5 * x), 1e4).is_none());
+        assert!(growing_dissipation_warning(&t, &growing, 1e6).is_none());
+        assert!(growing_dissipation_warning(&t[..3], &growing[..3], 1e4).is_none());
     }
 }

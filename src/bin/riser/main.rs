@@ -830,9 +830,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             whole_min_tension / 1e3
         ));
     }
+    let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
+    let times: Vec<f64> = series.iter().map(|o| o.time).collect();
+    let algorithmic: Vec<f64> = series.iter().map(|o| o.algorithmic_dissipation).collect();
+    warnings.extend(riser::sim::design::growing_dissipation_warning(&times, &algorithmic, exchanged));
     warn_all(&warnings);
     let balance = series.iter().map(|o| o.energy_balance_residual(e0).abs()).fold(0.0, f64::max);
-    let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
     let st = &sim.state;
     let simulated = st.time;
     if let Some(dir) = &out {
