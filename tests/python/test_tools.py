@@ -264,3 +264,21 @@ def test_the_ladder_runs_every_knob_step_with_75_steps_a_period(monkeypatch):
     assert steps[("catenary_T10", 10)] == [0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
     assert steps[("catenary", 10)] == A.LADDER_STEPS
     assert set(steps) == {(c, n) for c, ns in A.LADDER.items() for n in ns}
+
+
+def test_the_fit_tool_keeps_the_knob_s_constants():
+    """riser-tools accuracy-fit evaluates the error model with its own copy of the constants of
+    src/sim/accuracy.rs (the still-water ones under the wave terms, and the wave ones): they must be
+    the crate's, or its envelopes check another model."""
+    import re
+
+    from riser_tools.studies import accuracy_fit as F
+
+    text = open(F.A.Path(__file__).resolve().parents[2] / "src" / "sim" / "accuracy.rs").read()
+
+    def const(name):
+        return float(re.search(rf"pub const {name}: f64 = ([0-9.e+-]+);", text).group(1))
+
+    assert (F.C_K, F.C_T, F.C_D) == (const("C_CURVATURE"), const("C_TIME"), const("C_DYNAMIC_MESH"))
+    assert F.CONSTANTS == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR",
+                                                   "C_CURRENT_RINGING"))
