@@ -9,6 +9,7 @@ use crate::model::serialize::fnv1a;
 use crate::model::{Outputs, State};
 use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
+use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
 use std::path::PathBuf;
 
@@ -174,6 +175,10 @@ pub struct Instance {
     /// Whether the log has said, once, that the hang-off went beyond the
     /// line's reach from the anchor.
     warned_reach: bool,
+    /// The energy the step's high-frequency dissipation takes, span by span
+    /// (docs/theory.md §5.10); `None` once the log has said it grows, and
+    /// before the first step.
+    hf_watch: Option<GrowthWatch>,
     sim: Option<Simulation>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
@@ -254,6 +259,7 @@ impl Instance {
             logged_modes: None,
             hinted_velocities: false,
             warned_reach: false,
+            hf_watch: None,
             sim: None,
             step_start: None,
             scene: None,
@@ -277,6 +283,7 @@ impl Instance {
         self.logged_modes = None;
         self.hinted_velocities = false;
         self.warned_reach = false;
+        self.hf_watch = None;
         self.sim = None;
         self.step_start = None;
         self.scene = None;
@@ -587,6 +594,22 @@ impl Instance {
         }
     }
 
+    /// Warns once when the energy the step's high-frequency dissipation
+    /// takes grows over three spans of [`GrowthWatch::SPAN`] s in a row: a
+    /// high-frequency oscillation that the velocity filter feeds (docs/theory.md
+    /// §5.10; `riser run` says the same over its run's quarters). The watch
+    /// starts at the first step and again after a restored state.
+    fn watch_dissipation(&mut self, now: f64, t_end: f64) {
+        let Some(o) = self.outputs.as_ref() else { return };
+        let (d, exchanged) = (o.algorithmic_dissipation, o.work_top.abs() + o.work_hydro.abs());
+        let watch = self.hf_watch.get_or_insert_with(|| GrowthWatch::new(now));
+        if let Some(msg) = watch.feed(t_end, d, exchanged) {
+            // said once: the watch stays off until a reset
+            self.hf_watch = Some(GrowthWatch::new(f64::INFINITY));
+            self.log(Status::Warning, Category::Warning, &format!("at t = {t_end:.3} s {msg}"));
+        }
+    }
+
     /// The inputs: the displacements (heave, surge, sway), their
     /// velocities, the angles, the angular velocities.
     fn split_inputs(&self) -> VesselInputs {
@@ -681,6 +704,7 @@ impl Instance {
         match result {
             Ok(()) => {
                 self.warn_reach(t_end);
+                self.watch_dissipation(now, t_end);
                 self.history.commit(now, &inp, &path);
                 self.last_successful_time = t_end;
                 self.last_status = Status::Ok;
@@ -1178,6 +1202,10 @@ impl Instance {
             return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
         }
         sim.integrator.invalidate_tangent();
+        // the dissipation's spans start again from the restored time
+        if self.hf_watch.is_some_and(|w| w.is_on()) {
+            self.hf_watch = None;
+        }
         self.inputs = s.inputs;
         self.history = s.history;
         self.force_mean = s.force_mean;

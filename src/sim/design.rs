@@ -323,18 +323,32 @@ pub fn steps_per_period_warning(what: &str, period: f64, time_step: f64) -> Opti
     })
 }
 
-/// The warning for a high-frequency oscillation that grows through a run:
-/// the energy the step's high-frequency dissipation (ρ∞ < 1) removes,
-/// `algorithmic` (J, cumulative, at `times` s in order), grows from quarter
-/// to quarter of the run (from the second to the third to the last, the
-/// last's more than 1.5 times the second's) and is more than 1e-4 of
-/// `exchanged` (J, the energy the hang-off and the water exchanged). A start's transient takes
-/// less each quarter; a steady sea the same. The known case (docs/theory.md
-/// §5.10): the lazy wave heaved in its current at steps of 0.00625 s and
-/// shorter with ρ∞ = 0.8 (the quarters' 36, 66 and 215 J at 0.00625 s over
-/// 120 s), and the Lowe & Langley jumper started abruptly in a 10 m wave
-/// (169, 263 and 298 J over 50 s), where the velocity filter feeds an
-/// oscillation that ρ∞ = 1 or structural damping take away.
+/// Whether the energy the step's high-frequency dissipation (ρ∞ < 1) took in
+/// three successive spans, `q` (J), grows: each more than the one before,
+/// the last more than 1.5 times the first and more than 1e-4 of `exchanged`
+/// (J, the energy the hang-off and the water exchanged). A start's
+/// transient takes less each span; a steady sea about the same.
+pub fn dissipation_grows(q: [f64; 3], exchanged: f64) -> bool {
+    q[2] > 1.5 * q[0] && q[2] > q[1] && q[1] > q[0] && q[2] > 1e-4 * exchanged
+}
+
+fn growing_dissipation_message(q: [f64; 3], spans: &str) -> String {
+    format!(
+        "a high-frequency oscillation grows through the run: the step's high-frequency dissipation \
+         (rho_infinity) took {:.3e}, {:.3e} and {:.3e} J in {spans}; its answers may not be the line's. Give the \
+         line structural damping (structural_damping=0.003, s) or set rho_infinity=1 (docs/theory.md 5.10)",
+        q[0], q[1], q[2]
+    )
+}
+
+/// The warning for a high-frequency oscillation that grows through a run
+/// (`riser run`): [`dissipation_grows`] over the run's last three quarters,
+/// `algorithmic` (J, cumulative) at `times` (s, in order). The known cases
+/// (docs/theory.md §5.10): the lazy wave heaved in its current at steps of
+/// 0.00625 s and shorter with ρ∞ = 0.8 (the quarters' 36, 66 and 215 J at
+/// 0.00625 s over 120 s), and the Lowe & Langley jumper started abruptly in
+/// a 10 m wave (169, 263 and 298 J over 50 s), where the velocity filter
+/// feeds an oscillation that ρ∞ = 1 or structural damping take away.
 pub fn growing_dissipation_warning(times: &[f64], algorithmic: &[f64], exchanged: f64) -> Option<String> {
     let (t0, t1) = (*times.first()?, *times.last()?);
     if times.len() != algorithmic.len() || times.len() < 8 || t1 <= t0 {
@@ -347,15 +361,60 @@ pub fn growing_dissipation_warning(times: &[f64], algorithmic: &[f64], exchanged
         algorithmic[k]
     };
     let d = [at(0.25), at(0.5), at(0.75), at(1.0)];
-    let (q2, q3, q4) = (d[1] - d[0], d[2] - d[1], d[3] - d[2]);
-    (q4 > 1.5 * q2 && q4 > q3 && q3 > q2 && q4 > 1e-4 * exchanged).then(|| {
-        format!(
-            "a high-frequency oscillation grows through the run: the step's high-frequency dissipation \
-             (rho_infinity) took {q2:.3e}, {q3:.3e} and {q4:.3e} J in the run's last three quarters; its answers \
-             may not be the line's. Give the line structural damping (--set structural_damping=0.003) or run with \
-             --set rho_infinity=1 (docs/theory.md 5.10)"
-        )
-    })
+    let q = [d[1] - d[0], d[2] - d[1], d[3] - d[2]];
+    dissipation_grows(q, exchanged).then(|| growing_dissipation_message(q, "the run's last three quarters"))
+}
+
+/// The running form of [`growing_dissipation_warning`] for a run of no known
+/// end (the FMU): the dissipation's energy over successive spans of
+/// [`GrowthWatch::SPAN`] s of simulated time, [`dissipation_grows`] over the
+/// last three. No allocation; a communication step longer than a span
+/// records the spans it covers as taking nothing.
+#[derive(Debug, Clone, Copy)]
+pub struct GrowthWatch {
+    next: f64,
+    marks: [f64; 4],
+    count: usize,
+    exchanged: f64,
+}
+
+impl GrowthWatch {
+    /// The span, s of simulated time.
+    pub const SPAN: f64 = 30.0;
+
+    /// A watch from `t0` s on (`f64::INFINITY`: one that never speaks).
+    pub fn new(t0: f64) -> Self {
+        GrowthWatch { next: t0 + Self::SPAN, marks: [0.0; 4], count: 0, exchanged: 0.0 }
+    }
+
+    /// Whether it can still speak.
+    pub fn is_on(&self) -> bool {
+        self.next.is_finite()
+    }
+
+    /// Feeds the run at `t` s: `algorithmic` the dissipation's energy since
+    /// the start (J), `exchanged` the energy the hang-off and the water have
+    /// exchanged (J). Returns the warning when the last three spans grow.
+    pub fn feed(&mut self, t: f64, algorithmic: f64, exchanged: f64) -> Option<String> {
+        self.exchanged = self.exchanged.max(exchanged);
+        let mut grows = None;
+        while t >= self.next - 1e-9 * Self::SPAN {
+            if self.count == 0 {
+                // the first mark: the start's transient before it is not compared
+                self.marks = [algorithmic; 4];
+            } else {
+                self.marks = [self.marks[1], self.marks[2], self.marks[3], algorithmic];
+            }
+            self.count += 1;
+            self.next += Self::SPAN;
+            let m = self.marks;
+            let q = [m[1] - m[0], m[2] - m[1], m[3] - m[2]];
+            if self.count >= 4 && dissipation_grows(q, self.exchanged) {
+                grows = Some(growing_dissipation_message(q, &format!("the last three spans of {} s", Self::SPAN)));
+            }
+        }
+        grows
+    }
 }
 
 /// The warning for an anchor beyond the line's unstretched reach from the
@@ -481,7 +540,7 @@ impl StressRange {
 
 #[cfg(test)]
 mod tests {
-    use super::growing_dissipation_warning;
+    use super::{GrowthWatch, growing_dissipation_warning};
 
     /// The detector on synthetic histories: a dissipation growing like
     /// e^{t/30} warns; a start's transient (1 − e^{−t/5}) and a steady rate
@@ -497,5 +556,24 @@ mod tests {
         assert!(growing_dissipation_warning(&t, &of(&|x| 0.5 * x), 1e4).is_none());
         assert!(growing_dissipation_warning(&t, &growing, 1e6).is_none());
         assert!(growing_dissipation_warning(&t[..3], &growing[..3], 1e4).is_none());
+    }
+
+    /// The running watch on the same histories, fed every 0.1 s: it speaks
+    /// on the growth (three spans after the first mark: at 120 s), not
+    /// on a transient, a steady rate or growth below 1e-4 of what was
+    /// exchanged; a feed that jumps over spans records them as taking nothing.
+    #[test]
+    fn the_running_watch_speaks_on_growth_only() {
+        let feed = |f: &dyn Fn(f64) -> f64, exchanged: f64| {
+            let mut w = GrowthWatch::new(0.0);
+            (1..=3000).map(|k| k as f64 * 0.1).find(|&t| w.feed(t, f(t), exchanged).is_some())
+        };
+        let at = feed(&|x| (x / 30.0).exp(), 1e4).expect("growth");
+        assert!((at - 120.0).abs() < 1e-6, "{at}");
+        assert!(feed(&|x| 100.0 * (1.0 - (-x / 5.0).exp()), 1e4).is_none());
+        assert!(feed(&|x| 0.5 * x, 1e4).is_none());
+        assert!(feed(&|x| (x / 30.0).exp(), 1e9).is_none());
+        let mut w = GrowthWatch::new(0.0);
+        assert!(w.feed(200.0, 1e3, 1e4).is_none(), "one step over six spans");
     }
 }

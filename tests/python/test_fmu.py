@@ -346,3 +346,50 @@ def test_the_log_says_when_long_steps_want_the_velocities_and_when_the_line_is_b
             assert log.count(e) == 1, (reals, h, velocity, log)
         if not expected:
             assert "displacement input alone" not in log and "from the anchor" not in log, (reals, h, log)
+
+
+HF_CHILD = r"""
+import json, math, sys
+from fmpy import read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+md = read_model_description(fmu_path)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+for reals in cases:
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="hf")
+    s.instantiate(loggingOn=True)
+    print("@@begin", flush=True)
+    s.setString([vr["scene"]], ["lazy_wave"])
+    s.setInteger([vr["n_elements"]], [160])
+    for k, v in reals.items():
+        s.setReal([vr[k]], [v])
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    w, t, h = 2 * math.pi / 30.0, 0.0, 0.1
+    for _ in range(1200):
+        ramp = 0.5 * (1 - math.cos(math.pi * t / 30.0)) if t < 30.0 else 1.0
+        s.setReal([vr["heave"]], [2.5 * ramp * math.sin(w * t)])
+        s.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        t += h
+    print("@@end", flush=True)
+    s.terminate()
+    s.freeInstance()
+"""
+
+
+def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):
+    """docs/theory.md §5.10: the lazy wave heaved 2.5 m / 30 s (grown over a period) in its current,
+    160 elements at dt 0.00625 s with the default rho_infinity 0.8, grows a high-frequency oscillation
+    that the velocity filter feeds; the FMU's log says so once, at 120 s (three spans of 30 s after
+    the first), naming the remedies. With rho_infinity 1 the oscillation decays and the log is silent."""
+    cases = [{"time_step": 0.00625}, {"time_step": 0.00625, "rho_infinity": 1.0}]
+    p = subprocess.run([sys.executable, "-c", HF_CHILD, fmu_path, unzipped, json.dumps(cases)],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    logs = [chunk.split("@@end")[0] for chunk in p.stdout.split("@@begin")[1:]]
+    assert len(logs) == 2, p.stdout
+    message = "a high-frequency oscillation grows through the run"
+    assert logs[0].count(message) == 1, logs[0]
+    assert "at t = 120.000 s" in logs[0] and "structural_damping" in logs[0] and "rho_infinity=1" in logs[0]
+    assert message not in logs[1], logs[1]
