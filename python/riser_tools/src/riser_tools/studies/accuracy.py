@@ -285,8 +285,10 @@ def write_doc(rows, docs, binary):
     lines = ["# The accuracy knob: calibration grid and check", "",
              "Made by `riser-tools accuracy` (riser_tools.studies.accuracy; the model is in "
              "[theory.md](theory.md) §16). Each run: `riser run SCENE --heave A,T --duration 4T` "
-             "(ramp one period, steady window 2T to 4T); error e = the largest of the steady window's min, mean "
-             "and max top tension's differences from the reference's, over the reference's max. Cost: the work, "
+             "(ramp one period, steady window 2T to 4T); error e = the largest of the steady window's min, time "
+             "mean and max top tension's differences from the reference's, over the reference's max (a miss is "
+             "also measured against the finest reference of `riser-tools accuracy-ref` where the case has one). "
+             "Cost: the work, "
              "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
              "machine and only indicative); the cost ratio is the choice's work over the cheapest grid cell's "
              "whose error is at or below the target (the second ratio: over the cheapest of the cells with at "
