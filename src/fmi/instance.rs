@@ -120,6 +120,10 @@ pub struct Saved {
     params_hash: u64,
     /// `top_force_*_mean`: the mean force over the last communication step.
     force_mean: V3,
+    /// The watch of the high-frequency dissipation (`None` before the first
+    /// step), so that a master that restores states keeps it; a
+    /// deserialized state starts a new one.
+    hf_watch: Option<GrowthWatch>,
     /// The parameters themselves when saved in this process (fmi2GetFMUstate),
     /// so that a refused restore names what differs; None when deserialized
     /// (a serialized state carries their hash only).
@@ -598,14 +602,14 @@ impl Instance {
     /// takes grows over three spans of [`GrowthWatch::SPAN`] s in a row: a
     /// high-frequency oscillation that the velocity filter feeds (docs/theory.md
     /// §5.10; `riser run` says the same over its run's quarters). The watch
-    /// starts at the first step and again after a restored state.
+    /// starts at the first step and is saved and restored with the state.
     fn watch_dissipation(&mut self, now: f64, t_end: f64) {
         let Some(o) = self.outputs.as_ref() else { return };
-        let (d, exchanged) = (o.algorithmic_dissipation, o.work_top.abs() + o.work_hydro.abs());
+        let (d, work) = (o.algorithmic_dissipation, [o.work_top, o.work_hydro]);
         let watch = self.hf_watch.get_or_insert_with(|| GrowthWatch::new(now));
-        if let Some(msg) = watch.feed(t_end, d, exchanged) {
+        if let Some(msg) = watch.feed(t_end, d, work) {
             // said once: the watch stays off until a reset
-            self.hf_watch = Some(GrowthWatch::new(f64::INFINITY));
+            self.hf_watch = Some(GrowthWatch::off());
             self.log(Status::Warning, Category::Warning, &format!("at t = {t_end:.3} s {msg}"));
         }
     }
@@ -1170,6 +1174,7 @@ impl Instance {
             mode: self.mode,
             params_hash: self.params_hash(),
             force_mean: self.force_mean,
+            hf_watch: self.hf_watch,
             params: Some(self.params.clone()),
         })
     }
@@ -1202,9 +1207,10 @@ impl Instance {
             return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
         }
         sim.integrator.invalidate_tangent();
-        // the dissipation's spans start again from the restored time
-        if self.hf_watch.is_some_and(|w| w.is_on()) {
-            self.hf_watch = None;
+        // the watch as it was (said once: stays off); a deserialized state
+        // starts a new one at its next step
+        if self.hf_watch.is_none_or(|w| w.is_on()) {
+            self.hf_watch = s.hf_watch;
         }
         self.inputs = s.inputs;
         self.history = s.history;
@@ -1254,7 +1260,7 @@ impl Instance {
                 };
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
                 let force_mean = V3::new(extra[n + 3], extra[n + 4], extra[n + 5]);
-                Ok(Saved { state, inputs, history, mode, params_hash, force_mean, params: None })
+                Ok(Saved { state, inputs, history, mode, params_hash, force_mean, hf_watch: None, params: None })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),

@@ -782,13 +782,18 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     }
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut mesh_terms = std::collections::HashMap::new();
+    // (16.7): the mesh's term, at least its static departure; None for a
+    // mesh departing by more than SAFETY times its model term, unless the
+    // user pinned it (it stands, with its departure if that is larger)
     let mut mesh_term = |n: usize| -> Option<f64> {
-        if pinned.n_elements {
-            return Some(space_error(&s, n));
-        }
         *mesh_terms.entry(n).or_insert_with(|| {
             let model = space_error(&s, n);
-            static_mesh_error(scene, n, &s).ok().filter(|&e| e <= SAFETY * model).map(|e| e.max(model))
+            match static_mesh_error(scene, n, &s) {
+                Ok(e) if pinned.n_elements => Some(e.max(model)),
+                Ok(e) => (e <= SAFETY * model).then_some(e.max(model)),
+                Err(_) if pinned.n_elements => Some(model),
+                Err(_) => None,
+            }
         })
     };
     let best = candidates
@@ -796,17 +801,18 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
         .find(|&(_, n, dt)| mesh_term(n).is_some_and(|space| space + time_error(&s, dt) <= budget));
     // a pinned value that cannot reach the target: the user's value stands
     // (the warning gives the predicted error), the other is the coarsest
-    // whose own term is within the budget
+    // whose own term is within the budget (a mesh, only one (16.7) takes)
     let (n, dt) = match best {
         Some((_, n, dt)) => (n, dt),
         None if pinned.n_elements || pinned.time_step => (
             if pinned.n_elements {
                 an.n_elements
             } else {
-                *ELEMENT_LADDER
-                    .iter()
-                    .find(|&&n| space_error(&s, n) <= budget)
-                    .unwrap_or(&ELEMENT_LADDER[ELEMENT_LADDER.len() - 1])
+                ns.iter()
+                    .copied()
+                    .find(|&n| mesh_term(n).is_some_and(|m| m <= budget))
+                    .or(ns.last().copied())
+                    .unwrap_or(ELEMENT_LADDER[ELEMENT_LADDER.len() - 1])
             },
             if pinned.time_step {
                 an.time_step
@@ -836,7 +842,11 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
         n_elements: n,
         time_step: dt,
         newton_tolerance: tol,
-        predicted_space: mesh_term(n).unwrap_or_else(|| space_error(&s, n)),
+        // a mesh (16.7) rejects is taken only when none passes: its departure counts
+        predicted_space: mesh_term(n).unwrap_or_else(|| {
+            let model = space_error(&s, n);
+            static_mesh_error(scene, n, &s).map_or(model, |e| e.max(model))
+        }),
         predicted_time: time_error(&s, dt),
         scales: s,
         excitation,

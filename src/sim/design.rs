@@ -323,57 +323,87 @@ pub fn steps_per_period_warning(what: &str, period: f64, time_step: f64) -> Opti
     })
 }
 
-/// Whether the energy the step's high-frequency dissipation (ρ∞ < 1) took in
-/// three successive spans, `q` (J), grows: each more than the one before,
-/// the last more than 1.5 times the first and more than 1e-4 of `exchanged`
-/// (J, the energy the hang-off and the water exchanged). A start's
-/// transient takes less each span; a steady sea about the same.
-pub fn dissipation_grows(q: [f64; 3], exchanged: f64) -> bool {
-    q[2] > 1.5 * q[0] && q[2] > q[1] && q[1] > q[0] && q[2] > 1e-4 * exchanged
+/// Whether the step's high-frequency dissipation (ρ∞ < 1) grows over three
+/// successive spans: `taken` the energy it took in each (J), `flux` the
+/// energy the hang-off and the water moved in each (J, the total variation
+/// of `work_top` and `work_hydro`). It grows when its share of the flux
+/// grows from span to span, the last's more than 1.5 times the first's, and
+/// the last span's energy is above 1e-4 of `exchanged` (J, the largest
+/// |`work_top`| + |`work_hydro`| so far). A start's transient takes a falling
+/// share, a steady sea the same share, a motion still growing (a long ramp)
+/// more energy but the same share of a flux that grows with it.
+pub fn dissipation_grows(taken: [f64; 3], flux: [f64; 3], exchanged: f64) -> bool {
+    let share = |k: usize| if flux[k] > 0.0 { taken[k] / flux[k] } else { f64::INFINITY };
+    let (s0, s1, s2) = (share(0), share(1), share(2));
+    s2.is_finite() && s2 > 1.5 * s0 && s2 > s1 && s1 > s0 && taken[2] > 1e-4 * exchanged
 }
 
-fn growing_dissipation_message(q: [f64; 3], spans: &str) -> String {
+/// Energy in J, to three figures.
+fn joules(x: f64) -> String {
+    if x.abs() >= 100.0 { format!("{x:.0}") } else { format!("{x:.3}") }
+}
+
+fn growing_dissipation_message(taken: [f64; 3], flux: [f64; 3], spans: &str) -> String {
     format!(
         "a high-frequency oscillation grows through the run: the step's high-frequency dissipation \
-         (rho_infinity) took {:.3e}, {:.3e} and {:.3e} J in {spans}; its answers may not be the line's. Give the \
+         (rho_infinity) took {}, {} and {} J in {spans}, {:.1e}, {:.1e} and {:.1e} of the energy the hang-off and \
+         the water moved; the tension's extremes may be the oscillation's, not the line's response. Give the \
          line structural damping (structural_damping=0.003, s) or set rho_infinity=1 (docs/theory.md 5.10)",
-        q[0], q[1], q[2]
+        joules(taken[0]),
+        joules(taken[1]),
+        joules(taken[2]),
+        taken[0] / flux[0],
+        taken[1] / flux[1],
+        taken[2] / flux[2]
     )
 }
 
 /// The warning for a high-frequency oscillation that grows through a run
-/// (`riser run`): [`dissipation_grows`] over the run's last three quarters,
-/// `algorithmic` (J, cumulative) at `times` (s, in order). The known cases
-/// (docs/theory.md §5.10): the lazy wave heaved in its current at steps of
-/// 0.00625 s and shorter with ρ∞ = 0.8 (the quarters' 36, 66 and 215 J at
-/// 0.00625 s over 120 s), and the Lowe & Langley jumper started abruptly in
-/// a 10 m wave (169, 263 and 298 J over 50 s), where the velocity filter
-/// feeds an oscillation that ρ∞ = 1 or structural damping take away.
-pub fn growing_dissipation_warning(times: &[f64], algorithmic: &[f64], exchanged: f64) -> Option<String> {
+/// (`riser run`, over its steady window): [`dissipation_grows`] over the
+/// samples' last three quarters, from their `times` (s, in order),
+/// `algorithmic` (J, cumulative) and `work` (J, `work_top` and `work_hydro`).
+/// The known case (docs/theory.md §5.10): the lazy wave heaved in its
+/// current at steps of 0.00625 s and shorter with ρ∞ = 0.8 (over 60 to 120 s
+/// at 0.00625 s: 40, 77 and 138 J, 3.6e-4, 7.2e-4 and 1.3e-3 of the flux),
+/// where the velocity filter feeds an oscillation that ρ∞ = 1 or structural
+/// damping take away. Not caught: the Lowe & Langley jumper started
+/// abruptly in a 10 m wave, whose growth slows within its window (shares
+/// 9.9e-3, 1.19e-2, 1.31e-2 from 20 to 50 s).
+pub fn growing_dissipation_warning(times: &[f64], algorithmic: &[f64], work: &[[f64; 2]]) -> Option<String> {
     let (t0, t1) = (*times.first()?, *times.last()?);
-    if times.len() != algorithmic.len() || times.len() < 8 || t1 <= t0 {
+    let n = times.len();
+    if algorithmic.len() != n || work.len() != n || n < 8 || t1 <= t0 || t1.is_nan() || t0.is_nan() {
         return None;
     }
-    // the dissipation at the quarter marks, the last sample at or before each
-    let at = |q: f64| {
-        let t = t0 + q * (t1 - t0);
-        let k = times.partition_point(|&x| x <= t + 1e-9 * (t1 - t0)).max(1) - 1;
-        algorithmic[k]
-    };
-    let d = [at(0.25), at(0.5), at(0.75), at(1.0)];
-    let q = [d[1] - d[0], d[2] - d[1], d[3] - d[2]];
-    dissipation_grows(q, exchanged).then(|| growing_dissipation_message(q, "the run's last three quarters"))
+    // cumulative flux: the total variation of the two works
+    let mut flux = vec![0.0; n];
+    for k in 1..n {
+        flux[k] = flux[k - 1] + (work[k][0] - work[k - 1][0]).abs() + (work[k][1] - work[k - 1][1]).abs();
+    }
+    // the last sample at or before each quarter mark
+    let at = |q: f64| times.partition_point(|&x| x <= t0 + q * (t1 - t0) + 1e-9 * (t1 - t0)).max(1) - 1;
+    let k = [at(0.25), at(0.5), at(0.75), n - 1];
+    let span = |v: &[f64]| [v[k[1]] - v[k[0]], v[k[2]] - v[k[1]], v[k[3]] - v[k[2]]];
+    let exchanged = work.iter().map(|w| w[0].abs() + w[1].abs()).fold(0.0, f64::max);
+    let (taken, moved) = (span(algorithmic), span(&flux));
+    dissipation_grows(taken, moved, exchanged)
+        .then(|| growing_dissipation_message(taken, moved, "the run's last three quarters"))
 }
 
 /// The running form of [`growing_dissipation_warning`] for a run of no known
-/// end (the FMU): the dissipation's energy over successive spans of
-/// [`GrowthWatch::SPAN`] s of simulated time, [`dissipation_grows`] over the
-/// last three. No allocation; a communication step longer than a span
-/// records the spans it covers as taking nothing.
+/// end (the FMU): the dissipation's energy and the flux over successive spans
+/// of [`GrowthWatch::SPAN`] s of simulated time, their values at the marks
+/// interpolated between the samples fed, [`dissipation_grows`] over the last
+/// three. No allocation; `Copy`, so that it is saved and restored with the
+/// state it watches.
 #[derive(Debug, Clone, Copy)]
 pub struct GrowthWatch {
+    /// The next mark, s (infinite: the watch is off).
     next: f64,
-    marks: [f64; 4],
+    /// The last sample fed: t (s), dissipation and flux (J), the two works (J).
+    last: Option<(f64, f64, f64, [f64; 2])>,
+    /// Dissipation and flux at the last four marks, oldest first.
+    marks: [(f64, f64); 4],
     count: usize,
     exchanged: f64,
 }
@@ -382,9 +412,14 @@ impl GrowthWatch {
     /// The span, s of simulated time.
     pub const SPAN: f64 = 30.0;
 
-    /// A watch from `t0` s on (`f64::INFINITY`: one that never speaks).
+    /// A watch from `t0` s on.
     pub fn new(t0: f64) -> Self {
-        GrowthWatch { next: t0 + Self::SPAN, marks: [0.0; 4], count: 0, exchanged: 0.0 }
+        GrowthWatch { next: t0 + Self::SPAN, last: None, marks: [(0.0, 0.0); 4], count: 0, exchanged: 0.0 }
+    }
+
+    /// A watch that never speaks (after it has).
+    pub fn off() -> Self {
+        GrowthWatch { next: f64::INFINITY, ..Self::new(0.0) }
     }
 
     /// Whether it can still speak.
@@ -393,24 +428,40 @@ impl GrowthWatch {
     }
 
     /// Feeds the run at `t` s: `algorithmic` the dissipation's energy since
-    /// the start (J), `exchanged` the energy the hang-off and the water have
-    /// exchanged (J). Returns the warning when the last three spans grow.
-    pub fn feed(&mut self, t: f64, algorithmic: f64, exchanged: f64) -> Option<String> {
-        self.exchanged = self.exchanged.max(exchanged);
+    /// the start (J), `work` the hang-off's and the water's work since the
+    /// start (J). Returns the warning when the last three spans grow.
+    pub fn feed(&mut self, t: f64, algorithmic: f64, work: [f64; 2]) -> Option<String> {
+        if !self.is_on() || !t.is_finite() || !algorithmic.is_finite() || !work.iter().all(|w| w.is_finite()) {
+            return None;
+        }
+        self.exchanged = self.exchanged.max(work[0].abs() + work[1].abs());
+        let Some((t_prev, d_prev, f_prev, w_prev)) = self.last else {
+            self.last = Some((t, algorithmic, 0.0, work));
+            return None;
+        };
+        if t <= t_prev {
+            return None;
+        }
+        let flux = f_prev + (work[0] - w_prev[0]).abs() + (work[1] - w_prev[1]).abs();
+        self.last = Some((t, algorithmic, flux, work));
         let mut grows = None;
-        while t >= self.next - 1e-9 * Self::SPAN {
-            if self.count == 0 {
-                // the first mark: the start's transient before it is not compared
-                self.marks = [algorithmic; 4];
-            } else {
-                self.marks = [self.marks[1], self.marks[2], self.marks[3], algorithmic];
-            }
+        // at most a few marks a feed: a step longer than a span interpolates them
+        // (a mark within round-off of t is t's: a master's t = k h accumulates it)
+        while self.next <= t + 1e-9 * Self::SPAN && self.next.is_finite() {
+            let a = ((self.next - t_prev) / (t - t_prev)).min(1.0);
+            let mark = (d_prev + a * (algorithmic - d_prev), f_prev + a * (flux - f_prev));
+            self.marks = if self.count == 0 { [mark; 4] } else { [self.marks[1], self.marks[2], self.marks[3], mark] };
             self.count += 1;
             self.next += Self::SPAN;
             let m = self.marks;
-            let q = [m[1] - m[0], m[2] - m[1], m[3] - m[2]];
-            if self.count >= 4 && dissipation_grows(q, self.exchanged) {
-                grows = Some(growing_dissipation_message(q, &format!("the last three spans of {} s", Self::SPAN)));
+            let taken = [m[1].0 - m[0].0, m[2].0 - m[1].0, m[3].0 - m[2].0];
+            let moved = [m[1].1 - m[0].1, m[2].1 - m[1].1, m[3].1 - m[2].1];
+            if self.count >= 4 && grows.is_none() && dissipation_grows(taken, moved, self.exchanged) {
+                grows = Some(growing_dissipation_message(
+                    taken,
+                    moved,
+                    &format!("the last three spans of {} s", Self::SPAN),
+                ));
             }
         }
         grows
@@ -542,38 +593,73 @@ impl StressRange {
 mod tests {
     use super::{GrowthWatch, growing_dissipation_warning};
 
-    /// The detector on synthetic histories: a dissipation growing like
-    /// e^{t/30} warns; a start's transient (1 − e^{−t/5}) and a steady rate
-    /// (0.5 t) do not; nor does growth below 1e-4 of what was exchanged.
+    /// The detector on synthetic histories, a steady flux of 1 kJ/s: a
+    /// dissipation growing like e^{t/30} warns; a start's transient
+    /// (1 − e^{−t/5}) and a steady rate (0.5 t) do not; nor growth below 1e-4
+    /// of what was exchanged; nor a dissipation that grows with a flux that
+    /// grows with it (a long ramp: both like t³).
     #[test]
     fn a_growing_high_frequency_dissipation_is_warned_of() {
         let t: Vec<f64> = (0..=1200).map(|k| k as f64 * 0.1).collect();
         let of = |f: &dyn Fn(f64) -> f64| t.iter().map(|&x| f(x)).collect::<Vec<f64>>();
+        let steady: Vec<[f64; 2]> = t.iter().map(|&x| [1e3 * x, 0.0]).collect();
         let growing = of(&|x| (x / 30.0).exp());
-        let w = growing_dissipation_warning(&t, &growing, 1e4).expect("growing");
+        let w = growing_dissipation_warning(&t, &growing, &steady).expect("growing");
         assert!(w.contains("structural_damping") && w.contains("rho_infinity=1"), "{w}");
-        assert!(growing_dissipation_warning(&t, &of(&|x| 100.0 * (1.0 - (-x / 5.0).exp())), 1e4).is_none());
-        assert!(growing_dissipation_warning(&t, &of(&|x| 0.5 * x), 1e4).is_none());
-        assert!(growing_dissipation_warning(&t, &growing, 1e6).is_none());
-        assert!(growing_dissipation_warning(&t[..3], &growing[..3], 1e4).is_none());
+        assert!(growing_dissipation_warning(&t, &of(&|x| 100.0 * (1.0 - (-x / 5.0).exp())), &steady).is_none());
+        assert!(growing_dissipation_warning(&t, &of(&|x| 0.5 * x), &steady).is_none());
+        let large: Vec<[f64; 2]> = t.iter().map(|&x| [1e3 * x, 1e10]).collect();
+        assert!(growing_dissipation_warning(&t, &growing, &large).is_none());
+        let ramp: Vec<[f64; 2]> = t.iter().map(|&x| [x * x * x, 0.0]).collect();
+        assert!(growing_dissipation_warning(&t, &of(&|x| 1e-3 * x * x * x), &ramp).is_none());
+        assert!(growing_dissipation_warning(&t[..3], &growing[..3], &steady[..3]).is_none());
     }
 
-    /// The running watch on the same histories, fed every 0.1 s: it speaks
-    /// on the growth (three spans after the first mark: at 120 s), not
-    /// on a transient, a steady rate or growth below 1e-4 of what was
-    /// exchanged; a feed that jumps over spans records them as taking nothing.
+    /// The running watch on the same histories: fed every 0.1 s it speaks
+    /// on the growth three spans after the first mark (at 120 s) and only
+    /// once, not on a transient, a steady rate, a growing ramp or growth
+    /// below 1e-4 of what was exchanged; fed every 7 s or every 45 s (steps
+    /// that do not divide its span, or longer than it) it speaks too, its
+    /// marks interpolated; a copy taken before and fed again after (a
+    /// restored state) speaks as the original did.
     #[test]
     fn the_running_watch_speaks_on_growth_only() {
-        let feed = |f: &dyn Fn(f64) -> f64, exchanged: f64| {
-            let mut w = GrowthWatch::new(0.0);
-            (1..=3000).map(|k| k as f64 * 0.1).find(|&t| w.feed(t, f(t), exchanged).is_some())
+        let run = |f: &dyn Fn(f64) -> f64, w: &dyn Fn(f64) -> [f64; 2], h: f64| {
+            let mut watch = GrowthWatch::new(0.0);
+            let mut said = Vec::new();
+            for k in 0..=(600.0 / h) as usize {
+                let t = k as f64 * h;
+                if watch.feed(t, f(t), w(t)).is_some() {
+                    said.push(t);
+                    watch = GrowthWatch::off();
+                }
+            }
+            said
         };
-        let at = feed(&|x| (x / 30.0).exp(), 1e4).expect("growth");
-        assert!((at - 120.0).abs() < 1e-6, "{at}");
-        assert!(feed(&|x| 100.0 * (1.0 - (-x / 5.0).exp()), 1e4).is_none());
-        assert!(feed(&|x| 0.5 * x, 1e4).is_none());
-        assert!(feed(&|x| (x / 30.0).exp(), 1e9).is_none());
-        let mut w = GrowthWatch::new(0.0);
-        assert!(w.feed(200.0, 1e3, 1e4).is_none(), "one step over six spans");
+        let growth = |x: f64| (x / 30.0).exp();
+        let steady = |x: f64| [1e3 * x, 0.0];
+        let said = run(&growth, &steady, 0.1);
+        assert_eq!(said.len(), 1);
+        assert!((said[0] - 120.0).abs() < 1e-6, "{said:?}");
+        assert!(run(&|x| 100.0 * (1.0 - (-x / 5.0).exp()), &steady, 0.1).is_empty());
+        assert!(run(&|x| 0.5 * x, &steady, 0.1).is_empty());
+        assert!(run(&|x| 1e-3 * x * x * x, &|x| [x * x * x, 0.0], 0.1).is_empty());
+        assert!(run(&growth, &|x| [1e3 * x, 1e14], 0.1).is_empty());
+        assert_eq!(run(&growth, &steady, 7.0), vec![126.0]);
+        assert_eq!(run(&growth, &steady, 45.0).len(), 1);
+        // a restored copy
+        let mut a = GrowthWatch::new(0.0);
+        for k in 0..=900 {
+            let t = k as f64 * 0.1;
+            assert!(a.feed(t, growth(t), steady(t)).is_none());
+        }
+        let mut b = a;
+        let said_a = (901..=1300).map(|k| k as f64 * 0.1).find(|&t| a.feed(t, growth(t), steady(t)).is_some());
+        let said_b = (901..=1300).map(|k| k as f64 * 0.1).find(|&t| b.feed(t, growth(t), steady(t)).is_some());
+        assert_eq!(said_a, said_b);
+        assert!(said_a.is_some());
+        // nothing from a watch that is off, or from a non-finite time
+        assert!(GrowthWatch::off().feed(1e3, 1e9, [0.0; 2]).is_none());
+        assert!(GrowthWatch::new(0.0).feed(f64::INFINITY, 1.0, [0.0; 2]).is_none());
     }
 }
