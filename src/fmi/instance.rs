@@ -556,12 +556,13 @@ impl Instance {
             return;
         }
         let m = self.history.modes(coupling);
-        let names = ["heave", "surge", "sway"];
-        let alone: Vec<&str> =
-            (0..3).filter(|&a| m[a] == Coupling::Displacement && inp.u[a] != 0.0).map(|a| names[a]).collect();
-        if alone.is_empty() {
+        let by_displacement = |a: usize| m[a] == Coupling::Displacement && inp.u[a] != 0.0;
+        // checked without allocating: this runs every step until it speaks
+        if !(0..3).any(by_displacement) {
             return;
         }
+        let names = ["heave", "surge", "sway"];
+        let alone: Vec<&str> = (0..3).filter(|&a| by_displacement(a)).map(|a| names[a]).collect();
         self.hinted_velocities = true;
         let msg = format!(
             "communication step {h} s with {} from the displacement input alone: at steps of {VELOCITY_DESIGN} s \

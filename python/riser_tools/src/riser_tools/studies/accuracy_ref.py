@@ -38,6 +38,9 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
+from ..series import in_window, time_mean as trapezoid_mean
 from . import accuracy as A
 
 HEAVE_CASES = ["catenary", "catenary_T10", "lazy_wave", "steel_catenary", "lowe_langley_jumper",
@@ -76,10 +79,10 @@ def series_of(binary, case, dt=0.0125):
 
 
 def time_mean(t, f, w0, w1):
-    """The window's time mean (trapezoid rule) of a series."""
-    idx = [i for i, x in enumerate(t) if w0 - 1e-9 <= x <= w1 + 1e-9]
-    s = sum(0.5 * (f[i] + f[j]) * (t[j] - t[i]) for i, j in zip(idx, idx[1:]))
-    return s / (t[idx[-1]] - t[idx[0]])
+    """The window's time mean (trapezoid rule) of a series, as `riser run` reports it."""
+    t, f = np.asarray(t), np.asarray(f)
+    m = in_window(t, w0, w1)
+    return trapezoid_mean(t[m], f[m])
 
 
 def sampled_mean(t, f, w0, w1, dt):
