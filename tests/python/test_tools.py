@@ -280,5 +280,6 @@ def test_the_fit_tool_keeps_the_knob_s_constants():
         return float(re.search(rf"pub const {name}: f64 = ([0-9.e+-]+);", text).group(1))
 
     assert (F.C_K, F.C_T, F.C_D) == (const("C_CURVATURE"), const("C_TIME"), const("C_DYNAMIC_MESH"))
+    assert (F.C_K2, F.C_C) == (const("C_CONTACT2"), const("C_CONTACT"))
     assert F.CONSTANTS == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR",
                                                    "C_CURRENT_RINGING"))

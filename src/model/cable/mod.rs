@@ -285,7 +285,7 @@ impl CableModel {
         let (l, shapes) = (self.cable.l, seabed::linear_at_gauss(self.cable.l));
         if let Some(bed) = &self.seabed {
             v += (0..self.cable.n_el)
-                .map(|e| seabed::element_energy(bed.at(e), &[x[e], x[e + 1]], &shapes, l))
+                .map(|e| seabed::element_energy(bed.at(e), &[x[e], x[e + 1]], &shapes, seabed::linear_at, l))
                 .sum::<f64>();
         }
         for e in 0..self.cable.n_el {

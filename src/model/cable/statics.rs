@@ -161,7 +161,15 @@ impl<'a> CableStatics<'a> {
                 let mut k = [[M3::zeros(); 2]; 2];
                 let want = sys.is_some();
                 let seg = [x[e], x[e + 1]];
-                crate::loads::seabed::element_static_force(bed, &seg, &shapes, c.l, &mut f, want.then_some(&mut k));
+                crate::loads::seabed::element_static_force(
+                    bed,
+                    &seg,
+                    &shapes,
+                    crate::loads::seabed::linear_at,
+                    c.l,
+                    &mut f,
+                    want.then_some(&mut k),
+                );
                 for i in 0..2 {
                     for j in 0..3 {
                         r[NODE_DOF * (e + i) + j] -= f[i][j];

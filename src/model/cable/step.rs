@@ -269,7 +269,18 @@ impl StepEquations for CableModel {
                 let mut ks = [[M3::zeros(); 2]; 2];
                 let k = if tangent { Some(&mut ks) } else { None };
                 let sh = &ws.seabed_shapes;
-                seabed::element_step_force(bed, &[x0[a], x0[b]], &[x1[a], x1[b]], sh, cable.l, h, &mut fs, &mut fd, k);
+                seabed::element_step_force(
+                    bed,
+                    &[x0[a], x0[b]],
+                    &[x1[a], x1[b]],
+                    sh,
+                    seabed::linear_at,
+                    cable.l,
+                    h,
+                    &mut fs,
+                    &mut fd,
+                    k,
+                );
                 for i in 0..2 {
                     fe[i] -= fs[i] + fd[i];
                     for c in 0..3 {
@@ -456,7 +467,15 @@ impl CableModel {
         if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
             let mut fs = [V3::zeros(); 2];
             let shapes = linear_at_gauss(c.l);
-            seabed::element_state_force(bed, &[x[e], x[e + 1]], &[s.vel[e], s.vel[e + 1]], &shapes, c.l, &mut fs);
+            seabed::element_state_force(
+                bed,
+                &[x[e], x[e + 1]],
+                &[s.vel[e], s.vel[e + 1]],
+                &shapes,
+                seabed::linear_at,
+                c.l,
+                &mut fs,
+            );
             f -= fs[row];
         }
         f

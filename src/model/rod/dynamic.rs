@@ -115,7 +115,7 @@ impl RodModel {
         for e in 0..self.rod.n_el {
             let c = [cfg.x[e], cfg.xp[e], cfg.x[e + 1], cfg.xp[e + 1]];
             if let Some(bed) = &self.seabed {
-                v += seabed::element_energy(bed.at(e), &c, &shapes, self.rod.h);
+                v += seabed::element_energy(bed.at(e), &c, &shapes, seabed::hermite_at, self.rod.h);
             }
             // an element whose centreline lies wholly below the band adds
             // exactly nothing (V_s = 0 there): its composite rule skipped

@@ -91,7 +91,7 @@ impl RodModel {
         if let Some(bed) = self.seabed.as_ref().map(|b| b.at(e)) {
             let mut fs = [V3::zeros(); 4];
             let v = s.hermite_velocity(e);
-            seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), rod.h, &mut fs);
+            seabed::element_state_force(bed, &el.c, &v, &hermite_at_gauss(rod.h), seabed::hermite_at, rod.h, &mut fs);
             f -= fs[k];
         }
         f

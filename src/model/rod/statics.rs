@@ -177,7 +177,7 @@ pub fn add_static_seabed(
     let shapes = hermite_at_gauss(rod.h);
     let skip = |e: usize, c: &[V3; 4]| seabed::clear_of(bed.at(e), &[c[0], c[2]], rod.h);
     let element = |e: usize, c: &[V3; 4], f: &mut [V3; 4], k: Option<&mut [[M3; 4]; 4]>| {
-        seabed::element_static_force(bed.at(e), c, &shapes, rod.h, f, k)
+        seabed::element_static_force(bed.at(e), c, &shapes, seabed::hermite_at, rod.h, f, k)
     };
     add_element_loads(rod, cfg, skip, element, r, sys);
 }

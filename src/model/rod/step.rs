@@ -438,7 +438,18 @@ impl StepEquations for RodModel {
                 let (mut fe, mut fd) = ([V3::zeros(); 4], [V3::zeros(); 4]);
                 let mut kb = [[M3::zeros(); 4]; 4];
                 let k = if want_k { Some(&mut kb) } else { None };
-                seabed::element_step_force(bed, &eln.c, &el1.c, &buf.fluid_shapes, rod.h, h, &mut fe, &mut fd, k);
+                seabed::element_step_force(
+                    bed,
+                    &eln.c,
+                    &el1.c,
+                    &buf.fluid_shapes,
+                    seabed::hermite_at,
+                    rod.h,
+                    h,
+                    &mut fe,
+                    &mut fd,
+                    k,
+                );
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {
                     for c in 0..3 {

@@ -86,9 +86,9 @@ STEPS = [0.2, 0.1, 0.05, 0.025]
 # references' step) and at 0.01 s, the step below it that the knob no longer takes, with at least 75
 # steps a period, against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4)
 LADDER_STEPS = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
-LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [100, 160],
+LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [30, 50, 100, 160],
           "lowe_langley_jumper": [10, 16, 20], "lazy_wave_T10": [20, 40], "lowe_langley_jumper_T10": [10, 20],
-          "steel_catenary_T10": [80, 160]}
+          "steel_catenary_T10": [30, 50, 80, 160]}
 LADDER_TOL = 1e-9
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
