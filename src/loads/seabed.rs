@@ -280,17 +280,27 @@ impl Breaks {
             if fa * fb >= 0.0 {
                 continue;
             }
-            // bisection on a monotone piece, to well below any rule's scale
+            // Newton on a monotone piece, safeguarded by bisection of the
+            // bracket, to well below any rule's scale
             let rising = fb > fa;
-            while b - a > 1e-12 {
-                let mid = 0.5 * (a + b);
-                if (horner(&p, mid) < 0.0) == rising {
-                    a = mid;
+            let mut x = 0.5 * (a + b);
+            for _ in 0..60 {
+                let fx = horner(&p, x);
+                if (fx < 0.0) == rising {
+                    a = x;
                 } else {
-                    b = mid;
+                    b = x;
+                }
+                let slope = (3.0 * p[3] * x + 2.0 * p[2]) * x + p[1];
+                let next = x - fx / slope;
+                let next = if next > a && next < b { next } else { 0.5 * (a + b) };
+                let done = (next - x).abs() <= 1e-13 || b - a <= 1e-12;
+                x = next;
+                if done {
+                    break;
                 }
             }
-            self.xi[self.n] = 0.5 * (a + b);
+            self.xi[self.n] = x;
             self.of[self.n] = of;
             self.n += 1;
         }
