@@ -28,8 +28,8 @@
 //! window extremes erred 5–9e-4 at 40 to 80 elements). Each element's rule is
 //! therefore four Gauss points on every sub-interval between the points where
 //! its centreline crosses the plane, in any of the configurations the step
-//! evaluates (x_n, x_{n+1} and their midpoint), on which the integrands are
-//! smooth: V = ½ k D δ₊² is then integrated exactly (degree 6 in ξ on a
+//! evaluates (x_n, x_{n+1} and their midpoint), on which the contact is
+//! either on or off: V = ½ k D δ₊² is then integrated exactly (degree 6 in ξ on a
 //! cubic element), and the static force and tangent, the gradient and
 //! Hessian of that exact energy, need no derivative of the crossings (the
 //! integrand vanishes there); the step's tangent adds the crossings'
@@ -272,12 +272,12 @@ impl Breaks {
                 m += 1;
             }
         }
-        ends[1..m].sort_by(f64::total_cmp);
+        ends[1..m].sort_unstable_by(f64::total_cmp);
         ends[m] = 1.0;
         for w in ends[..=m].windows(2) {
             let (mut a, mut b) = (w[0], w[1]);
             let (fa, fb) = (horner(&p, a), horner(&p, b));
-            if fa * fb >= 0.0 {
+            if fa == 0.0 || fb == 0.0 || (fa < 0.0) == (fb < 0.0) {
                 continue;
             }
             // Newton on a monotone piece, safeguarded by bisection of the
@@ -315,7 +315,7 @@ impl Breaks {
         for i in 0..self.n {
             order[i] = (self.xi[i], self.of[i]);
         }
-        order[1..self.n].sort_by(|a, b| a.0.total_cmp(&b.0));
+        order[1..self.n].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         for i in 0..self.n {
             (self.xi[i], self.of[i]) = order[i];
         }

@@ -55,7 +55,7 @@ use crate::scene::{HangOffEnd, Model, Scene};
 pub const C_CURVATURE: f64 = 7e-4;
 /// The seabed constant C_c of C_c (h/λ)⁴ (the bound of the fine meshes).
 /// With the contact's rule split at the crossings (docs/theory.md (9.7)) the
-/// steel catenary's touchdown errs 10 to 25 times less; the constant is set
+/// steel catenary's touchdown errs 7 to 60 times less; the constant is set
 /// by its 50 elements (h/λ = 0.469) heaved at 10 s, 1.26e-4 at 0.0125 s
 /// (0.17 before the rule, from 160 elements against 320 at 7.8e-5, now 4.2e-6).
 pub const C_CONTACT: f64 = 1.9e-3;
