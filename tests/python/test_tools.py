@@ -283,3 +283,27 @@ def test_the_fit_tool_keeps_the_knob_s_constants():
     assert (F.C_K2, F.C_C) == (const("C_CONTACT2"), const("C_CONTACT"))
     assert F.CONSTANTS == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR",
                                                    "C_CURRENT_RINGING"))
+
+
+def test_the_window_time_mean_is_over_exactly_the_window():
+    """riser_tools.series.window_time_mean (riser-sweep's top_tension_mean), as `riser run`'s
+    window_min_mean_max: on a + b sin(ω t + 0.7) at a step that falls on neither end of a two-period
+    window the interpolant's mean is a within the trapezoid rule's b (ω Δt)²/12, where the samples
+    inside alone are off by more than 20 times that; where the samples fall on both ends it is
+    time_mean of the samples inside."""
+    import numpy as np
+
+    from riser_tools.series import in_window, time_mean, window_time_mean
+
+    a, b, period, dt = 140e3, 4e3, 20.0, 0.03
+    w = 2 * np.pi / period
+    t = np.arange(3001) * dt
+    y = a + b * np.sin(w * t + 0.7)
+    bound = b * (w * dt) ** 2 / 12
+    assert abs(window_time_mean(t, y, 20.0, 60.0) - a) <= bound
+    m = in_window(t, 20.0, 60.0)
+    assert abs(time_mean(t[m], y[m]) - a) > 20 * bound
+    t2 = np.arange(401) * 0.1
+    y2 = a + b * np.cos(w * t2)
+    m2 = in_window(t2, 10.0, 40.0)
+    assert window_time_mean(t2, y2, 10.0, 40.0) == pytest.approx(time_mean(t2[m2], y2[m2]), rel=1e-12)

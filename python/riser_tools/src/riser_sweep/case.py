@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 from distributed import WorkerPlugin
+from riser_tools.series import window_time_mean
 
 INPUTS = ("heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_velocity")
 LOG_CATEGORIES = ["logStatusWarning", "logStatusDiscard", "logStatusError"]
@@ -160,11 +161,10 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
         red = out["reductions"]
         tt = res["top_tension"][win]
         red["top_tension_min"] = float(tt.min())
-        # the time mean (trapezoid), as `riser run` reports it: the samples' own mean with both
-        # ends carries an O(dt) bias, (T_end - mean) dt / W
-        tw = res["time"][win]
-        span = float(tw[-1] - tw[0])
-        red["top_tension_mean"] = float(np.trapezoid(tt, tw) / span) if span > 0 else float(tt.mean())
+        # the time mean over exactly the window, as `riser run` reports it: the samples' own mean with
+        # both ends carries an O(dt) bias, (T_end - mean) dt / W, and the samples inside alone start
+        # the window up to a communication step late where it does not fall on one
+        red["top_tension_mean"] = window_time_mean(res["time"], res["top_tension"], a, b)
         red["top_tension_max"] = float(tt.max())
         red["min_tension_min"] = float(res["min_tension"][win].min())
         red["energy_balance_relative"] = energy_balance_relative(res)

@@ -24,6 +24,21 @@ def time_mean(t: np.ndarray, y: np.ndarray) -> float:
     return float(np.trapezoid(y, t) / span) if span > 0 else float(np.mean(y))
 
 
+def window_time_mean(t: np.ndarray, y: np.ndarray, start: float, stop: float) -> float:
+    """The time mean of y's piecewise-linear interpolant over exactly [start, stop] (clipped to the
+    span of t), as `riser run` reports its steady window's mean: where the samples do not fall on the
+    window's ends, the ends are interpolated (the samples inside alone would start the window up to a
+    step late). No interval inside: the samples' mean there."""
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    a, b = max(start, float(t[0])), min(stop, float(t[-1]))
+    if not b > a:
+        return float(np.mean(y[in_window(t, start, stop)]))
+    inner = (t > a) & (t < b)
+    tt = np.concatenate(([a], t[inner], [b]))
+    yy = np.concatenate(([np.interp(a, t, y)], y[inner], [np.interp(b, t, y)]))
+    return float(np.trapezoid(yy, tt) / (b - a))
+
+
 def centred_average(x: np.ndarray, n: int) -> np.ndarray:
     """Centred moving average over n + 1 samples (n even); NaN within n/2 of the ends."""
     ker = np.ones(n + 1) / (n + 1)
