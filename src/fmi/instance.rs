@@ -604,11 +604,6 @@ impl Instance {
         }
     }
 
-    /// Warns once when the energy the step's high-frequency dissipation
-    /// takes grows over three spans of [`GrowthWatch::SPAN`] s in a row: a
-    /// high-frequency oscillation that the velocity filter feeds (docs/theory.md
-    /// §5.10; `riser run` says the same over its run's quarters). The watch
-    /// starts at the first step and is saved and restored with the state.
     /// Once, where the accuracy knob chose the numerics and a communication
     /// step takes more than one internal step: inside the step the hang-off
     /// follows the path predicted from the inputs (`input_path`), whose
@@ -628,6 +623,11 @@ impl Instance {
         self.log(Status::Warning, Category::Warning, &msg);
     }
 
+    /// Warns once when the energy the step's high-frequency dissipation
+    /// takes grows over three spans of [`GrowthWatch::SPAN`] s in a row: a
+    /// high-frequency oscillation that the velocity filter feeds (docs/theory.md
+    /// §5.10; `riser run` says the same over its run's quarters). The watch
+    /// starts at the first step and is saved and restored with the state.
     fn watch_dissipation(&mut self, now: f64, t_end: f64) {
         let Some(o) = self.outputs.as_ref() else { return };
         let (d, work) = (o.algorithmic_dissipation, [o.work_top, o.work_hydro]);

@@ -348,55 +348,11 @@ def test_the_log_says_when_long_steps_want_the_velocities_and_when_the_line_is_b
             assert "displacement input alone" not in log and "from the anchor" not in log, (reals, h, log)
 
 
-HF_CHILD = r"""
-import json, math, sys
-from fmpy import read_model_description
-from fmpy.fmi2 import FMU2Slave
-fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
-md = read_model_description(fmu_path)
-vr = {v.name: v.valueReference for v in md.modelVariables}
-for reals in cases:
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="hf")
-    s.instantiate(loggingOn=True)
-    print("@@begin", flush=True)
-    s.setString([vr["scene"]], ["lazy_wave"])
-    s.setInteger([vr["n_elements"]], [160])
-    for k, v in reals.items():
-        s.setReal([vr[k]], [v])
-    s.setupExperiment(startTime=0.0)
-    s.enterInitializationMode()
-    s.exitInitializationMode()
-    w, t, h = 2 * math.pi / 30.0, 0.0, 0.1
-    for _ in range(1800):
-        ramp = 0.5 * (1 - math.cos(math.pi * t / 30.0)) if t < 30.0 else 1.0
-        s.setReal([vr["heave"]], [2.5 * ramp * math.sin(w * t)])
-        s.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-        t += h
-    print("@@end", flush=True)
-    s.terminate()
-    s.freeInstance()
-"""
-
-
-def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):
-    """docs/theory.md §5.10: the lazy wave heaved 2.5 m / 30 s (grown over a period) in its current,
-    160 elements at dt 0.00625 s with the default rho_infinity 0.8, grows a high-frequency oscillation
-    that the velocity filter feeds; the FMU's log says so once in 180 s, at 120 s (three spans of 30 s
-    after the first), naming the remedies. With rho_infinity 1 the oscillation decays and the log is
-    silent."""
-    cases = [{"time_step": 0.00625}, {"time_step": 0.00625, "rho_infinity": 1.0}]
-    p = subprocess.run([sys.executable, "-c", HF_CHILD, fmu_path, unzipped, json.dumps(cases)],
-                       capture_output=True, text=True, timeout=300)
-    assert p.returncode == 0, p.stderr
-    logs = [chunk.split("@@end")[0] for chunk in p.stdout.split("@@begin")[1:]]
-    assert len(logs) == 2, p.stdout
-    message = "a high-frequency oscillation grows through the run"
-    assert logs[0].count(message) == 1, logs[0]
-    assert "at t = 120.000 s" in logs[0] and "structural_damping" in logs[0] and "rho_infinity=1" in logs[0]
-    assert message not in logs[1], logs[1]
-
-
-SPLIT_CHILD = r"""
+# A child process driving the FMU as a master does (fmpy's FMU2Slave, its log on stdout between
+# @@begin and @@end): per case, `scene`, its `integers` and `reals`, then the heave 2.5 m at `period`
+# s grown over a period, given at each communication step `h` for `duration` s; the top tension at
+# each communication point after @@series.
+HEAVE_CHILD = r"""
 import json, math, sys
 from fmpy import read_model_description
 from fmpy.fmi2 import FMU2Slave
@@ -404,20 +360,21 @@ fmu_path, unzipped, cases = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
 md = read_model_description(fmu_path)
 vr = {v.name: v.valueReference for v in md.modelVariables}
 for case in cases:
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="split")
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="child")
     s.instantiate(loggingOn=True)
     print("@@begin", flush=True)
-    s.setString([vr["scene"]], ["catenary"])
-    for k, v in case["reals"].items():
-        s.setReal([vr[k]], [v])
+    s.setString([vr["scene"]], [case["scene"]])
     for k, v in case.get("integers", {}).items():
         s.setInteger([vr[k]], [v])
+    for k, v in case.get("reals", {}).items():
+        s.setReal([vr[k]], [v])
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
     s.exitInitializationMode()
-    w, t, h, k, series = 2 * math.pi / 10.0, 0.0, case["h"], 0, []
-    while t < 40.0 - 1e-9:
-        ramp = 0.5 * (1 - math.cos(math.pi * t / 10.0)) if t < 10.0 else 1.0
+    period, h = case["period"], case["h"]
+    w, t, k, series = 2 * math.pi / period, 0.0, 0, []
+    while t < case["duration"] - 1e-9:
+        ramp = 0.5 * (1 - math.cos(math.pi * t / period)) if t < period else 1.0
         s.setReal([vr["heave"]], [2.5 * ramp * math.sin(w * t)])
         s.doStep(currentCommunicationPoint=t, communicationStepSize=h)
         k += 1
@@ -428,6 +385,31 @@ for case in cases:
     s.terminate()
     s.freeInstance()
 """
+
+
+def run_heave_child(fmu_path, unzipped, cases):
+    """HEAVE_CHILD's logs and series, one (log, [(t, top_tension)]) per case."""
+    p = subprocess.run([sys.executable, "-c", HEAVE_CHILD, fmu_path, unzipped, json.dumps(cases)],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    chunks = [c.split("@@end")[0].split("@@series") for c in p.stdout.split("@@begin")[1:]]
+    assert len(chunks) == len(cases), p.stdout
+    return [(log, json.loads(series)) for log, series in chunks]
+
+
+def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):
+    """docs/theory.md §5.10: the lazy wave heaved 2.5 m / 30 s (grown over a period) in its current,
+    160 elements at dt 0.00625 s with the default rho_infinity 0.8, grows a high-frequency oscillation
+    that the velocity filter feeds; the FMU's log says so once in 180 s, at 120 s (three spans of 30 s
+    after the first), naming the remedies. With rho_infinity 1 the oscillation decays and the log is
+    silent."""
+    lazy = {"scene": "lazy_wave", "integers": {"n_elements": 160}, "period": 30.0, "duration": 180.0, "h": 0.1}
+    cases = [dict(lazy, reals={"time_step": 0.00625}), dict(lazy, reals={"time_step": 0.00625, "rho_infinity": 1.0})]
+    logs = [log for log, _ in run_heave_child(fmu_path, unzipped, cases)]
+    message = "a high-frequency oscillation grows through the run"
+    assert logs[0].count(message) == 1, logs[0]
+    assert "at t = 120.000 s" in logs[0] and "structural_damping" in logs[0] and "rho_infinity=1" in logs[0]
+    assert message not in logs[1], logs[1]
 
 
 def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communication_step(fmu_path, unzipped):
@@ -444,18 +426,13 @@ def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communicat
     runs = Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv"
     ref_row = next(r for r in csv.DictReader(open(runs)) if r["case"] == "catenary_T10" and r["kind"] == "reference")
     want = [float(ref_row[k]) for k in ("tt_min", "tt_mean", "tt_max")]
-    cases = [{"h": 0.05, "reals": {"accuracy": 1e-3}}, {"h": 0.2, "reals": {"accuracy": 1e-3}},
-             {"h": 0.2, "reals": {"time_step": 0.05}, "integers": {"n_elements": 10}}]
-    p = subprocess.run([sys.executable, "-c", SPLIT_CHILD, fmu_path, unzipped, json.dumps(cases)],
-                       capture_output=True, text=True, timeout=300)
-    assert p.returncode == 0, p.stderr
-    chunks = [c.split("@@end")[0] for c in p.stdout.split("@@begin")[1:]]
-    assert len(chunks) == 3, p.stdout
+    heave = {"scene": "catenary", "period": 10.0, "duration": 40.0}
+    cases = [dict(heave, h=0.05, reals={"accuracy": 1e-3}), dict(heave, h=0.2, reals={"accuracy": 1e-3}),
+             dict(heave, h=0.2, reals={"time_step": 0.05}, integers={"n_elements": 10})]
     message = "an error the accuracy knob does not model"
     errors, logs = [], []
-    for c in chunks:
-        log, series = c.split("@@series")
-        pts = np.array([(t, y) for t, y in json.loads(series) if 20.0 - 1e-9 <= t <= 40.0 + 1e-9])
+    for log, series in run_heave_child(fmu_path, unzipped, cases):
+        pts = np.array([(t, y) for t, y in series if 20.0 - 1e-9 <= t <= 40.0 + 1e-9])
         tt, y = pts[:, 0], pts[:, 1]
         got = [y.min(), time_mean(tt, y), y.max()]
         errors.append(max(abs(a - b) for a, b in zip(got, want)) / want[2])
