@@ -1,8 +1,8 @@
 //! The FMU's input path (docs/theory.md §7, §16.6): the hang-off's path over
 //! a communication step ends on an accurate prediction of the master's motion,
-//! but its interior acceleration errs by percents of the motion's, which the
-//! accuracy knob does not model (the FMU warns when a communication step is
-//! split into internal steps, `warn_split`). This measures both on the study's
+//! and inside the step its acceleration follows the motion's (it erred by
+//! percents before the end state's slope and curvature were made those of the
+//! end values' sequence, (7.3a)). This measures both on the study's
 //! design motion, the heave 2.5 m at 10 s grown over a period, given as
 //! displacements at the communication points, against its closed form.
 
@@ -64,26 +64,28 @@ fn errors(h: f64) -> ([f64; 3], [f64; 3]) {
 }
 
 #[test]
-fn the_path_ends_accurately_but_its_acceleration_inside_the_step_does_not() {
+fn the_path_ends_accurately_and_its_acceleration_inside_the_step_follows_the_motion() {
     let aw2 = A * W * W;
-    for (h, end_bound, inside_floor) in [(0.05, 2e-5, 0.01), (0.1, 2e-4, 0.03), (0.2, 5e-3, 0.25)] {
+    // bounds about three times what is measured (docs/theory.md §16.6); with
+    // Q's own slope and curvature (before (7.3a)) the interior erred 1.8, 5
+    // and 39 % of A ω²
+    for (h, end_bound, inside_bound) in [(0.05, 2e-5, 1e-5), (0.1, 2e-4, 1e-3), (0.2, 5e-3, 3e-2)] {
         let (end, inside) = errors(h);
         eprintln!(
             "h {h} s: at the steps' ends {:.2e} m, {:.2e} m/s, {:.2e} m/s²; inside {:.2e} m, {:.2e} m/s, {:.2e} m/s² \
-             ({:.1} % of A ω²)",
+             ({:.1e} of A ω²)",
             end[0],
             end[1],
             end[2],
             inside[0],
             inside[1],
             inside[2],
-            100.0 * inside[2] / aw2
+            inside[2] / aw2
         );
         // the end: the quartic's prediction, O(h⁵) in value (docs/theory.md §7)
         assert!(end[0] <= end_bound, "h {h}: end displacement error {:.2e} m", end[0]);
-        // inside: percents of the motion's acceleration (§16.6), what the
-        // FMU's warning (`warn_split`) is for; if the path gets better than
-        // this, the warning and §16.6 want revisiting
-        assert!(inside[2] >= inside_floor * aw2, "h {h}: inside acceleration error {:.2e} m/s²", inside[2]);
+        // inside: the slope and curvature of the end values' sequence (7.3a)
+        // make the path between successive ends follow the motion
+        assert!(inside[2] <= inside_bound * aw2, "h {h}: inside acceleration error {:.2e} m/s²", inside[2]);
     }
 }

@@ -30,10 +30,13 @@
 //!
 //! with H0 = 1 − 10σ³ + 15σ⁴ − 6σ⁵, H1 = σ − 6σ³ + 8σ⁴ − 3σ⁵,
 //! H2 = ½σ² − 3/2 σ³ + 3/2 σ⁴ − ½σ⁵ (value, slope, curvature 1 at σ = 0 in
-//! turn, all zero at σ = 1). The path is C2 at every communication point, and
-//! since on uniform steps the end states of successive steps are samples of
-//! one smooth curve (Q(h) differs from u(t + h) by the smooth error of a fixed
-//! filter), the path has no wobble at the communication step's period.
+//! turn, all zero at σ = 1). The path is C2 at every communication point. On
+//! uniform steps the end values of successive steps are samples of one smooth
+//! curve (Q(h) differs from u(t + h) by the smooth error of a fixed filter);
+//! once sixteen points are known the smoothing designs take the end slope and
+//! curvature of that curve ([`CONSISTENT`], (7.3a)) rather than Q's own, so
+//! the path has no wobble at the communication step's period, at its ends or
+//! inside (where a line stepped inside the communication step sees it).
 //!
 //! Which inputs drive an axis (`coupling_inputs`, [`Coupling`]): the
 //! displacement (its samples are the u above); or the velocity alone, whose
@@ -97,6 +100,32 @@ pub const DESIGNS: [(f64, Design); 3] = [
     (0.21, Design { poly: 5, alt: 2, taps: 12 }),
     (f64::INFINITY, Design { poly: 5, alt: 1, taps: 6 }),
 ];
+
+/// The slope and curvature of the smoothing designs' end state once the
+/// window of sixteen uniform points is full (docs/theory.md §7.1,
+/// (7.3a)), per design: (a, d). Not Q's own, but the filters over the last
+/// sixteen samples that reproduce the slope and curvature of the sequence
+/// of end *values* for every polynomial of degree ≤ d, remove the design's
+/// alternations, and of all such filters put the least energy into the band
+/// θ = ωh from a π to π (the mean of |E_j(θ)|² there). The end values of
+/// successive steps are samples of one smooth curve (the motion plus a
+/// fixed filter's smooth error); Q's own slope and curvature, extrapolated
+/// from a window of 11 or 15 steps, are not that curve's: the quintic (7.2)
+/// between them made up the difference with a bump of acceleration in every
+/// step, 1.8, 5 and 39 % of A ω² inside the steps at 0.05, 0.1 and 0.2 s
+/// for a heave at 10 s, harmless at the step's end but not to a line
+/// stepped inside the communication step (§16.6). With these the path's
+/// acceleration is within 3e-6, 4e-4 and 1.1e-2 of A ω². The degree and
+/// band are the highest and widest with which a 2000 t vessel coupled both
+/// ways in libcosim stays as bounded as with Q's own
+/// (`tests/python/test_coupling.py`): degree 7 at 0.2 s grows a 1 Hz
+/// oscillation (the line's axial resonance near 4 Hz, aliased) to ±30 kN,
+/// as does degree 6 with the band from 0.5 π. The exactly determined design
+/// of long or changing steps keeps Q's own (None).
+pub const CONSISTENT: [Option<(f64, usize)>; 3] = [Some((0.5, 7)), Some((0.2, 6)), None];
+
+/// The largest degree of [`CONSISTENT`] (the size of its linear system).
+const CONSISTENT_DEGREE: usize = 7;
 
 /// The design of a step of h s.
 pub fn design(h: f64) -> Design {
@@ -567,6 +596,12 @@ impl InputHistory {
         let index = if uniform { DESIGNS.iter().position(|x| x.1 == design(h)).unwrap_or(2) } else { 2 };
         let d = DESIGNS[index].1;
         let n = (known + 1).min(d.taps);
+        if uniform && known + 1 >= TAPS && CONSISTENT[index].is_some() {
+            // a fixed-step master once the widest window is full: the end value
+            // of the fit, its slope and curvature those of the end values' sequence
+            let w = consistent_weights(index);
+            return std::array::from_fn(|c| (0..TAPS).map(|k| w[c][k] * value(k)).sum());
+        }
         if uniform && n == d.taps {
             // a fixed-step master once the window is full: the fit's fixed weights
             let w = uniform_weights(index);
@@ -931,6 +966,92 @@ fn uniform_weights(index: usize) -> &'static [[f64; TAPS]; 3] {
     })[index]
 }
 
+/// The weights of the smoothing design `index` once [`TAPS`] uniform points
+/// are known ([`CONSISTENT`]): the value row that of the fit
+/// ([`uniform_weights`]); the slope and curvature rows w (order r = 1, 2)
+/// minimise wᵀ B w, B_ij = (1/(π − a)) ∫_a^π cos((i − j) θ) dθ (a = band π,
+/// with 1e-9 on the diagonal), subject to, with ξ_k = −k/(TAPS − 1),
+///   Σ_k w_k ξ_k^p = Σ_k w0_k d^r/dσ^r (σ/(TAPS − 1))^p at σ = −k,  p ≤ [`CONSISTENT_DEGREE`]
+/// (for u = the polynomial, h^r times the r-th derivative of the end values'
+/// sequence Σ_k w0_k u(t − k h)), and Σ_k w_k (−1)^k ξ_k^q = 0 for the
+/// design's nuisances q (computed once per process, the KKT system by LU
+/// with full pivoting).
+fn consistent_weights(index: usize) -> &'static [[f64; TAPS]; 3] {
+    const CONSTRAINTS: usize = CONSISTENT_DEGREE + 1 + 3;
+    const KKT: usize = TAPS + CONSTRAINTS;
+    static WEIGHTS: std::sync::OnceLock<[[[f64; TAPS]; 3]; 3]> = std::sync::OnceLock::new();
+    &WEIGHTS.get_or_init(|| {
+        std::array::from_fn(|di| {
+            let mut w = [[0.0; TAPS]; 3];
+            let Some((band, degree)) = CONSISTENT[di] else { return w };
+            let d = DESIGNS[di].1;
+            let w0 = uniform_weights(di)[0];
+            w[0] = w0;
+            let scale = (TAPS - 1) as f64;
+            let a = band * std::f64::consts::PI;
+            let b = |m: usize| {
+                if m == 0 { 1.0 } else { -(a * m as f64).sin() / (m as f64 * (std::f64::consts::PI - a)) }
+            };
+            for (order, row) in [(1usize, 1usize), (2, 2)] {
+                let mut k = SMatrix::<f64, KKT, KKT>::zeros();
+                let mut rhs = SVector::<f64, KKT>::zeros();
+                for i in 0..TAPS {
+                    for j in 0..TAPS {
+                        k[(i, j)] = 2.0 * b(i.abs_diff(j)) + if i == j { 2e-9 } else { 0.0 };
+                    }
+                }
+                let xi = |i: usize| -(i as f64) / scale;
+                let mut c = TAPS;
+                for p in 0..=CONSISTENT_DEGREE {
+                    if p > degree {
+                        // beyond the design's degree: its multiplier is zero
+                        k[(c, c)] = 1.0;
+                        c += 1;
+                        continue;
+                    }
+                    for i in 0..TAPS {
+                        k[(c, i)] = xi(i).powi(p as i32);
+                        k[(i, c)] = k[(c, i)];
+                    }
+                    if p >= order {
+                        let falling: f64 = (0..order).map(|m| (p - m) as f64).product();
+                        rhs[c] = (0..d.taps)
+                            .map(|i| w0[i] * falling / scale.powi(order as i32) * xi(i).powi((p - order) as i32))
+                            .sum();
+                    }
+                    c += 1;
+                }
+                for q in 0..3 {
+                    if q < d.alt {
+                        for i in 0..TAPS {
+                            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                            k[(c, i)] = sign * xi(i).powi(q as i32);
+                            k[(i, c)] = k[(c, i)];
+                        }
+                    } else {
+                        // no such nuisance: its multiplier is zero
+                        k[(c, c)] = 1.0;
+                    }
+                    c += 1;
+                }
+                // regular (independent constraints, a positive definite B); Q's own
+                // otherwise. One step of iterative refinement: the constraints then
+                // hold to round-off of the weights (an alternation of 1e-5 m moves
+                // the path by 1e-18 m, not 1e-17)
+                let lu = k.full_piv_lu();
+                match lu.solve(&rhs) {
+                    Some(x) => {
+                        let x = x + lu.solve(&(rhs - k * x)).unwrap_or_default();
+                        w[row].copy_from_slice(&x.as_slice()[..TAPS]);
+                    }
+                    None => w[row] = uniform_weights(di)[row],
+                }
+            }
+            w
+        })
+    })[index]
+}
+
 /// The weights of the design of [`VELOCITY_DESIGN`] (7.10): (Q, h Q', h² Q'')
 /// = Σ_k wu[·][k] u_k + wv[·][k] h v_k on uniform steps (σ_k = −k), the
 /// least-squares solution of
@@ -1222,6 +1343,39 @@ mod tests {
                 assert!((p.displacement.z - settled).abs() < 1e-18, "{h}: {p:?}");
                 assert!(p.velocity.z.abs() < 1e-16, "{h}: {p:?}");
             }
+        }
+    }
+
+    #[test]
+    fn the_smoothing_designs_end_slope_and_curvature_are_those_of_the_end_values_sequence() {
+        // (7.3a): for a polynomial u of the design's degree sampled at σ = −k, the slope
+        // and curvature rows give the derivatives of P(σ) = Σ_k w0_k u(σ − k),
+        // the end values' sequence as a function of the step's start; an
+        // alternation (−1)^k ξ^q of the design's nuisances gives nothing
+        let scale = (TAPS - 1) as f64;
+        for (index, design) in CONSISTENT.iter().enumerate() {
+            let Some((_, degree)) = *design else { continue };
+            let w = consistent_weights(index);
+            for p in 0..=degree as i32 {
+                let u = |s: f64, r: i32| {
+                    let falling: f64 = (0..r).map(|m| (p - m) as f64).product();
+                    if p < r { 0.0 } else { falling / scale.powi(r) * (s / scale).powi(p - r) }
+                };
+                for r in 1..3 {
+                    let got: f64 = (0..TAPS).map(|k| w[r as usize][k] * u(-(k as f64), 0)).sum();
+                    let want: f64 = (0..TAPS).map(|k| w[0][k] * u(-(k as f64), r)).sum();
+                    assert!((got - want).abs() < 1e-11, "design {index}, degree {p}, order {r}: {got} {want}");
+                }
+            }
+            for q in 0..DESIGNS[index].1.alt as i32 {
+                for r in 1..3 {
+                    let alt = |k: usize| if k % 2 == 0 { 1.0 } else { -1.0 } * (-(k as f64) / scale).powi(q);
+                    let got: f64 = (0..TAPS).map(|k| w[r][k] * alt(k)).sum();
+                    assert!(got.abs() < 1e-12, "design {index}, nuisance {q}, order {r}: {got}");
+                }
+            }
+            // the value row is the fit's own
+            assert_eq!(w[0], uniform_weights(index)[0]);
         }
     }
 

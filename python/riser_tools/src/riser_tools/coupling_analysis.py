@@ -89,6 +89,52 @@ DESIGNS = [(0.075, Predictor("quartic, 16 points, three nuisances", 5, 3, 16)),
 AFTER = Predictor("least squares per step (after)", 0)
 
 
+# the end state's slope and curvature of the smoothing designs once 16 uniform points are known
+# (src/fmi/input_path.rs CONSISTENT, docs/theory.md (7.3a)): those of the sequence of end values for
+# polynomials up to the degree, the design's alternations removed, least energy in the band
+# θ ∈ [band π, π]; {design index: (band, degree)}, absent: Q's own (the exactly determined design)
+CONSISTENT_TAPS = 16
+CONSISTENT = {0: (0.5, 7), 1: (0.2, 6)}
+
+
+def consistent_weights(p: Predictor, band: float, degree: int, taps: int = CONSISTENT_TAPS) -> np.ndarray:
+    """W (3 × taps) of (7.3a): the value row p's fit; the slope and curvature rows w minimise
+    wᵀ B w, B_ij = (1/(π − a)) ∫_a^π cos((i − j)θ) dθ (a = band π, 1e-9 on the diagonal), subject to
+    giving h^r times the r-th derivative of the end values' sequence Σ_k w0_k u(t − k h) for every
+    polynomial u of degree ≤ `degree`, and nothing for the design's alternations (−1)^k ξ_k^q."""
+    w0 = np.zeros(taps)
+    w0[: p.taps] = predictor_weights(p)[0]
+    scale = taps - 1.0
+    xi = -np.arange(taps) / scale
+    a = band * np.pi
+    m = np.abs(np.subtract.outer(np.arange(taps), np.arange(taps))).astype(float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        b = np.where(m == 0, 1.0, -np.sin(a * m) / (m * (np.pi - a)))
+    b = b + 1e-9 * np.eye(taps)
+    out = np.zeros((3, taps))
+    out[0] = w0
+    for r in (1, 2):
+        rows, rhs = [], []
+        for q in range(degree + 1):
+            rows.append(xi ** q)
+            falling = np.prod([q - k for k in range(r)]) if q >= r else 0.0
+            rhs.append(falling / scale ** r * (w0 @ xi ** (q - r)) if q >= r else 0.0)
+        for q in range(p.n_alt):
+            rows.append((-1.0) ** np.arange(taps) * xi ** q)
+            rhs.append(0.0)
+        c, d = np.array(rows), np.array(rhs)
+        k = np.block([[2 * b, c.T], [c, np.zeros((len(d), len(d)))]])
+        out[r] = np.linalg.solve(k, np.concatenate([np.zeros(taps), d]))[:taps]
+    return out
+
+
+def design_weights(h: float) -> np.ndarray:
+    """The end-state filters input_path.rs uses at uniform steps h once its window is full."""
+    index = next(i for i, (below, _) in enumerate(DESIGNS) if h < below)
+    p = DESIGNS[index][1]
+    return consistent_weights(p, *CONSISTENT[index]) if index in CONSISTENT else predictor_weights(p)
+
+
 def design(h: float) -> Predictor:
     """The design input_path.rs uses for a step of h s."""
     return next(p for below, p in DESIGNS if h < below)
@@ -364,19 +410,18 @@ def read_response(path: Path) -> dict[float, np.ndarray]:
     return out
 
 
-def alternating(p: Predictor, g: np.ndarray, amplitude: float = 1e-5):
-    """The hang-off's and the tension's answer to an input alternating ±amplitude: the end value's
-    amplitude (m) and the force's peak-to-peak swing (N), linear and steady."""
-    w = predictor_weights(p)
+def alternating(w: np.ndarray, g: np.ndarray, amplitude: float = 1e-5):
+    """The hang-off's and the tension's answer to an input alternating ±amplitude through the
+    end-state filters w: the end value's amplitude (m) and the force's peak-to-peak swing (N),
+    linear and steady."""
     e = end_state_response(w, np.pi)[:, 0]
     f = (line_transfer(g, np.pi)[:, 0] * e).sum()
     return abs(e[0]) * amplitude, 2.0 * abs(f) * amplitude
 
 
-def onset_swing(p: Predictor, g: np.ndarray, amplitude: float = 1e-5, steps: int = 400):
+def onset_swing(w: np.ndarray, g: np.ndarray, amplitude: float = 1e-5, steps: int = 400):
     """Peak-to-peak force (N) when an alternating ±amplitude starts on a still input (the steady
-    part and the onset transient), linear, with the full predictor (no start-up)."""
-    w = predictor_weights(p)
+    part and the onset transient), linear, through the full filters w (no start-up)."""
     x = np.array([0.0] * w.shape[1] + [amplitude * (-1.0) ** k for k in range(steps)])
     e = np.array([[w[j] @ x[n::-1][: w.shape[1]] if n >= w.shape[1] - 1 else 0.0 for n in range(len(x))]
                   for j in range(3)])
@@ -384,10 +429,11 @@ def onset_swing(p: Predictor, g: np.ndarray, amplitude: float = 1e-5, steps: int
     return float(np.ptp(f))
 
 
-def one_way_error(p: Predictor, g: np.ndarray, h: float, amplitude=2.5, period=20.0):
-    """Amplitude (N) of the top force's error under heave amplitude·sin(2πt/period), linear."""
+def one_way_error(w: np.ndarray, g: np.ndarray, h: float, amplitude=2.5, period=20.0):
+    """Amplitude (N) of the top force's error under heave amplitude·sin(2πt/period) through the
+    end-state filters w, linear."""
     theta = 2 * np.pi * h / period
-    e = end_state_response(predictor_weights(p), theta)[:, 0] - exact_end_state(theta)[:, 0]
+    e = end_state_response(w, theta)[:, 0] - exact_end_state(theta)[:, 0]
     return abs((line_transfer(g, theta)[:, 0] * e).sum()) * amplitude
 
 
@@ -396,15 +442,15 @@ def analyse(resp: dict[float, np.ndarray], predictors=CANDIDATES, bodies=(VESSEL
     for p0 in predictors:
         for h, g in sorted(resp.items()):
             p = resolve(p0, h)
-            w = predictor_weights(p)
+            w = design_weights(h) if p0 is AFTER else predictor_weights(p)
             r = riser_fir(g, w)
             rho = {b.name: spectral_radius(b, h, r) for b in bodies}
             gain = {b.name: float(loop_gain(b, h, r)[HIGH_BAND].max()) for b in bodies}
             rho_gs = ({b.name: spectral_radius(b, h, r, "gauss-seidel") for b in bodies} if p0 in (TODAY, AFTER)
                       else {b.name: float("nan") for b in bodies})
-            hang, swing = alternating(p, g)
-            rows.append(dict(predictor=p0.name, h=h, onset=onset_swing(p, g), rho=rho, gain=gain, rho_gs=rho_gs, hang_off=hang, swing=swing,
-                             one_way=one_way_error(p, g, h)))
+            hang, swing = alternating(w, g)
+            rows.append(dict(predictor=p0.name, h=h, onset=onset_swing(w, g), rho=rho, gain=gain, rho_gs=rho_gs, hang_off=hang, swing=swing,
+                             one_way=one_way_error(w, g, h)))
     return rows
 
 

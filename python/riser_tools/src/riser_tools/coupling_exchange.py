@@ -48,7 +48,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .coupling_analysis import (BOTH, BUOY, ROOT, VESSEL, Body, both_fir, design, predictor_weights, read_response,
+from .coupling_analysis import (BOTH, BUOY, ROOT, VESSEL, Body, both_fir, design_weights, read_response,
                                 riser_fir)
 
 
@@ -85,7 +85,7 @@ def riser_taps(g: np.ndarray, h: float, both: bool = True):
     with `both` at h ≥ 0.21 s the design that fits the velocities too (§7.4)."""
     if both and h >= BOTH.min_h:
         return both_fir(g, h)
-    r = riser_fir(g, predictor_weights(design(h)))
+    r = riser_fir(g, design_weights(h))
     return r, np.zeros(1)
 
 
