@@ -589,9 +589,118 @@ impl StressRange {
     }
 }
 
+/// Watches the top tension at the FMU's communication points for an
+/// oscillation from one point to the next that grows (docs/theory.md §7.3,
+/// "The line's axial resonance in the vessel loop"): the RMS of its second
+/// difference T_n − 2 T_{n−1} + T_{n−2} (on uniform steps; it passes
+/// little of the motion's slow answer, (ωh)², and most of what rings near
+/// the steps' own frequencies) over successive spans of
+/// [`ResonanceWatch::SPAN`] s; it speaks when four spans in a row each grow
+/// by 5 %, the last at least twice the first and at least 1e-3 of the mean
+/// tension. The known case: the 2000 t vessel coupled both ways at
+/// 0.025–0.035 s, the force held as it is, where the loop grows the line's
+/// axial resonance at 4.2 Hz to ±35 kN. No allocation; `Copy`, saved and
+/// restored with the state it watches.
+#[derive(Debug, Clone, Copy)]
+pub struct ResonanceWatch {
+    /// The end of the current span, s (infinite: off).
+    next: f64,
+    /// The last two samples (t s, T N), newest first; `known` of them.
+    prev: [(f64, f64); 2],
+    known: usize,
+    /// The current span: Σ d², samples, Σ |T|.
+    sum_sq: f64,
+    count: usize,
+    sum_t: f64,
+    /// The RMS of the second difference over the last four spans, oldest
+    /// first, and the mean tension of the last.
+    rms: [f64; 4],
+    mean: f64,
+    spans: usize,
+}
+
+impl ResonanceWatch {
+    /// The span, s of simulated time.
+    pub const SPAN: f64 = 10.0;
+
+    /// A watch from `t0` s on.
+    pub fn new(t0: f64) -> Self {
+        ResonanceWatch {
+            next: t0 + Self::SPAN,
+            prev: [(0.0, 0.0); 2],
+            known: 0,
+            sum_sq: 0.0,
+            count: 0,
+            sum_t: 0.0,
+            rms: [0.0; 4],
+            mean: 0.0,
+            spans: 0,
+        }
+    }
+
+    /// A watch that never speaks (after it has).
+    pub fn off() -> Self {
+        ResonanceWatch { next: f64::INFINITY, ..Self::new(0.0) }
+    }
+
+    /// Whether it can still speak.
+    pub fn is_on(&self) -> bool {
+        self.next.is_finite()
+    }
+
+    /// Feeds the top tension `tension` (N) at the communication point `t`
+    /// (s). Returns the warning when the oscillation has grown over the last
+    /// four spans.
+    pub fn feed(&mut self, t: f64, tension: f64) -> Option<String> {
+        if !self.is_on() || !t.is_finite() || !tension.is_finite() || (self.known > 0 && t <= self.prev[0].0) {
+            return None;
+        }
+        let mut said = None;
+        // spans that ended before this sample (a mark within round-off of t is t's)
+        while self.next < t - 1e-9 * Self::SPAN {
+            if self.count > 0 {
+                self.rms = [self.rms[1], self.rms[2], self.rms[3], (self.sum_sq / self.count as f64).sqrt()];
+                self.mean = self.sum_t / self.count as f64;
+                self.spans += 1;
+            }
+            (self.sum_sq, self.count, self.sum_t) = (0.0, 0, 0.0);
+            self.next += Self::SPAN;
+            let r = self.rms;
+            let grows = (0..3).all(|i| r[i + 1] >= 1.05 * r[i]) && r[3] >= 2.0 * r[0] && r[3] >= 1e-3 * self.mean;
+            if self.spans >= 4 && grows && said.is_none() {
+                said = Some(format!(
+                    "the top tension's oscillation from one communication point to the next grows: the RMS of its \
+                     second difference over the last four spans of {} s is {:.0}, {:.0}, {:.0} and {:.0} N (mean \
+                     tension {:.0} N). In a co-simulation loop this is likely the line's axial resonance fed back \
+                     through the master: let the body hold riser's force low-passed (about 1 Hz) or take another \
+                     communication step (docs/theory.md 7.3)",
+                    Self::SPAN,
+                    r[0],
+                    r[1],
+                    r[2],
+                    r[3],
+                    self.mean
+                ));
+            }
+        }
+        if self.known == 2 {
+            let (h1, h0) = (t - self.prev[0].0, self.prev[0].0 - self.prev[1].0);
+            if (h1 - h0).abs() <= 1e-6 * h1 {
+                let d = tension - 2.0 * self.prev[0].1 + self.prev[1].1;
+                self.sum_sq += d * d;
+                self.count += 1;
+                self.sum_t += tension.abs();
+            }
+        }
+        self.prev = [(t, tension), self.prev[0]];
+        self.known = (self.known + 1).min(2);
+        said
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{GrowthWatch, growing_dissipation_warning};
+    use super::{GrowthWatch, ResonanceWatch, growing_dissipation_warning};
 
     /// The detector on synthetic histories, a steady flux of 1 kJ/s: a
     /// dissipation growing like e^{t/30} warns; a start's transient
@@ -661,5 +770,62 @@ mod tests {
         // nothing from a watch that is off, or from a non-finite time
         assert!(GrowthWatch::off().feed(1e3, 1e9, [0.0; 2]).is_none());
         assert!(GrowthWatch::new(0.0).feed(f64::INFINITY, 1.0, [0.0; 2]).is_none());
+    }
+
+    #[test]
+    fn the_resonance_watch_speaks_when_a_fast_oscillation_grows_and_only_then() {
+        use std::f64::consts::PI;
+        // the top tension at the communication points: 140 kN, its slow answer
+        // to a 10 s motion (`slow` N), and an oscillation at 4.2 Hz of
+        // amplitude `fast(t)` N
+        let run = |slow: &dyn Fn(f64) -> f64, fast: &dyn Fn(f64) -> f64, h: f64, end: f64| {
+            let mut watch = ResonanceWatch::new(0.0);
+            let mut said = Vec::new();
+            for k in 0..=(end / h).round() as usize {
+                let t = k as f64 * h;
+                let tension = 140e3 + slow(t) * (2.0 * PI * t / 10.0).sin() + fast(t) * (2.0 * PI * 4.2 * t).sin();
+                if watch.feed(t, tension).is_some() {
+                    said.push(t);
+                    watch = ResonanceWatch::off();
+                }
+            }
+            said
+        };
+        let wave = |_: f64| 2e3;
+        // growing e-fold in 15 s from 1 kN, up to 35 kN (the vessel loop at 0.03 s):
+        // the fourth span that grows ends at 40 s
+        let growing = |t: f64| (1e3 * (t / 15.0).exp()).min(35e3);
+        let said = run(&wave, &growing, 0.03, 90.0);
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert!((said[0] - 40.0).abs() < 0.031, "{said:?}");
+        // a start's ringing that decays, a steady ringing, none: silent
+        assert!(run(&wave, &|t| 10e3 * (-t / 5.0).exp(), 0.03, 90.0).is_empty());
+        assert!(run(&wave, &|_| 3e3, 0.03, 90.0).is_empty());
+        assert!(run(&wave, &|_| 0.0, 0.03, 90.0).is_empty());
+        // a motion ramped over 60 s, its slow answer growing with it: silent
+        assert!(run(&|t: f64| 2e3 * (t / 60.0).min(1.0), &|_| 0.0, 0.03, 90.0).is_empty());
+        // a growing ringing too small to matter (below 1e-3 of the tension): silent
+        assert!(run(&wave, &|t: f64| (1.0 * (t / 15.0).exp()).min(35.0), 0.03, 90.0).is_empty());
+        // steps that change (the second difference is not taken across them)
+        let mut w = ResonanceWatch::new(0.0);
+        let mut t = 0.0;
+        for k in 0..3000 {
+            t += if k % 2 == 0 { 0.02 } else { 0.03 };
+            assert!(w.feed(t, 140e3 + growing(t) * (2.0 * PI * 4.2 * t).sin()).is_none());
+        }
+        // a restored copy says the same at the same time
+        let mut a = ResonanceWatch::new(0.0);
+        let tension = |t: f64| 140e3 + growing(t) * (2.0 * PI * 4.2 * t).sin();
+        for k in 0..1000 {
+            assert!(a.feed(k as f64 * 0.03, tension(k as f64 * 0.03)).is_none());
+        }
+        let mut b = a;
+        let said_a = (1000..3000).map(|k| k as f64 * 0.03).find(|&t| a.feed(t, tension(t)).is_some());
+        let said_b = (1000..3000).map(|k| k as f64 * 0.03).find(|&t| b.feed(t, tension(t)).is_some());
+        assert_eq!(said_a, said_b);
+        assert!(said_a.is_some());
+        // nothing from a watch that is off, or from a non-finite sample
+        assert!(ResonanceWatch::off().feed(1e3, 1e9).is_none());
+        assert!(ResonanceWatch::new(0.0).feed(f64::NAN, 1.0).is_none());
     }
 }

@@ -59,10 +59,11 @@ def _rk4(body: Body, s, t, h, wave: Wave, force: float, substeps: int = 20):
 
 
 def two_way(fmu_path: str, body: Body, wave: Wave, h: float, duration: float, feedback: bool = True,
-            motion=None, start_values: dict | None = None, noise: float = 0.0):
+            motion=None, start_values: dict | None = None, noise: float = 0.0, callbacks=None):
     """Runs the loop; returns dict of arrays t, heave, heave_velocity, top_tension, top_force_z
     (at the communication points, t = 0 included). `noise` adds ±noise alternating to the heave
-    the riser gets (a body model's round-off)."""
+    the riser gets (a body model's round-off); `callbacks` (fmpy's fmi2CallbackFunctions) receive
+    riser's log, logging on."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
 
@@ -70,7 +71,7 @@ def two_way(fmu_path: str, body: Body, wave: Wave, h: float, duration: float, fe
     vr = {v.name: v.valueReference for v in md.modelVariables}
     unzipped = extract(fmu_path)
     s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="riser")
-    s.instantiate()
+    s.instantiate(**({"callbacks": callbacks, "loggingOn": True} if callbacks is not None else {}))
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
     for k, v in (start_values or {"time_step": min(0.05, h)}).items():
