@@ -9,7 +9,7 @@ use crate::model::serialize::fnv1a;
 use crate::model::{Outputs, State};
 use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
-use crate::sim::design::{GrowthWatch, ResonanceWatch};
+use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
 use std::path::PathBuf;
 
@@ -124,8 +124,6 @@ pub struct Saved {
     /// step), so that a master that restores states keeps it; a
     /// deserialized state starts a new one.
     hf_watch: Option<GrowthWatch>,
-    /// The watch of the top tension's fast oscillation, likewise.
-    res_watch: Option<ResonanceWatch>,
     /// The parameters themselves when saved in this process (fmi2GetFMUstate),
     /// so that a refused restore names what differs; None when deserialized
     /// (a serialized state carries their hash only).
@@ -188,10 +186,6 @@ pub struct Instance {
     /// (docs/theory.md §5.10); `None` once the log has said it grows, and
     /// before the first step.
     hf_watch: Option<GrowthWatch>,
-    /// The top tension's oscillation from one communication point to the
-    /// next, span by span (docs/theory.md §7.3); `None` once the log has said
-    /// it grows, and before the first step.
-    res_watch: Option<ResonanceWatch>,
     sim: Option<Simulation>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
@@ -274,7 +268,6 @@ impl Instance {
             warned_reach: false,
             warned_split: false,
             hf_watch: None,
-            res_watch: None,
             sim: None,
             step_start: None,
             scene: None,
@@ -300,7 +293,6 @@ impl Instance {
         self.warned_reach = false;
         self.warned_split = false;
         self.hf_watch = None;
-        self.res_watch = None;
         self.sim = None;
         self.step_start = None;
         self.scene = None;
@@ -649,21 +641,6 @@ impl Instance {
         }
     }
 
-    /// Warns once when the top tension's oscillation from one communication
-    /// point to the next grows over four spans of [`ResonanceWatch::SPAN`] s
-    /// in a row: in a co-simulation loop, likely the line's axial resonance
-    /// fed back through the master (docs/theory.md §7.3). Saved and restored
-    /// with the state, as the dissipation's watch.
-    fn watch_resonance(&mut self, now: f64, t_end: f64) {
-        let Some(o) = self.outputs.as_ref() else { return };
-        let tension = o.top_tension;
-        let watch = self.res_watch.get_or_insert_with(|| ResonanceWatch::new(now));
-        if let Some(msg) = watch.feed(t_end, tension) {
-            self.res_watch = Some(ResonanceWatch::off());
-            self.log(Status::Warning, Category::Warning, &format!("at t = {t_end:.3} s {msg}"));
-        }
-    }
-
     /// The inputs: the displacements (heave, surge, sway), their
     /// velocities, the angles, the angular velocities.
     fn split_inputs(&self) -> VesselInputs {
@@ -763,7 +740,6 @@ impl Instance {
             Ok(()) => {
                 self.warn_reach(t_end);
                 self.watch_dissipation(now, t_end);
-                self.watch_resonance(now, t_end);
                 self.history.commit(now, &inp, &path);
                 self.last_successful_time = t_end;
                 self.last_status = Status::Ok;
@@ -1230,7 +1206,6 @@ impl Instance {
             params_hash: self.params_hash(),
             force_mean: self.force_mean,
             hf_watch: self.hf_watch,
-            res_watch: self.res_watch,
             params: Some(self.params.clone()),
         })
     }
@@ -1267,9 +1242,6 @@ impl Instance {
         // starts a new one at its next step
         if self.hf_watch.is_none_or(|w| w.is_on()) {
             self.hf_watch = s.hf_watch;
-        }
-        if self.res_watch.is_none_or(|w| w.is_on()) {
-            self.res_watch = s.res_watch;
         }
         self.inputs = s.inputs;
         self.history = s.history;
@@ -1319,17 +1291,7 @@ impl Instance {
                 };
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
                 let force_mean = V3::new(extra[n + 3], extra[n + 4], extra[n + 5]);
-                Ok(Saved {
-                    state,
-                    inputs,
-                    history,
-                    mode,
-                    params_hash,
-                    force_mean,
-                    hf_watch: None,
-                    res_watch: None,
-                    params: None,
-                })
+                Ok(Saved { state, inputs, history, mode, params_hash, force_mean, hf_watch: None, params: None })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),

@@ -229,25 +229,6 @@ def test_at_0_03_s_the_vessel_loop_needs_the_force_low_passed_and_then_gives_the
     assert np.ptp(c[:2]) > 5.0 * np.ptp(b[:2]), (c, b)
 
 
-def test_the_log_says_when_the_vessel_loop_grows_the_line_s_axial_resonance(fmu_path):
-    # the same loop (the python master of riser_tools.coupling_loop, which gives libcosim's numbers to
-    # the digit) with riser's log: at 0.03 s the top tension's oscillation from one communication
-    # point to the next grows span after span, and the log says so once, at 40 s (four spans of 10 s,
-    # sim::design::ResonanceWatch), naming the remedy; at 0.05 s the loop is bounded and the log
-    # silent
-    from riser_tools.coupling_loop import VESSEL, VESSEL_WAVE, two_way
-    message = "the top tension's oscillation from one communication point to the next grows"
-    said = {}
-    for h in (0.03, 0.05):
-        MESSAGES.clear()
-        run = two_way(fmu_path, VESSEL, VESSEL_WAVE, h, 50.0, start_values={"time_step": h}, callbacks=CALLBACKS)
-        said[h] = [m for m in MESSAGES if message in m]
-        print(h, np.ptp(run["top_tension"][run["t"] > 30.0]), said[h])
-    assert len(said[0.03]) == 1 and "at t = 40.020 s" in said[0.03][0], said
-    assert "low-passed" in said[0.03][0] and "docs/theory.md 7.3" in said[0.03][0]
-    assert said[0.05] == [], said
-
-
 def test_ecco_with_a_power_bond_keeps_the_energy_and_the_one_way_tension(fmu_path, vessel_fmu):
     # libcosim's ECCO with riser's power bond (top_force_z out, heave_velocity in) to the vessel FMU
     # (osp/vessel/Vessel.py: the 2000 t vessel, 10 s wave); the heave itself is never connected, so
