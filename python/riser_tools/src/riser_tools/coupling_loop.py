@@ -59,11 +59,10 @@ def _rk4(body: Body, s, t, h, wave: Wave, force: float, substeps: int = 20):
 
 
 def two_way(fmu_path: str, body: Body, wave: Wave, h: float, duration: float, feedback: bool = True,
-            motion=None, start_values: dict | None = None, noise: float = 0.0, callbacks=None):
+            motion=None, start_values: dict | None = None, noise: float = 0.0):
     """Runs the loop; returns dict of arrays t, heave, heave_velocity, top_tension, top_force_z
     (at the communication points, t = 0 included). `noise` adds ±noise alternating to the heave
-    the riser gets (a body model's round-off); `callbacks` (fmpy's fmi2CallbackFunctions) receive
-    riser's log, logging on."""
+    the riser gets (a body model's round-off)."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
 
@@ -71,7 +70,7 @@ def two_way(fmu_path: str, body: Body, wave: Wave, h: float, duration: float, fe
     vr = {v.name: v.valueReference for v in md.modelVariables}
     unzipped = extract(fmu_path)
     s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="riser", instanceName="riser")
-    s.instantiate(**({"callbacks": callbacks, "loggingOn": True} if callbacks is not None else {}))
+    s.instantiate()
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
     for k, v in (start_values or {"time_step": min(0.05, h)}).items():
