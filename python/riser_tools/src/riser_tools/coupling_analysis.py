@@ -89,12 +89,12 @@ DESIGNS = [(0.075, Predictor("quartic, 16 points, three nuisances", 5, 3, 16)),
 AFTER = Predictor("least squares per step (after)", 0)
 
 
-# the end state's slope and curvature of the smoothing designs once 16 uniform points are known
-# (src/fmi/input_path.rs CONSISTENT, docs/theory.md (7.3a)): those of the sequence of end values for
-# polynomials up to the degree, the design's alternations removed, least energy in the band
-# θ ∈ [band π, π]; {design index: (band, degree)}, absent: Q's own (the exactly determined design)
+# the end state's slope and curvature of each design once its filters' window of uniform points is
+# known (src/fmi/input_path.rs CONSISTENT, docs/theory.md (7.3a)): those of the sequence of end values
+# for polynomials up to the degree, the design's alternations removed, least energy in the band
+# θ ∈ [band π, π]; {design index: (band, degree, taps)}
 CONSISTENT_TAPS = 16
-CONSISTENT = {0: (0.5, 7), 1: (0.2, 6)}
+CONSISTENT = {0: (0.5, 7, 16), 1: (0.2, 6, 16), 2: (0.5, 7, 10)}
 
 
 def consistent_weights(p: Predictor, band: float, degree: int, taps: int = CONSISTENT_TAPS) -> np.ndarray:
@@ -512,7 +512,8 @@ def main(argv=None):
              "only through the co-simulation (L = z⁻¹ R(z) G_body(z); < 1 there: no numerical loop can grow, "
              "as far as this linear model of the line goes: measured in libcosim the vessel loop grows the "
              "line's axial resonance at 0.025–0.035 s (|L| 0.38 at 4.1 Hz, θ = 0.25 π, here) and, with the "
-             "slope and curvature of degree 7, at 0.2 s (0.63 at 1 Hz): the answers measured about the line at "
+             "slope and curvature of degree 7, at 0.2 s (0.63 at 1 Hz), and at steps of 0.2 s and longer in "
+             "bands of h with either coupling (§7.3, \"Long communication steps\"): the answers measured about the line at "
              "rest miss part of what the moving line feeds back at its resonance, theory §7.1, §7.3); "
              "below π/2 the loop is the physical coupling of body and line. *ρ*: spectral radius of the whole "
              "linear loop; with the line's answers truncated at 30 s it sits within a few % of 1 for the vessel "

@@ -180,9 +180,10 @@ def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
     return {n: a[:, i] for i, n in enumerate(names)}
 
 
-def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None):
+def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None,
+               inputs: tuple = ("heave", "heave_velocity")):
     """libcosim's fixed-step algorithm (Jacobi) on riser and the vessel FMU: vessel.heave and
-    heave_velocity → riser.heave and heave_velocity (`auto`: the displacement drives),
+    heave_velocity (those of `inputs`) → riser's of the same names (`auto`: the displacement drives),
     riser.top_force_z → vessel.force, and riser.top_force_z_mean → vessel.force_mean where both
     FMUs have them; `vessel` sets the vessel's parameters (mass, damping, stiffness, wave_force,
     wave_period, ramp, and how it holds riser's force: force_hold, line_mass, force_cutoff,
@@ -205,7 +206,7 @@ def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vesse
             ex.integer_initial_value(v, vr[k], int(x))
         else:
             ex.real_initial_value(v, vr[k], float(x))
-    for name in ["heave", "heave_velocity"]:
+    for name in inputs:
         ex.connect_real_variables(v, vr[name], r, rr[name])
     ex.connect_real_variables(r, rr["top_force_z"], v, vr["force"])
     if "top_force_z_mean" in rr and "force_mean" in vr:
