@@ -285,6 +285,32 @@ def test_the_fit_tool_keeps_the_knob_s_constants():
                                                    "C_CURRENT_RINGING"))
 
 
+def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
+    """docs/theory.md §16.3, "What a perfect model would cost", on the committed runs
+    (docs/accuracy_runs.csv): a model that knew every grid and ladder run's error and kept the knob's
+    safety factor (1.5) would choose, at 1e-2, 1e-3 and 1e-4 in all eight heave cases, within 2.06
+    times the work of the cheapest grid cell reaching the target (the aim: 2), and never above its
+    target over 1.5; one that over-predicts by up to 1.5 times more costs 2.02 at 1e-3 on the built-in
+    scenes and 3.5 on the design motion, and no run of the design motion on one line is within 1e-4
+    over 2.25 (the references' floor): the aim needs a model within about 1.5 times of every run's
+    error, where the a-priori step terms tried spread 5.45 times across the lines."""
+    import csv
+
+    from riser_tools.studies import accuracy_fit as F
+
+    rows = list(csv.DictReader(open(F.A.Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv")))
+    exact = [F.oracle(rows, c, t) for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)]
+    assert all(o is not None for o in exact)
+    assert max(o["oracle_ratio"] for o in exact) <= 2.1
+    assert all(o["oracle"][2] <= t / F.SAFETY for o, t in zip(exact, [1e-2, 1e-3, 1e-4] * 8))
+    # the knob itself: within its targets, above 2 at 1e-4 and for the steel catenary at 1e-3
+    knob = {(c, t): F.oracle(rows, c, t)["knob_ratio"] for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)}
+    assert knob[("steel_catenary", 1e-3)] > 2 and min(knob[(c, 1e-4)] for c in F.ORACLE_CASES) > 2
+    loose = [F.oracle(rows, c, 1e-3, safety=1.5 * F.SAFETY) for c in F.ORACLE_CASES]
+    assert max(o["oracle_ratio"] for o in loose[:4]) > 2.0 and max(o["oracle_ratio"] for o in loose[4:]) > 3.0
+    assert any(F.oracle(rows, c, 1e-4, safety=1.5 * F.SAFETY) is None for c in F.ORACLE_CASES[4:])
+
+
 def test_the_window_time_mean_is_over_exactly_the_window():
     """riser_tools.series.window_time_mean (riser-sweep's top_tension_mean), as `riser run`'s
     window_min_mean_max: on a + b sin(ω t + 0.7) at a step that falls on neither end of a two-period

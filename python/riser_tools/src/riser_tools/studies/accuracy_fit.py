@@ -26,6 +26,14 @@ varies least across the lines and periods is the better founded.
     riser-tools accuracy-fit --still [--ladder] [--bin target/fasttest/riser] [--runs docs/accuracy_runs.csv]
 
 --ladder takes the ladder's points between the grid's steps too (`riser-tools accuracy`, kind ladder).
+
+With --oracle, what a perfect a-priori model would cost (docs/theory.md §16.3, "What a perfect model
+would cost"): for each heave case (ORACLE_CASES) and target, the cheapest of the committed grid and
+ladder runs with at least 75 steps a period whose error is at or below the target over the safety
+factor (1.5) — the choice of a model that knew every run's error and kept the knob's margin — and its
+cost ratio against the cheapest grid cell reaching the target, beside the knob's own.
+
+    riser-tools accuracy-fit --oracle [--runs docs/accuracy_runs.csv]
 """
 from __future__ import annotations
 
@@ -219,6 +227,54 @@ def still_main(binary: str, runs: str, ladder: bool = False) -> int:
     return 0
 
 
+# the heave cases of the calibration (docs/accuracy.md): the built-in scenes and the jumper at their own
+# motion, then the design motion (2.5 m at 10 s) on each line
+ORACLE_CASES = ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
+                "steel_catenary_T10", "lowe_langley_jumper_T10")
+SAFETY = 1.5
+
+
+def oracle(rows: list, case: str, target: float, safety: float = SAFETY) -> dict | None:
+    """The knob's choice for `case` at `target` from the committed runs (kind accuracy), the cheapest grid
+    cell reaching the target, and the cheapest grid or ladder run with at least 75 steps a period whose
+    error is within target/safety (a model knowing every run's error, with the knob's margin); each with
+    its work and error, and the ratios of the choice's and the oracle's work to the cell's. None where no
+    grid cell reaches the target."""
+    m = [r for r in rows if r["case"] == case and r["completed"] == "True"]
+    ref = next(r for r in m if r["kind"] == "reference")
+    runs = [r for r in m if r["kind"] in ("grid", "ladder")]
+    cells = [r for r in runs if r["kind"] == "grid" and A.error(r, ref) <= target]
+    knob = [r for r in m if r["kind"] == "accuracy" and r["accuracy"] and abs(float(r["accuracy"]) / target - 1) < 1e-9]
+    covered = [r for r in runs if float(r["time_step"]) * A.STEPS_PER_PERIOD <= A.shortest_period(case) * (1 + 1e-9)
+               and A.error(r, ref) <= target / safety]
+    if not cells or not knob or not covered:
+        return None
+    cell, best, choice = min(cells, key=A.work), min(covered, key=A.work), knob[0]
+    out = {}
+    for name, r in (("cell", cell), ("oracle", best), ("knob", choice)):
+        out[name] = (int(r["n_elements"]), float(r["time_step"]), A.error(r, ref), A.work(r))
+    out["knob_ratio"] = out["knob"][3] / out["cell"][3]
+    out["oracle_ratio"] = out["oracle"][3] / out["cell"][3]
+    return out
+
+
+def oracle_main(runs: str) -> int:
+    rows = list(csv.DictReader(open(runs)))
+    print("| case | ε | cheapest grid cell reaching ε | the knob's choice: e, cost ratio | "
+          f"the cheapest run within ε/{SAFETY:g}: e, cost ratio |")
+    print("|---|---|---|---|---|")
+    for case in ORACLE_CASES:
+        for target in (1e-2, 1e-3, 1e-4):
+            o = oracle(rows, case, target)
+            if o is None:
+                print(f"| {case} | {target:g} | none | | |")
+                continue
+            c, k, b = o["cell"], o["knob"], o["oracle"]
+            print(f"| {case} | {target:g} | {c[0]}, {c[1]:g} s ({c[2]:.1e}) | {k[0]}, {k[1]:g} s: {k[2]:.1e}, "
+                  f"{o['knob_ratio']:.2f} | {b[0]}, {b[1]:g} s: {b[2]:.1e}, {o['oracle_ratio']:.2f} |")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="riser-tools accuracy-fit", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -228,8 +284,12 @@ def main(argv=None):
                     help="the still-water step term's candidate forms instead (docs/theory.md 16.3)")
     ap.add_argument("--ladder", action="store_true",
                     help="with --still: the ladder's steps between the grid's too (riser-tools accuracy --phase ladder)")
+    ap.add_argument("--oracle", action="store_true",
+                    help="what a model knowing every run's error would choose (docs/theory.md 16.3)")
     ap.add_argument("constants", nargs="*", type=float, help="C_wt C_wk C_wk2 E_w E_c")
     args = ap.parse_args(argv)
+    if args.oracle:
+        return oracle_main(args.runs)
     if args.still:
         return still_main(args.bin, args.runs, args.ladder)
     c = tuple(args.constants) if len(args.constants) == 5 else CONSTANTS
