@@ -226,20 +226,22 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
 /// 0.075 s and 320 at 0.0125 s, the jumper 16 at 0.04 s and 50 at 0.0125 s.
 /// The steel catenary's are coarser again since the seabed contact's rule
 /// splits at the crossings (docs/theory.md (9.7), C_c and C_c2 refitted):
-/// 30 at 0.1 s, 120 at 0.05 s and 240 at 0.015 s before.
+/// 30 at 0.1 s, 120 at 0.05 s and 240 at 0.015 s before. The Newton
+/// tolerance is 1e-4 of the target since 2026-11-27 (1e-5 before: 1e-8 and
+/// 1e-9 at 1e-3 and 1e-4; docs/theory.md 16.3, "The Newton tolerance").
 const STILL_WATER_CHOICES: [(&str, f64, usize, f64, f64, f64); 12] = [
     ("catenary", 1e-2, 10, 0.1, 1e-7, 0.000960387000429452),
-    ("catenary", 1e-3, 10, 0.05, 1e-8, 0.00042586969811268956),
-    ("catenary", 1e-4, 20, 0.015, 1e-9, 6.410961255009229e-05),
+    ("catenary", 1e-3, 10, 0.05, 1e-7, 0.00042586969811268956),
+    ("catenary", 1e-4, 20, 0.015, 1e-8, 6.410961255009229e-05),
     ("lazy_wave", 1e-2, 20, 0.1, 1e-7, 0.0028050801380189237),
-    ("lazy_wave", 1e-3, 40, 0.05, 1e-8, 0.0005198656058248946),
-    ("lazy_wave", 1e-4, 80, 0.0125, 1e-9, 6.374883722859106e-05),
+    ("lazy_wave", 1e-3, 40, 0.05, 1e-7, 0.0005198656058248946),
+    ("lazy_wave", 1e-4, 80, 0.0125, 1e-8, 6.374883722859106e-05),
     ("steel_catenary", 1e-2, 10, 0.1, 1e-7, 0.006257461976008634),
-    ("steel_catenary", 1e-3, 40, 0.05, 1e-8, 0.0005196101485760039),
-    ("steel_catenary", 1e-4, 80, 0.015, 1e-9, 6.236948418383755e-05),
+    ("steel_catenary", 1e-3, 40, 0.05, 1e-7, 0.0005196101485760039),
+    ("steel_catenary", 1e-4, 80, 0.015, 1e-8, 6.236948418383755e-05),
     ("docs/cases/lowe_langley_jumper.toml", 1e-2, 10, 0.1, 1e-7, 0.0015623089395584932),
-    ("docs/cases/lowe_langley_jumper.toml", 1e-3, 12, 0.04, 1e-8, 0.0006261512362611902),
-    ("docs/cases/lowe_langley_jumper.toml", 1e-4, 30, 0.0125, 1e-9, 6.156976288004713e-05),
+    ("docs/cases/lowe_langley_jumper.toml", 1e-3, 12, 0.04, 1e-7, 0.0006261512362611902),
+    ("docs/cases/lowe_langley_jumper.toml", 1e-4, 30, 0.0125, 1e-8, 6.156976288004713e-05),
 ];
 
 #[test]
