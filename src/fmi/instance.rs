@@ -608,7 +608,8 @@ impl Instance {
     /// step takes more than one internal step: inside the step the hang-off
     /// follows the path predicted from the inputs (`input_path`), whose
     /// acceleration misses the motion's at the start and at a jerk of the
-    /// motion for 16 communication steps, by more than the knob's targets
+    /// motion for 16 communication steps (10 at steps of 0.21 s and longer),
+    /// by more than the knob's targets
     /// allow, and the knob does not model it (docs/theory.md §16.6).
     fn warn_split(&mut self, h: f64, n: u64, dt: f64) {
         let Some(target) = self.scene.as_ref().map(|s| s.analysis.accuracy).filter(|a| *a > 0.0) else { return };
@@ -616,7 +617,8 @@ impl Instance {
         let msg = format!(
             "accuracy {target:e}: the communication step of {h} s takes {n} internal steps of {dt} s; between \
              communication points the hang-off follows a path predicted from the inputs, whose acceleration misses \
-             the motion's for 16 communication steps at the start and after a jerk of the motion (where a ramp \
+             the motion's for 16 communication steps (10 at steps of 0.21 s and longer) at the start and after a \
+             jerk of the motion (where a ramp \
              ends: 12 % of it at 0.05 s, 30-40 % at 0.2 s), an error the accuracy knob does not model: on the \
              catenary grown over one period the top tension then errs up to 1e-3 at 0.05-0.1 s and 1e-2 at 0.2 s \
              whatever the target (docs/theory.md §16.6). A communication step equal to the chosen time_step \

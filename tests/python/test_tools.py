@@ -303,7 +303,8 @@ def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
     assert all(o is not None for o in exact)
     assert max(o["oracle_ratio"] for o in exact) <= 2.1
     assert all(o["oracle"][2] <= t / F.SAFETY for o, t in zip(exact, [1e-2, 1e-3, 1e-4] * 8))
-    # the knob itself: within its targets, above 2 at 1e-4 and for the steel catenary at 1e-3
+    # the knob itself (since the Newton tolerance 1e-4 ε, docs/theory.md §16.3): above 2 at 1e-4 in every
+    # case, and at 1e-3 for the steel catenary (2.74) and two design-motion cases (2.20, 2.76)
     knob = {(c, t): F.oracle(rows, c, t)["knob_ratio"] for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)}
     assert knob[("steel_catenary", 1e-3)] > 2 and min(knob[(c, 1e-4)] for c in F.ORACLE_CASES) > 2
     loose = [F.oracle(rows, c, 1e-3, safety=1.5 * F.SAFETY) for c in F.ORACLE_CASES]

@@ -124,7 +124,10 @@ def consistent_weights(p: Predictor, band: float, degree: int, taps: int = CONSI
             rhs.append(0.0)
         c, d = np.array(rows), np.array(rhs)
         k = np.block([[2 * b, c.T], [c, np.zeros((len(d), len(d)))]])
-        out[r] = np.linalg.solve(k, np.concatenate([np.zeros(taps), d]))[:taps]
+        f = np.concatenate([np.zeros(taps), d])
+        x = np.linalg.solve(k, f)
+        x = x + np.linalg.solve(k, f - k @ x)  # one step of refinement, as input_path.rs
+        out[r] = x[:taps]
     return out
 
 

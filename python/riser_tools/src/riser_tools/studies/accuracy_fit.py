@@ -239,7 +239,7 @@ def oracle(rows: list, case: str, target: float, safety: float = SAFETY) -> dict
     cell reaching the target, and the cheapest grid or ladder run with at least 75 steps a period whose
     error is within target/safety (a model knowing every run's error, with the knob's margin); each with
     its work and error, and the ratios of the choice's and the oracle's work to the cell's. None where no
-    grid cell reaches the target."""
+    grid cell reaches the target, the knob has no run at it, or no run is within target/safety."""
     m = [r for r in rows if r["case"] == case and r["completed"] == "True"]
     ref = next(r for r in m if r["kind"] == "reference")
     runs = [r for r in m if r["kind"] in ("grid", "ladder")]
@@ -267,7 +267,7 @@ def oracle_main(runs: str) -> int:
         for target in (1e-2, 1e-3, 1e-4):
             o = oracle(rows, case, target)
             if o is None:
-                print(f"| {case} | {target:g} | none | | |")
+                print(f"| {case} | {target:g} | (no grid cell, knob run or run within ε/{SAFETY:g}) | | |")
                 continue
             c, k, b = o["cell"], o["knob"], o["oracle"]
             print(f"| {case} | {target:g} | {c[0]}, {c[1]:g} s ({c[2]:.1e}) | {k[0]}, {k[1]:g} s: {k[2]:.1e}, "
