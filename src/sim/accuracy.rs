@@ -88,7 +88,7 @@ pub const SAFETY: f64 = 1.5;
 /// [`TOLERANCE_RANGE`]): Newton's error is then far below the discretisation's
 /// (docs/theory.md §16.2: at 1e-4 ε the choices of the eight heave cases at
 /// 1e-3 and 1e-4 move by at most 3.1e-6, 3 % of the target, against those at
-/// 1e-5 ε, with 16–32 % fewer iterations; 1e-5 ε before).
+/// 1e-5 ε, with 16–33 % fewer iterations; 1e-5 ε before).
 pub const TOLERANCE_PER_TARGET: f64 = 1e-4;
 /// The Newton tolerances the choice keeps to.
 pub const TOLERANCE_RANGE: [f64; 2] = [1e-10, 1e-7];
