@@ -155,6 +155,25 @@ fn the_choice_is_printed_and_explicit_numerics_win() {
 }
 
 #[test]
+fn the_knob_s_newton_tolerance_moves_the_error_by_a_few_percent_of_the_target() {
+    // docs/theory.md 16.2-16.3, "The Newton tolerance": the knob's tolerance is 1e-4 of the target; on
+    // the case where it mattered most (the lazy wave heaved at 10 s, 1e-4: 80 elements at 0.0125 s),
+    // the window against the same numerics at 1e-5 of the target moves by 3.1e-6 of its max (its error
+    // against the reference 2.2e-6 -> 5.4e-6): within a tenth of the target, which the safety factor's
+    // margin (1 - 1/1.5) covers
+    let base = ["run", "lazy_wave", "--heave", "2.5,10", "--duration", "40", "--json", "--set", "accuracy=1e-4"];
+    let knob = run_json(&base);
+    assert_eq!(knob["n_elements"].as_u64(), Some(80));
+    let tight = run_json(&[&base[..], &["--set", "newton_tolerance=1e-9"]].concat());
+    let (a, b) = (&knob["steady"]["top_tension"], &tight["steady"]["top_tension"]);
+    let max = b[2].as_f64().unwrap();
+    let moved = (0..3).map(|i| (a[i].as_f64().unwrap() - b[i].as_f64().unwrap()).abs() / max).fold(0.0, f64::max);
+    eprintln!("the knob's tolerance moves the window by {moved:.1e} of its max (target 1e-4)");
+    assert!(moved > 0.0, "the tolerance should change something: {moved}");
+    assert!(moved <= 1e-5, "{moved}");
+}
+
+#[test]
 fn without_accuracy_nothing_changes() {
     let a = run_json(&["run", "lazy_wave", "--heave", "2.5,30", "--duration", "1", "--json"]);
     let b = run_json(&["run", "lazy_wave", "--heave", "2.5,30", "--duration", "1", "--json", "--set", "accuracy=0"]);
