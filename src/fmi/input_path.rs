@@ -609,11 +609,12 @@ impl InputHistory {
         let index = if uniform { DESIGNS.iter().position(|x| x.1 == design(h)).unwrap_or(2) } else { 2 };
         let d = DESIGNS[index].1;
         let n = (known + 1).min(d.taps);
-        if uniform && CONSISTENT[index].is_some_and(|(_, _, m)| known + 1 >= m) {
+        if let Some((_, _, m)) = CONSISTENT[index].filter(|&(_, _, m)| uniform && known + 1 >= m) {
             // a fixed-step master once the filters' window is full: the end value
             // of the fit, its slope and curvature those of the end values' sequence
+            // (zero weights beyond the window: only its m samples are read)
             let w = consistent_weights(index);
-            return std::array::from_fn(|c| (0..TAPS).map(|k| w[c][k] * value(k)).sum());
+            return std::array::from_fn(|c| (0..m).map(|k| w[c][k] * value(k)).sum());
         }
         if uniform && n == d.taps {
             // a fixed-step master once the window is full: the fit's fixed weights
