@@ -323,6 +323,57 @@ pub fn steps_per_period_warning(what: &str, period: f64, time_step: f64) -> Opti
     })
 }
 
+/// The relative unsteadiness of a steady window a periodic forcing of
+/// `period` s leaves (docs/theory.md §12.3): the largest difference of the
+/// extremes (min, max) of `samples` ((t s, y), in time order) over the
+/// window's first period [t0, t0 + period] and over its last [t1 − period,
+/// t1], over the largest |y| in the window. In a periodic steady state the
+/// two periods' extremes agree (to the output's sampling); what is left of
+/// the start (the ramp's, the current's jolt at t = 0 with `static_current`
+/// false) makes the first period's differ. None when the window is shorter
+/// than two periods or holds no samples.
+pub fn window_drift(samples: &[(f64, f64)], window: (f64, f64), period: f64) -> Option<f64> {
+    let (t0, t1) = window;
+    if !(period > 0.0 && t1 - t0 >= 2.0 * period * (1.0 - 1e-9)) {
+        return None;
+    }
+    let slack = 1e-9 * period.max(t1.abs());
+    let extremes = |a: f64, b: f64| {
+        samples
+            .iter()
+            .filter(|(t, y)| *t >= a - slack && *t <= b + slack && y.is_finite())
+            .fold(None, |m: Option<(f64, f64)>, &(_, y)| Some(m.map_or((y, y), |(lo, hi)| (lo.min(y), hi.max(y)))))
+    };
+    let (lo1, hi1) = extremes(t0, t0 + period)?;
+    let (lo2, hi2) = extremes(t1 - period, t1)?;
+    let scale = samples
+        .iter()
+        .filter(|(t, y)| *t >= t0 - slack && *t <= t1 + slack && y.is_finite())
+        .fold(0.0f64, |m, (_, y)| m.max(y.abs()));
+    (scale > 0.0).then(|| (lo1 - lo2).abs().max((hi1 - hi2).abs()) / scale)
+}
+
+/// The drift above which a run warns that its steady window is not steady
+/// (without `accuracy`; with it, the target): 1 % of the top tension.
+pub const UNSTEADY_WINDOW: f64 = 1e-2;
+
+/// The warning for a steady window whose first and last periods' top
+/// tension extremes differ by `drift` (of [`window_drift`]) more than
+/// `limit`.
+pub fn unsteady_window_warning(drift: f64, limit: f64, window: (f64, f64), period: f64) -> Option<String> {
+    (drift > limit).then(|| {
+        let (t0, t1) = window;
+        format!(
+            "the steady window is not steady at {limit:e}: the top tension's extremes over its first period \
+             ({t0} to {} s) and its last ({} to {t1} s) differ by {:.3} % of its max: what is left of the start's \
+             transients; start the window later (--window) or run longer (docs/theory.md 12.3)",
+            t0 + period,
+            t1 - period,
+            100.0 * drift
+        )
+    })
+}
+
 /// Whether the step's high-frequency dissipation (ρ∞ < 1) grows over three
 /// successive spans: `taken` the energy it took in each (J), `flux` the
 /// energy the hang-off and the water moved in each (J, the total variation
@@ -591,7 +642,29 @@ impl StressRange {
 
 #[cfg(test)]
 mod tests {
-    use super::{GrowthWatch, growing_dissipation_warning};
+    use super::{GrowthWatch, growing_dissipation_warning, unsteady_window_warning, window_drift};
+
+    /// (12.5) on synthetic series sampled 100 times a period of 10 s: a
+    /// steady sine 100 + 10 sin(ωt) drifts 0; with 5 e^{−t/10} added, over
+    /// [20, 40], the decay's fall between the periods' maxima (at 22.5 and
+    /// 32.5 s) over the max, 5 (e^{−2.25} − e^{−3.25}) / (110 + 5 e^{−2.25}),
+    /// to 1 % (the decay moves the maxima a little); a window shorter than two periods has none; the
+    /// warning is given above its limit only.
+    #[test]
+    fn the_window_s_drift_is_the_first_and_last_periods_extremes_apart() {
+        let w = 2.0 * std::f64::consts::PI / 10.0;
+        let t: Vec<f64> = (0..=4000).map(|k| k as f64 * 0.1).collect();
+        let steady: Vec<(f64, f64)> = t.iter().map(|&x| (x, 100.0 + 10.0 * (w * x).sin())).collect();
+        assert!(window_drift(&steady, (20.0, 40.0), 10.0).unwrap() < 1e-12);
+        let decaying: Vec<(f64, f64)> = steady.iter().map(|&(x, y)| (x, y + 5.0 * (-x / 10.0).exp())).collect();
+        let d = window_drift(&decaying, (20.0, 40.0), 10.0).unwrap();
+        let closed = 5.0 * ((-2.25f64).exp() - (-3.25f64).exp()) / (110.0 + 5.0 * (-2.25f64).exp());
+        assert!((d / closed - 1.0).abs() < 0.01, "{d:e} against {closed:e}");
+        assert!(window_drift(&decaying, (20.0, 39.0), 10.0).is_none());
+        assert!(unsteady_window_warning(d, 1e-2, (20.0, 40.0), 10.0).is_none());
+        let m = unsteady_window_warning(d, 1e-3, (20.0, 40.0), 10.0).unwrap();
+        assert!(m.contains("20 to 30 s") && m.contains("30 to 40 s"), "{m}");
+    }
 
     /// The detector on synthetic histories, a steady flux of 1 kJ/s: a
     /// dissipation growing like e^{t/30} warns; a start's transient

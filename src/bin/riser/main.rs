@@ -859,6 +859,18 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             whole_min_tension / 1e3
         ));
     }
+    // the window's steadiness: a motion of one period in still water
+    let periods: Vec<f64> = motions.all().into_iter().flatten().map(|m| m.1).collect();
+    let forcing_period = match (periods.first(), sea) {
+        (Some(&p), None) if periods.iter().all(|q| (q - p).abs() <= 1e-9 * p) => Some(p),
+        _ => None,
+    };
+    let tension: Vec<(f64, f64)> = series.iter().map(|o| (o.time, o.top_tension)).collect();
+    let drift = forcing_period.and_then(|p| riser::sim::design::window_drift(&tension, (w0, w1), p));
+    if let (Some(d), Some(p)) = (drift, forcing_period) {
+        let limit = choice.as_ref().map_or(riser::sim::design::UNSTEADY_WINDOW, |c| c.target);
+        warnings.extend(riser::sim::design::unsteady_window_warning(d, limit, (w0, w1), p));
+    }
     let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
     // over the steady window: a motion still growing (the ramps) takes a
     // growing share where the line snatches as it grows
@@ -920,6 +932,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 "max_curvature_s": envelope.is_set().then_some(envelope.max_curvature.1),
                 "hang_off_angle": angle.map(finite),
                 "touchdown_s": td_range.map(|t| t.map(finite)),
+                "drift": drift,
                 "warnings": warnings,
             },
             "statics": statics,
@@ -977,6 +990,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             kn(steady_tension[1]),
             kn(steady_tension[2])
         );
+        if let Some(d) = drift {
+            outln!(
+                "    steadiness               first and last periods' top tension extremes {:.4} % apart",
+                100.0 * d
+            );
+        }
         outln!("    hang-off angle           {:.2} / {:.2} / {:.2} deg", angle[0], angle[1], angle[2]);
         if envelope.is_set() {
             let e = &envelope;
