@@ -221,10 +221,12 @@ pub fn hermite_at_gauss(h: f64) -> HermiteAtGauss {
 
 /// Adds the consistent nodal fluid forces of a Hermite element of the rod
 /// to `f` (N) and, if asked, −∂F/∂c (the contribution to the tangent of a
-/// residual r = … − F) to `k`.
+/// residual r = … − F) to `k`. `current_scale` multiplies the current's
+/// speed (its start's ramp, docs/theory.md §5.11; 1: the current in full).
 #[allow(clippy::too_many_arguments)]
 pub fn element_fluid_force(
     fluid: &Fluid,
+    current_scale: f64,
     fields: FluidFields<'_>,
     shapes: &HermiteAtGauss,
     s0: f64,
@@ -234,7 +236,7 @@ pub fn element_fluid_force(
     k: Option<&mut [[M3; 4]; 4]>,
 ) {
     let shape = |g: usize| shapes[g];
-    interpolated_fluid_force(fluid, fields.c, fields.v, fields.a, fields.water, shape, s0, h, fac, f, k);
+    interpolated_fluid_force(fluid, current_scale, fields.c, fields.v, fields.a, fields.water, shape, s0, h, fac, f, k);
 }
 
 /// The same for a straight two-node segment of the cable (linear
@@ -243,6 +245,7 @@ pub fn element_fluid_force(
 #[allow(clippy::too_many_arguments)]
 pub fn segment_fluid_force(
     fluid: &Fluid,
+    current_scale: f64,
     x: &[V3; 2],
     v: &[V3; 2],
     a: &[V3; 2],
@@ -254,7 +257,7 @@ pub fn segment_fluid_force(
     k: Option<&mut [[M3; 2]; 2]>,
 ) {
     let shape = |g: usize| ([1.0 - GAUSS4.xi[g], GAUSS4.xi[g]], [-1.0 / l, 1.0 / l]);
-    interpolated_fluid_force(fluid, x, v, a, water, shape, s0, l, fac, f, k);
+    interpolated_fluid_force(fluid, current_scale, x, v, a, water, shape, s0, l, fac, f, k);
 }
 
 /// The fluid force alone (no derivatives) of an element from the fields at
@@ -267,6 +270,7 @@ pub fn segment_fluid_force(
 #[allow(clippy::too_many_arguments)]
 pub fn gauss_point_fluid_force<const K: usize>(
     fluid: &Fluid,
+    current_scale: f64,
     x: &[V3; 4],
     p: &[V3; 4],
     v: &[V3; 4],
@@ -284,7 +288,7 @@ pub fn gauss_point_fluid_force<const K: usize>(
     let w = water.unwrap_or(&WaterAtGauss::STILL);
     if let Some((kd, current)) = &fluid.drag {
         for g in 0..4 {
-            let (vc, _) = current.velocity(s0 + GAUSS4.xi[g] * h, x[g].z);
+            let vc = current.velocity(s0 + GAUSS4.xi[g] * h, x[g].z).0 * current_scale;
             force[g] = drag_force(kd, &(vc + w.velocity[g] - v[g]), &t[g]) * len[g];
         }
     }
@@ -324,6 +328,7 @@ pub fn gauss_point_fluid_force<const K: usize>(
 #[allow(clippy::too_many_arguments)]
 fn interpolated_fluid_force<const K: usize>(
     fluid: &Fluid,
+    current_scale: f64,
     c: &[V3; K],
     vel: &[V3; K],
     acc: &[V3; K],
@@ -347,7 +352,7 @@ fn interpolated_fluid_force<const K: usize>(
                 v[g] += vel[j] * n[j];
             }
         }
-        return gauss_point_fluid_force(fluid, &x, &p, &v, acc, water, &shapes, s0, h, f);
+        return gauss_point_fluid_force(fluid, current_scale, &x, &p, &v, acc, water, &shapes, s0, h, f);
     }
     let w = water.unwrap_or(&WaterAtGauss::STILL);
     for g in 0..4 {
@@ -376,6 +381,7 @@ fn interpolated_fluid_force<const K: usize>(
         let mut df_dp = M3::zeros();
         if let Some((kd, current)) = &fluid.drag {
             let (vc, dvc_dz) = current.velocity(s0 + xi * h, x.z);
+            let (vc, dvc_dz) = (vc * current_scale, dvc_dz * current_scale);
             let d = drag(kd, &(vc + w.velocity[g] - v), &t);
             force += d.force * len;
             df_dx += d.d_vrel * dvc_dz * V3::z().transpose() * len;

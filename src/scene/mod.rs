@@ -134,6 +134,10 @@ pub struct CurrentSpec {
     /// Horizontal flow direction (x, y); default +x.
     #[serde(default = "default_direction")]
     pub direction: [f64; 2],
+    /// Time over which the current grows from zero at the run's start, s
+    /// (unset or 0: in full from the start, the paper's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp: Option<f64>,
 }
 
 fn default_direction() -> [f64; 2] {
@@ -150,6 +154,7 @@ impl Default for CurrentSpec {
             depth: None,
             table: None,
             direction: default_direction(),
+            ramp: None,
         }
     }
 }

@@ -8,7 +8,7 @@ use super::{
 };
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 56] = [
+pub const PARAMETER_NAMES: [(&str, &str); 57] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -37,6 +37,7 @@ pub const PARAMETER_NAMES: [(&str, &str); 56] = [
     ("current_top", "m/s"),
     ("current_bottom", "m/s"),
     ("current_direction", "deg from +x"),
+    ("current_ramp", "s"),
     ("buoyancy_load", "N/m"),
     ("buoyancy_start", "m"),
     ("buoyancy_end", "m"),
@@ -240,6 +241,7 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
             let deg = num()?;
             s.current.direction = [deg.to_radians().cos(), deg.to_radians().sin()];
         }
+        "current_ramp" => s.current.ramp = Some(num()?),
         "buoyancy_load" => buoyancy_section(s, name)?.load = num()?,
         "buoyancy_start" => buoyancy_section(s, name)?.start = num()?,
         "buoyancy_end" => buoyancy_section(s, name)?.end = num()?,
@@ -330,6 +332,7 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "current_top" => end(true),
         "current_bottom" => end(false),
         "current_direction" => num(c.direction[1].atan2(c.direction[0]).to_degrees()),
+        "current_ramp" => num(c.ramp.unwrap_or(0.0)),
         "buoyancy_load" => section(|b| b.load),
         "buoyancy_start" => section(|b| b.start),
         "buoyancy_end" => section(|b| b.end),

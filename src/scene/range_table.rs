@@ -308,6 +308,15 @@ pub const RANGES: &[Range] = &[
         reason: "one turn either way from +x",
     },
     Range {
+        field: "current.ramp",
+        parameter: Some("current_ramp"),
+        unit: "s",
+        min: 0.0,
+        max: 3600.0,
+        reason: "the current grows from zero over this time from the run's start; 0 sets it in full at once (the \
+                 paper's), an hour is longer than any start needs",
+    },
+    Range {
         field: "buoyancy.load",
         parameter: Some("buoyancy_load"),
         unit: "N/m",

@@ -78,7 +78,7 @@ macro_rules! with_integrator {
 
 impl Engine {
     /// The integrator of the scene's model (`analysis.model`), in the
-    /// scene's waves (their ramp starting at t = 0: [`Engine::set_wave_ramp_start`]).
+    /// scene's waves (their ramp starting at t = 0: [`Engine::set_ramps_start`]).
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
         let sea = sea_of(scene, 0.0).map_err(|e| RiserError::Scene(SceneError::Invalid(vec![e])))?;
         let options = DynamicOptions {
@@ -114,11 +114,17 @@ impl Engine {
         }
     }
 
-    /// Starts the waves' ramp at `start` s (a run's start time).
-    pub fn set_wave_ramp_start(&mut self, start: f64) {
+    /// Starts the waves' ramp and the current's at `start` s (a run's start time).
+    pub fn set_ramps_start(&mut self, start: f64) {
         let sea = match self {
-            Engine::Rod(i) => i.model.sea.as_mut(),
-            Engine::Cable(i) => i.model.sea.as_mut(),
+            Engine::Rod(i) => {
+                i.model.current_ramp.start = start;
+                i.model.sea.as_mut()
+            }
+            Engine::Cable(i) => {
+                i.model.current_ramp.start = start;
+                i.model.sea.as_mut()
+            }
         };
         if let Some(sea) = sea {
             sea.set_ramp_start(start);
@@ -287,7 +293,7 @@ impl Simulation {
         if let Some(sea) = self.sea.as_mut() {
             sea.set_ramp_start(self.state.time);
         }
-        self.integrator.set_wave_ramp_start(self.state.time);
+        self.integrator.set_ramps_start(self.state.time);
         self.integrator.impose_hang_off(&mut self.state, motion);
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
     }

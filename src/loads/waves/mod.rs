@@ -66,6 +66,9 @@ pub struct Ramp {
 }
 
 impl Ramp {
+    /// No ramp: r = 1 from the start.
+    pub const NONE: Ramp = Ramp { start: 0.0, duration: 0.0 };
+
     /// The ramp r(t) and its rate ṙ(t), 1/s.
     pub fn at(&self, t: f64) -> (f64, f64) {
         if self.duration <= 0.0 {

@@ -222,6 +222,8 @@ pub struct CableModel {
     f_grav: Vec<f64>,
     /// The sea whose waves act on the line (None: still water; §13.6).
     pub sea: Option<crate::loads::waves::Sea>,
+    /// The current's growth from the run's start (docs/theory.md §5.11).
+    pub current_ramp: crate::loads::waves::Ramp,
 }
 
 /// The segment mass matrix ρ̄ l/12 [[5, 1], [1, 5]] (6.4), kg.
@@ -236,7 +238,16 @@ impl CableModel {
         let n = cable.n_el;
         let f_grav = nodal_vertical_load(&cable, &vertical);
         let mass = PerElement::uniform(segment_mass(mass_per_length, cable.l), n);
-        CableModel { cable, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav, sea: None }
+        CableModel {
+            cable,
+            mass,
+            vertical,
+            fluid: PerElement::uniform(fluid, n),
+            seabed: None,
+            f_grav,
+            sea: None,
+            current_ramp: crate::loads::waves::Ramp::NONE,
+        }
     }
 
     /// The same line on a uniform seabed.
@@ -263,7 +274,8 @@ impl CableModel {
         let mass = props.map(|p| segment_mass(p.mass_per_length, cable.l));
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
-        CableModel { cable, mass, vertical, fluid, seabed, f_grav, sea: None }
+        let current_ramp = crate::loads::current_ramp(scene);
+        CableModel { cable, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp }
     }
 
     /// Largest mass per length with the added mass, kg/m.

@@ -222,6 +222,7 @@ impl<'a> CableStatics<'a> {
                 let want = sys.is_some();
                 segment_fluid_force(
                     self.water.at(e),
+                    1.0,
                     &[x[e], x[e + 1]],
                     &zero,
                     &zero,

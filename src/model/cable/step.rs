@@ -22,6 +22,8 @@ use nalgebra::SMatrix;
 pub struct CableWorkspace {
     /// Global fluid force vector, N.
     fluid: Vec<f64>,
+    /// The current's ramp at the step's midpoint t_n + h/2 (1: in full; §5.11).
+    current_scale: f64,
     /// The waves' motion at the Gauss points, held over the step (None:
     /// still water), and the moving surface's work over the step, J (§13.6).
     water: Option<FrozenWater>,
@@ -64,6 +66,7 @@ impl StepEquations for CableModel {
         let lin = Linear::new(c.new_system()?, c.fixed_dofs());
         let ws = CableWorkspace {
             fluid: vec![0.0; c.n_dof()],
+            current_scale: 1.0,
             water: self.sea.as_ref().map(|sea| FrozenWater::new(sea, c.n_el)),
             surface_wave_work: 0.0,
             seabed: vec![0.0; if self.seabed.is_some() { c.n_dof() } else { 0 }],
@@ -124,6 +127,8 @@ impl StepEquations for CableModel {
         // angular momentum drifted 1.3e-10 in 1e4 steps at ρ∞ 0.5, against
         // 7.7e-11 and a bound of 1e-10: round-off, not looked into further)
         let [c1, c0, cm] = crate::model::extrapolation(order.min(2));
+        // the current's ramp at the midpoint, as the waves' (§5.11)
+        ws.current_scale = self.current_ramp.at(prev.time + 0.5 * h).0;
         let n = self.cable.n_el;
         for a in 0..=n {
             let fixed = (a == 0 && self.cable.ends_fixed[0]) || (a == n && self.cable.ends_fixed[1]);
@@ -241,6 +246,7 @@ impl StepEquations for CableModel {
                 let mut kf = [[M3::zeros(); 2]; 2];
                 segment_fluid_force(
                     fluid,
+                    ws.current_scale,
                     &xm,
                     &vm,
                     &acc,
@@ -441,6 +447,7 @@ impl CableModel {
             let mut ff = [V3::zeros(); 2];
             segment_fluid_force(
                 fluid,
+                self.current_ramp.at(s.time).0,
                 &[x[e], x[e + 1]],
                 &[s.vel[e], s.vel[e + 1]],
                 &[acc[0], acc[1]],

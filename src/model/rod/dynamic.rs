@@ -5,7 +5,7 @@ use super::mass::ElementMass;
 use super::statics::vertical_load_vector;
 use super::{Rod, of_properties};
 use crate::loads::seabed::{self, Seabed};
-use crate::loads::waves::Sea;
+use crate::loads::waves::{Ramp, Sea};
 use crate::loads::weight::VerticalLoad;
 use crate::loads::{self, fluid::Fluid};
 use crate::math::{M3, V3};
@@ -29,6 +29,9 @@ pub struct RodModel {
     f_grav: Vec<f64>,
     /// The sea whose waves act on the line (None: still water; §13.6).
     pub sea: Option<Sea>,
+    /// The current's growth from the run's start (duration 0: in full from
+    /// the start, the paper's; docs/theory.md §5.11).
+    pub current_ramp: Ramp,
 }
 
 impl RodModel {
@@ -38,7 +41,16 @@ impl RodModel {
         let n = rod.n_el;
         let mass = PerElement::uniform(ElementMass::new(mass_per_length, rotary, rod.h), n);
         let f_grav = vertical_load_vector(&rod, &vertical);
-        RodModel { rod, mass, vertical, fluid: PerElement::uniform(fluid, n), seabed: None, f_grav, sea: None }
+        RodModel {
+            rod,
+            mass,
+            vertical,
+            fluid: PerElement::uniform(fluid, n),
+            seabed: None,
+            f_grav,
+            sea: None,
+            current_ramp: Ramp::NONE,
+        }
     }
 
     /// The same line on a uniform seabed.
@@ -69,7 +81,8 @@ impl RodModel {
         let f_grav = vertical_load_vector(&rod, &vertical);
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
-        RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None }
+        let current_ramp = loads::current_ramp(scene);
+        RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp }
     }
 
     /// Sets the flex joint's static frame D_static (the line's end frame in

@@ -59,6 +59,7 @@ impl RodModel {
             let v = s.hermite_velocity(e);
             element_fluid_force(
                 fluid,
+                self.current_ramp.at(s.time).0,
                 FluidFields { c: &el.c, v: &v, a: acc, water: water.as_ref() },
                 &shapes,
                 rod.s_node(e),

@@ -30,6 +30,8 @@ use crate::model::{RodConfig, extrapolation};
 pub struct RodWorkspace {
     /// Global fluid force vector (centreline rows), N.
     fluid: Vec<f64>,
+    /// The current's ramp at the step's midpoint t_n + h/2 (1: in full; §5.11).
+    current_scale: f64,
     /// The waves' motion at the Gauss points, held over the step (None:
     /// still water), and the work of the moving surface on the line over
     /// the step at the last trial configuration, J (§13.6).
@@ -97,6 +99,7 @@ impl StepEquations for RodModel {
         let lin = Linear::new(rod.new_system()?, fixed.clone());
         let ws = RodWorkspace {
             fluid: vec![0.0; n],
+            current_scale: 1.0,
             water: self.sea.as_ref().map(|sea| FrozenWater::new(sea, rod.n_el)),
             surface_wave_work: 0.0,
             seabed: vec![0.0; if self.seabed.is_some() { n } else { 0 }],
@@ -236,6 +239,8 @@ impl StepEquations for RodModel {
                 trial.config.d[j] = cayley(&theta_pred) * d;
             }
         }
+        // the current's ramp at the midpoint, as the waves' (§5.11)
+        ws.current_scale = self.current_ramp.at(prev.time + 0.5 * h).0;
         if let (Some(sea), Some(water)) = (&self.sea, ws.water.as_mut()) {
             // the waves at the predicted midpoint's Gauss points at t_n + h/2 (§13.6)
             let sh = &ws.fluid_shapes;
@@ -398,6 +403,7 @@ impl StepEquations for RodModel {
                     kf = [[M3::zeros(); 4]; 4];
                     element_fluid_force(
                         fluid,
+                        buf.current_scale,
                         FluidFields { c: &elm.c, v: &vm, a: &acc, water },
                         &buf.fluid_shapes,
                         rod.s_node(e),
@@ -414,7 +420,7 @@ impl StepEquations for RodModel {
                     let p: [V3; NGP] = std::array::from_fn(|g| km.slope(g));
                     let v: [V3; NGP] = std::array::from_fn(|g| (k1.position(g) - kn.position(g)) * inv_h);
                     let (s0, sh) = (rod.s_node(e), &buf.fluid_shapes);
-                    gauss_point_fluid_force(fluid, &x, &p, &v, &acc, water, sh, s0, rod.h, &mut ff);
+                    gauss_point_fluid_force(fluid, buf.current_scale, &x, &p, &v, &acc, water, sh, s0, rod.h, &mut ff);
                 }
                 let gdof = [Rod::x_dof(e), Rod::xp_dof(e), Rod::x_dof(e + 1), Rod::xp_dof(e + 1)];
                 for k in 0..4 {
