@@ -135,7 +135,7 @@ pub struct CurrentSpec {
     #[serde(default = "default_direction")]
     pub direction: [f64; 2],
     /// Time over which the current grows from zero at the run's start, s
-    /// (unset or 0: in full from the start, the paper's).
+    /// (unset: [`DEFAULT_CURRENT_RAMP`]; 0: in full from the start, the paper's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ramp: Option<f64>,
 }
@@ -199,6 +199,12 @@ pub struct SeabedSpec {
     #[serde(default = "default_slip_velocity")]
     pub slip_velocity: f64,
 }
+
+/// The time over which the current grows from zero at a run's start when
+/// the scene does not say (`current_ramp`, s; docs/theory.md §5.11): long
+/// against the axial and bending periods the jolt of a current in full would
+/// ring, short against the windows (one period after the motion's ramp).
+pub const DEFAULT_CURRENT_RAMP: f64 = 10.0;
 
 /// MoorDyn's default kBot, Pa/m.
 pub const DEFAULT_SEABED_STIFFNESS: f64 = 3.0e6;

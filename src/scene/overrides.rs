@@ -332,7 +332,7 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "current_top" => end(true),
         "current_bottom" => end(false),
         "current_direction" => num(c.direction[1].atan2(c.direction[0]).to_degrees()),
-        "current_ramp" => num(c.ramp.unwrap_or(0.0)),
+        "current_ramp" => num(c.ramp.unwrap_or(super::DEFAULT_CURRENT_RAMP)),
         "buoyancy_load" => section(|b| b.load),
         "buoyancy_start" => section(|b| b.start),
         "buoyancy_end" => section(|b| b.end),

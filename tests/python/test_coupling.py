@@ -214,16 +214,20 @@ def test_at_0_03_s_the_vessel_loop_needs_the_force_low_passed_and_then_gives_the
     # line's axial resonance (4.2 Hz: θ = 2π f h = 0.25 π, where the 16-point predictor's gain peaks at
     # 4.6) to ±35 kN on 140 kN. The body holding the force low-passed at 1 Hz (two first-order stages,
     # Vessel.py's force_cutoff, the remedy of §7.3 for the light buoy) stays bounded, and its window is
-    # within 1 % of the one-way run with the same vessel motion (0.025 s), as at the other steps.
+    # within 1 % of the one-way run with the same vessel motion (0.025 s), as at the other steps. The
+    # current in full from t = 0 (current_ramp 0), whose jolt seeds the resonance: grown over its
+    # default 10 s the held loop grows later (its range 1.07 times the one-way's over 30-50 s, 62 kN
+    # over 130-150 s, measured).
     from riser_tools.coupling_loop import fixed_step, reference, window
-    two = fixed_step(fmu_path, vessel_fmu, 0.03, 50.0, vessel={"force_cutoff": 1.0})
-    ref = reference(fmu_path, two, h_ref=0.025)
+    jolt = {"current_ramp": 0.0}
+    two = fixed_step(fmu_path, vessel_fmu, 0.03, 50.0, vessel={"force_cutoff": 1.0}, riser=jolt)
+    ref = reference(fmu_path, two, h_ref=0.025, riser=jolt)
     a, b = window(two, 30.0), window(ref, 30.0)
     print(f"0.03 s, force low-passed at 1 Hz: two-way {a} one-way {b}")
     assert np.all(np.abs(a - b) <= 0.01 * b), (a, b)
     assert 0.2 < np.ptp(two["heave"][two["t"] >= 30.0]) / 2 < 0.4
     # the force held as it is: the resonance grows beyond the 1 % (the limit recorded, not wanted)
-    held = fixed_step(fmu_path, vessel_fmu, 0.03, 50.0)
+    held = fixed_step(fmu_path, vessel_fmu, 0.03, 50.0, riser=jolt)
     c = window(held, 30.0)
     print(f"0.03 s, force held: two-way {c}")
     assert np.ptp(c[:2]) > 5.0 * np.ptp(b[:2]), (c, b)

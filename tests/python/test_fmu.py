@@ -399,6 +399,8 @@ def run_heave_child(fmu_path, unzipped, cases):
 
 def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):
     """docs/theory.md §5.10: the lazy wave heaved 2.5 m / 30 s (grown over a period) in its current,
+    in full from t = 0 (current_ramp 0: its jolt seeds the oscillation; grown over the default 10 s
+    nothing grows in 120 s at dt 0.00625 s, measured with `riser run`),
     160 elements at dt 0.00625 s with the default rho_infinity 0.8, grows a high-frequency oscillation
     that the velocity filter feeds; the FMU's log says so once in 180 s, at 120 s (three spans of 30 s
     after the first), naming the remedies. With rho_infinity 1 the oscillation decays and the log is
@@ -407,7 +409,8 @@ def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, un
     errors (5 % of the motion's) fed it; since, at 0.1 s its window (60 to 120 s) is within 4e-5 of the
     study's converged one and nothing grows for 240 s (docs/theory.md §5.10)."""
     lazy = {"scene": "lazy_wave", "integers": {"n_elements": 160}, "period": 30.0, "duration": 180.0, "h": 0.025}
-    cases = [dict(lazy, reals={"time_step": 0.00625}), dict(lazy, reals={"time_step": 0.00625, "rho_infinity": 1.0})]
+    jolt = {"time_step": 0.00625, "current_ramp": 0.0}
+    cases = [dict(lazy, reals=jolt), dict(lazy, reals={**jolt, "rho_infinity": 1.0})]
     logs = [log for log, _ in run_heave_child(fmu_path, unzipped, cases)]
     message = "a high-frequency oscillation grows through the run"
     assert logs[0].count(message) == 1, logs[0]
@@ -469,14 +472,15 @@ def test_long_communication_steps_split_into_internal_steps_follow_the_prescribe
 
 
 def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communication_step(fmu_path, unzipped):
-    """docs/theory.md §16.6: with `accuracy` 1e-3 (the catenary: 10 elements, dt 0.05 s, for the
-    design motion) and the master giving the heave (2.5 m / 10 s grown over a period) at a
+    """docs/theory.md §16.6: with `accuracy` 1e-3 (the catenary: 10 elements, dt 0.075 s, for the
+    design motion; 0.05 s before the step term's order 2, §16.7) and the master giving the heave (2.5 m / 10 s grown over a period) at a
     communication step equal to the chosen time step, the top tension meets the target against the
     study's converged reference (docs/accuracy_runs.csv, catenary_T10: the window 20 to 40 s, (16.1)
-    with the time mean); at 0.2 s, four internal steps a communication step, the path predicted
+    with the time mean); at 0.2 s, three internal steps a communication step, the path predicted
     between the communication points misses it (its transients at the start and where the ramp ends:
-    3.2e-3, 7.1e-3 before the path's slope and curvature of (7.3a)), and the log says so, once.
-    Silent at the chosen step, and without `accuracy` (the same numerics pinned: 10 elements, 0.05 s,
+    8.2e-3 measured, 5.9e-4 at the chosen step; 3.2e-3 with four steps of 0.05 s before, 7.1e-3 before
+    the path's slope and curvature of (7.3a)), and the log says so, once.
+    Silent at the chosen step, and without `accuracy` (the same numerics pinned: 10 elements, 0.075 s,
     the Newton tolerance 1e-7)."""
     import csv
     from pathlib import Path
@@ -485,8 +489,8 @@ def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communicat
     ref_row = next(r for r in csv.DictReader(open(runs)) if r["case"] == "catenary_T10" and r["kind"] == "reference")
     want = [float(ref_row[k]) for k in ("tt_min", "tt_mean", "tt_max")]
     heave = {"scene": "catenary", "period": 10.0, "duration": 40.0}
-    cases = [dict(heave, h=0.05, reals={"accuracy": 1e-3}), dict(heave, h=0.2, reals={"accuracy": 1e-3}),
-             dict(heave, h=0.2, reals={"time_step": 0.05, "newton_tolerance": 1e-7}, integers={"n_elements": 10})]
+    cases = [dict(heave, h=0.075, reals={"accuracy": 1e-3}), dict(heave, h=0.2, reals={"accuracy": 1e-3}),
+             dict(heave, h=0.2, reals={"time_step": 0.075, "newton_tolerance": 1e-7}, integers={"n_elements": 10})]
     message = "an error the accuracy knob does not model"
     errors, logs = [], []
     for log, series in run_heave_child(fmu_path, unzipped, cases):
@@ -496,7 +500,8 @@ def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communicat
         errors.append(max(abs(a - b) for a, b in zip(got, want)) / want[2])
         logs.append(log)
     assert message not in logs[0], logs[0]
-    assert logs[1].count(message) == 1 and "0.2 s takes 4 internal steps of 0.05 s" in logs[1], logs[1]
+    assert logs[1].count(message) == 1 and "0.2 s takes 3 internal steps of 0.075 s" in logs[1], logs[1]
     assert message not in logs[2], logs[2]
     assert errors[0] <= 1e-3 < errors[1], errors
     assert errors[2] == pytest.approx(errors[1], rel=1e-9), errors
+    print("errors at the chosen step, at 0.2 s, pinned at 0.2 s:", errors)

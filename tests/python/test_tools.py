@@ -227,11 +227,12 @@ def test_a_step_form_that_generates_the_points_has_spread_one():
 
 
 def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin):
-    """docs/theory.md 16.3, "The step term's form": over the committed runs (the window's mean a
-    time mean), (A/A0)(ω Δt)^{3/2}'s constant spreads 5.45-fold over the five calibration cases
-    (3.1 with the sampled mean, whose bias it partly fitted); the hang-off's acceleration, the
-    line's rigid-body inertia, the drag and the quasi-static swing each spread it 7.4- to 124-fold
-    at the same exponent."""
+    """docs/theory.md 16.3, "The step term's form", and §16.7: over the committed grid runs (the current
+    grown over current_ramp), the hang-off's acceleration A ω²/g brings the five calibration cases'
+    step constants within 1.82 of each other at c = 1 (2.43 at c = 2), every other scale within no
+    less than 4; A/A0, the knob's, spreads 9.55-fold at c = 3/2. With the current's jolt (before
+    §16.7) A/A0 spread least, 5.45-fold, the acceleration 7.4-fold: the jolt's ringing, which the step
+    resolved worst, was on the two lines with a current."""
     from riser_tools.studies import accuracy_fit as F
 
     rows = list(F.csv.DictReader(open(F.A.Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv")))
@@ -239,10 +240,13 @@ def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin
     for case in F.STEP_CASES:
         q = F.step_scales(riser_bin, case)
         cases[case] = (q, F.step_points(rows, case, q))
-    spreads = {name: F.spread(F.step_envelopes(cases, f, 1.5)) for name, (_, f) in F.STEP_FORMS.items()}
-    assert spreads["amplitude"] == pytest.approx(5.45, abs=0.01)
-    assert min(spreads, key=spreads.get) == "amplitude"
-    assert all(v > 7.0 for k, v in spreads.items() if k != "amplitude"), spreads
+    spreads = {(name, c): F.spread(F.step_envelopes(cases, f, c))
+               for name, (_, f) in F.STEP_FORMS.items() for c in (1.0, 1.25, 1.5, 2.0)}
+    assert spreads[("amplitude", 1.5)] == pytest.approx(9.55, abs=0.01)
+    assert min(spreads, key=spreads.get) == ("acceleration", 1.0)
+    assert spreads[("acceleration", 1.0)] == pytest.approx(1.82, abs=0.01)
+    assert spreads[("acceleration", 2.0)] == pytest.approx(2.43, abs=0.01)
+    assert all(v > 4.0 for (name, _), v in spreads.items() if name != "acceleration"), spreads
 
 
 def test_the_ladder_runs_every_knob_step_with_75_steps_a_period(monkeypatch):
@@ -281,19 +285,21 @@ def test_the_fit_tool_keeps_the_knob_s_constants():
 
     assert (F.C_K, F.C_T, F.C_D) == (const("C_CURVATURE"), const("C_TIME"), const("C_DYNAMIC_MESH"))
     assert (F.C_K2, F.C_C) == (const("C_CONTACT2"), const("C_CONTACT"))
-    assert F.CONSTANTS == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR",
-                                                   "C_CURRENT_RINGING"))
+    assert F.CONSTANTS[:4] == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR"))
+    # the step term's order (16.2): (ω Δt)² in time_error, and no current's ringing E_c (§16.7)
+    assert F.STEP_ORDER == 2.0 and "(s.omega * dt).powi(2)" in text
+    assert F.CONSTANTS[4] == 0.0 and "C_CURRENT_RINGING" not in text
 
 
 def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
     """docs/theory.md §16.3, "What a perfect model would cost", on the committed runs
     (docs/accuracy_runs.csv): a model that knew every grid and ladder run's error and kept the knob's
-    safety factor (1.5) would choose, at 1e-2, 1e-3 and 1e-4 in all eight heave cases, within 2.06
+    safety factor (1.5) would choose, at 1e-2, 1e-3 and 1e-4 in all eight heave cases, within 2.03
     times the work of the cheapest grid cell reaching the target (the aim: 2), and never above its
     target over 1.5; one that over-predicts by up to 1.5 times more costs 2.02 at 1e-3 on the built-in
-    scenes and 3.5 on the design motion, and no run of the design motion on one line is within 1e-4
-    over 2.25 (the references' floor): the aim needs a model within about 1.5 times of every run's
-    error, where the a-priori step terms tried spread 5.45 times across the lines."""
+    scenes and 2.62 on the design motion: the aim needs a model within about 1.5 times of every run's
+    error, where the a-priori step terms tried spread at least 5.5 times across the lines. (With the
+    current's jolt, before §16.7: 2.06, 3.5, and one line with no run within 1e-4 over 2.25.)"""
     import csv
 
     from riser_tools.studies import accuracy_fit as F
@@ -303,21 +309,24 @@ def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
     assert all(o is not None for o in exact)
     assert max(o["oracle_ratio"] for o in exact) <= 2.1
     assert all(o["oracle"][2] <= t / F.SAFETY for o, t in zip(exact, [1e-2, 1e-3, 1e-4] * 8))
-    # the knob itself (since the Newton tolerance 1e-4 ε, docs/theory.md §16.3): above 2 at 1e-4 in every
-    # case, and at 1e-3 for the steel catenary (2.74) and two design-motion cases (2.20, 2.76)
+    # the knob itself (docs/theory.md §16.7): above 2 at 1e-3 on the steel catenary (2.53) and the lazy
+    # wave at 10 s (2.76), at 1e-4 on the steel catenary (4.08), the jumper (2.25) and at 10 s the lazy
+    # wave (2.44) and the jumper (2.27); within 2 at 1e-4 on the catenary (1.87), the lazy wave (1.90)
+    # and at 10 s the catenary (1.79) and the steel catenary (1.95), all above 2 before §16.7
     knob = {(c, t): F.oracle(rows, c, t)["knob_ratio"] for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)}
-    assert knob[("steel_catenary", 1e-3)] > 2 and min(knob[(c, 1e-4)] for c in F.ORACLE_CASES) > 2
+    assert knob[("steel_catenary", 1e-3)] > 2 and knob[("steel_catenary", 1e-4)] > 2
+    assert max(knob[(c, 1e-4)] for c in ("catenary", "lazy_wave", "catenary_T10", "steel_catenary_T10")) < 2
     loose = [F.oracle(rows, c, 1e-3, safety=1.5 * F.SAFETY) for c in F.ORACLE_CASES]
-    assert max(o["oracle_ratio"] for o in loose[:4]) > 2.0 and max(o["oracle_ratio"] for o in loose[4:]) > 3.0
-    assert any(F.oracle(rows, c, 1e-4, safety=1.5 * F.SAFETY) is None for c in F.ORACLE_CASES[4:])
+    assert max(o["oracle_ratio"] for o in loose[:4]) > 2.0 and max(o["oracle_ratio"] for o in loose[4:]) > 2.5
 
 
 def test_the_like_for_like_cost_ratio_runs_the_grid_at_the_knob_s_tolerance():
     """docs/accuracy.md's last column (docs/theory.md §16.3, "The Newton tolerance"): the grid's cells
     run again at the knob's Newton tolerance where it is not the grid's 1e-8 (kind grid_tol, committed
     in docs/accuracy_runs.csv). The steel catenary at 1e-3: the knob at 1e-7 against its cheapest cell,
-    20 elements at 0.2 s, 3.41 (2.74 against the same cell at 1e-8); the catenary at 10 s at 1e-3: 10
-    elements at 0.2 s reach it at 1e-8 but not at 1e-7, so the next cell counts (1.48)."""
+    20 elements at 0.2 s, 3.15 (2.53 against the same cell at 1e-8); the catenary at 10 s at 1e-3: 10
+    elements at 0.2 s, 1.86 (with the current's jolt, before docs/theory.md §16.7, they reached it at
+    1e-8 but not at 1e-7, and the next cell counted)."""
     import csv
 
     from riser_tools.studies import accuracy as A
@@ -335,9 +344,9 @@ def test_the_like_for_like_cost_ratio_runs_the_grid_at_the_knob_s_tolerance():
         return cell, A.work(knob) / A.work(cell)
 
     cell, r = ratio("steel_catenary", 1e-3)
-    assert (cell["n_elements"], float(cell["time_step"])) == ("20", 0.2) and abs(r - 3.41) < 0.01, (cell, r)
+    assert (cell["n_elements"], float(cell["time_step"])) == ("20", 0.2) and abs(r - 3.15) < 0.01, (cell, r)
     cell, r = ratio("catenary_T10", 1e-3)
-    assert (cell["n_elements"], float(cell["time_step"])) == ("10", 0.1) and abs(r - 1.48) < 0.01, (cell, r)
+    assert (cell["n_elements"], float(cell["time_step"])) == ("10", 0.2) and abs(r - 1.86) < 0.01, (cell, r)
 
 
 def test_the_window_time_mean_is_over_exactly_the_window():

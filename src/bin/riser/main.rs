@@ -213,7 +213,8 @@ struct RunCli {
     #[arg(long, value_name = "T")]
     heave_until: Option<f64>,
     /// Grow the amplitudes smoothly over this time (s), ½(1 − cos(πt/ramp)); default one period
-    /// of the slowest motion. --ramp 0 is the paper's abrupt start (a velocity jump at t = 0).
+    /// of the slowest motion. --ramp 0 is the paper's abrupt start (a velocity jump at t = 0), the
+    /// current in full from t = 0 too unless current_ramp is set (default: it grows over 10 s).
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     ramp: Option<f64>,
     /// Simulated time, s.
@@ -705,7 +706,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     {
         return Err(format!("--window {t0},{t1} must lie within the run, 0 to {duration} s (--duration)"));
     }
-    let scene = load(scene, set).map_err(|e| e.to_string())?;
+    let mut scene = load(scene, set).map_err(|e| e.to_string())?;
+    // `--ramp 0` is the paper's abrupt start: the current too, unless the
+    // scene or --set give its ramp (theory §5.11)
+    if ramp == Some(0.0) && scene.current.ramp.is_none() {
+        scene.current.ramp = Some(0.0);
+    }
     // the accuracy knob: the numerics for the motion asked for (issue 28)
     // (a run without one: the hang-off held still, unless the scene's
     // accuracy_motion_* give a design motion)
@@ -969,9 +975,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         );
         choice_text(&choice);
         if !riser::loads::current(&scene).is_none() && !scene.analysis.static_current {
+            let grows = match riser::loads::current_ramp(&scene).duration {
+                0.0 => "acts in full from t = 0 (current_ramp = 0, the paper's)".to_string(),
+                r => format!("grows over its first {r} s (current_ramp)"),
+            };
             outln!(
-                "  the current acts from t = 0; the static state is without it (static_current = false, the \
-                 paper's): the mean tension moves by the current's drag"
+                "  the current {grows}; the static state is without it (static_current = false): the mean tension \
+                 moves by the current's drag"
             );
         }
         outln!("  static top tension   {:10.3} kN", kn(sim.statics.top_tension));

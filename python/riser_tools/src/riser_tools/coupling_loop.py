@@ -118,13 +118,15 @@ def hermite_motion(t, times, x, v):
     return pos, vel
 
 
-def reference(fmu_path: str, two: dict, h_ref: float = 0.01, duration: float | None = None):
-    """One-way at a fine step with the motion of a two-way run (its samples Hermite-interpolated)."""
+def reference(fmu_path: str, two: dict, h_ref: float = 0.01, duration: float | None = None,
+              riser: dict | None = None):
+    """One-way at a fine step with the motion of a two-way run (its samples Hermite-interpolated);
+    `riser`: riser's parameters (real) beside the time step."""
     duration = two["t"][-1] if duration is None else duration
     fine = np.arange(0.0, duration + 1e-9, h_ref)
     x, v = hermite_motion(fine, two["t"], two["heave"], two["heave_velocity"])
     return two_way(fmu_path, VESSEL, VESSEL_WAVE, h_ref, duration, motion=(fine, x, v),
-                   start_values={"time_step": h_ref})
+                   start_values={"time_step": h_ref, **(riser or {})})
 
 
 def build_vessel_fmu(dest, name: str = "Vessel") -> str:
@@ -181,14 +183,14 @@ def ecco(riser_fmu: str, vessel_fmu: str, duration: float, **params):
 
 
 def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vessel: dict | None = None,
-               inputs: tuple = ("heave", "heave_velocity")):
+               inputs: tuple = ("heave", "heave_velocity"), riser: dict | None = None):
     """libcosim's fixed-step algorithm (Jacobi) on riser and the vessel FMU: vessel.heave and
     heave_velocity (those of `inputs`) → riser's of the same names (`auto`: the displacement drives),
     riser.top_force_z → vessel.force, and riser.top_force_z_mean → vessel.force_mean where both
     FMUs have them; `vessel` sets the vessel's parameters (mass, damping, stiffness, wave_force,
     wave_period, ramp, and how it holds riser's force: force_hold, line_mass, force_cutoff,
-    force_filter_order). Returns t, heave, heave_velocity, top_tension at the
-    communication points after t = 0."""
+    force_filter_order); `riser` riser's real parameters beside its time step. Returns t, heave,
+    heave_velocity, top_tension at the communication points after t = 0."""
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimObserver import CosimObserver
@@ -201,6 +203,8 @@ def fixed_step(riser_fmu: str, vessel_fmu: str, h: float, duration: float, vesse
     rr = {x.name.decode(): x.reference for x in ex.slave_variables(r)}
     vr = {x.name.decode(): x.reference for x in ex.slave_variables(v)}
     ex.real_initial_value(r, rr["time_step"], min(0.05, h))
+    for k, x in (riser or {}).items():
+        ex.real_initial_value(r, rr[k], float(x))
     for k, x in (vessel or {}).items():
         if k in ("force_hold", "force_filter_order"):  # Vessel.py's Integer parameter (how riser's force is held)
             ex.integer_initial_value(v, vr[k], int(x))

@@ -11,7 +11,8 @@ Kelvin–Voigt structural damping η = 2 ms (MoorDyn BA = η·EA), 100 s.
 Both codes start from the static state *without* the current (MoorDyn-C
 computes its initial condition before it sets up the water kinematics, and
 riser's default `static_current = false` does the same), and the current
-acts from t = 0 in both.
+acts in full from t = 0 in both (riser's `current_ramp = 0`: by default it
+grows over 10 s, docs/theory.md §5.11).
 
 What it measures (top tension = magnitude of the force at the hang-off):
 1. Agreement of the two converged runs over t in [40, 100] s.
@@ -115,7 +116,7 @@ def window_stats(t, tension):
 def riser_run(bin_, out_dir, n, dt, tol=None, repeats=1, model="rod"):
     """`riser run catenary` with the line `model` (rod or cable): the time series and the
     median solve time."""
-    sets = {"model": model, "n_elements": n, "time_step": dt, "structural_damping": ETA}
+    sets = {"model": model, "n_elements": n, "time_step": dt, "structural_damping": ETA, "current_ramp": 0}
     if tol is not None:
         sets["newton_tolerance"] = tol
     r = cli.run(bin_, "catenary", sets, MOTION, DURATION, out_dir, repeats=repeats, cheap=CHEAP)
@@ -518,8 +519,9 @@ class Study(PeerStudy):
           "sets up the water kinematics: its log prints *Water kinematics for IC gen: No Waves or "
           "Currents* and only then reads `current_profile.txt` *for runtime*. Its static state "
           "therefore excludes the current, as riser's does by default (`static_current = false`, the "
-          "paper). Both runs start from the still-water static state and the current acts from t = 0; "
-          "`static_current` is left at its default. (The start transient has died out long before "
+          "paper). Both runs start from the still-water static state and the current acts in full "
+          "from t = 0 (riser's `current_ramp = 0`); `static_current` is left at its default. (The "
+          "start transient has died out long before "
           f"the comparison window: at {ic_chk['n']} segments, a MoorDyn run from its default "
           f"stationary IC solver (T0 {ic_chk['T0_stationary'] / 1e3:.3f} kN) and one from the "
           f"dynamic relaxation used here (T0 {ic_chk['T0_relaxation'] / 1e3:.3f} kN) differ by "
