@@ -420,11 +420,11 @@ def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, un
 
 def test_split_communication_steps_keep_the_steel_catenary_within_the_knob_s_target(fmu_path, unzipped):
     """docs/theory.md §16.6: the steel catenary at `accuracy` 1e-3 (40 elements, dt 0.05 s) and 1e-4
-    (80 elements, dt 0.015 s) for the design motion, the master giving the heave (2.5 m / 10 s grown
-    over a period) at communication steps of 0.2 s (four internal steps) and 0.1 s (seven): the top
-    tension meets the target against the study's converged reference (steel_catenary_T10, the window
-    20 to 40 s, (16.1)): measured 2.1e-4 and 5.3e-5 (2.2e-4 with the Newton tolerance of before, 1e-5
-    of the target). Before the path's end slope and curvature were
+    (80 elements, dt 0.02 s since §16.7; 0.015 s before) for the design motion, the master giving the
+    heave (2.5 m / 10 s grown over a period) at communication steps of 0.2 s (four internal steps) and
+    0.1 s (five): the top tension meets the target against the study's converged reference
+    (steel_catenary_T10, the window 20 to 40 s, (16.1)): measured 2.1e-4 and 2.7e-5 (5.3e-5 at 0.015 s
+    before §16.7; 2.2e-4 with the Newton tolerance of before, 1e-5 of the target). Before the path's end slope and curvature were
     the end values' sequence's, (7.3a), its interior acceleration (39 % and 5 % of the motion's at
     0.2 and 0.1 s) made them 5.9e-3 and 5.2e-4."""
     import csv

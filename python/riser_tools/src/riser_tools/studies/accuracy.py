@@ -71,7 +71,8 @@ WAVE_CASES = {
     "jumper_airy": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
     "jumper_airy_heave": (JUMPER, 2.5, 10.0, [10, 20, 40, 80, 160], AIRY_JUMPER, 40.0, (20.0, 40.0)),
     "jumper_jonswap": (JUMPER, 0.0, 10.0, [10, 20, 40, 80, 160], JONSWAP, 220.0, WINDOW_IRREGULAR),
-    # still water, no motion (docs/theory.md §16.2, the floor E_s F_c): what the window from 20 to 40 s holds of
+    # still water, no motion (docs/theory.md §16.7; with the current in full from t = 0, the floor E_s F_c of
+    # §16.2): what the window from 20 to 40 s holds of
     # the current's start, which `riser run` without a motion chooses for
     "catenary_still": ("catenary", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
     "lazy_wave_still": ("lazy_wave", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
@@ -336,9 +337,10 @@ def write_doc(rows, docs, binary):
              "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for no "
              "hang-off motion, as `riser run` without a motion chooses (`riser statics` and the FMU choose for the "
              "design motion, 2.5 m at 10 s unless accuracy_motion_amplitude and accuracy_motion_period give "
-             "another). catenary_still and lazy_wave_still: still water, no motion, the window 20 to 40 s, what "
-             "is left of the current's start (the floor E_s F_c of docs/theory.md §16.2); the model covers every "
-             "step there. catenary_A10 (10 m at "
+             "another). catenary_still and lazy_wave_still: still water, no motion, the window 20 to 40 s: with "
+             "the current grown over its first 10 s (current_ramp) the mesh's static error alone (docs/theory.md "
+             "§16.7; with the current in full from t = 0 the window held what was left of its jolt, the floor "
+             "E_s F_c of §16.2); the model covers every step there. catenary_A10 (10 m at "
              "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
              "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. "
              "lazy_wave_T10, steel_catenary_T10 and lowe_langley_jumper_T10: the design motion (2.5 m at 10 s, what "
