@@ -2,13 +2,14 @@
 //! of the top tension the user accepts, the numerics that reach it at the
 //! least cost by riser's own error model,
 //!
-//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_d (A ω²/g) (h κ)³ + C_t (A/A₀) (ω Δt)^{3/2},
+//!   e(h, Δt) = C_κ (h κ)⁴ + min(C_c2 (h/λ)², C_c (h/λ)⁴) + C_d (A ω²/g) (h κ)³ + C_t (A ω) (ω Δt)²,
 //!
 //! h = L/n the element length, κ the largest curvature of the static line
 //! (the sharpest bend the elements must follow: a sag or hog bend), λ =
 //! √(EI/T) the bending length at the static touchdown (the seabed term, only
 //! where the line rests on the seabed), ω = 2π/T and A the period and
-//! amplitude of the hang-off's motion, A₀ = 10 m, g gravity: C_d (A ω²/g)
+//! amplitude of the hang-off's motion (A ω its velocity amplitude, the step
+//! term's scale since §16.7), g gravity: C_d (A ω²/g)
 //! (h κ)³ is the mesh's error of the line's response to the motion (the
 //! hang-off's acceleration drives the bend, which the elements follow; the
 //! long steps' dissipation hides it, the short ones let it through), which
@@ -22,16 +23,16 @@
 //!
 //! In waves (docs/theory.md §16.4) the error gains the sea's own terms,
 //!
-//!   e_w(h, Δt) = S [C_wt (ω_w Δt)^{3/2} + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + (in a regular wave) E_c F_c,
+//!   e_w(h, Δt) = S [C_wt (ω_w Δt)^{3/2} + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w,
 //!
 //! ω_w = √(m₂/m₀) = 2π/T_z the sea's mean frequency (a regular wave's 2π/T),
 //! k_w its variance-weighted mean wave number (the length over which the wave
 //! force varies along the line, which the mesh must follow), S the amplitude
 //! of the sea's Morison load on the static line over its top tension (how
 //! strongly the waves act on this line's tension), E_w the floor the study
-//! reaches in waves, F_c the current's drag over the top tension (the
-//! current's start rang the line, which a regular wave's short window
-//! caught, until the current grew over `current_ramp`); without waves
+//! reaches in waves (a term E_c F_c of the current's drag F_c over the top
+//! tension, the current's start ringing the line in a regular wave's short
+//! window, went when the current grew over `current_ramp`); without waves
 //! the choice is the still-water model's, bit for bit.
 //!
 //! The motion chosen for (docs/theory.md §16.5): a run's own; without one
@@ -83,14 +84,15 @@ pub const C_CONTACT2: f64 = 1.0e-3;
 /// the current's jolt, by the lazy wave at 10 s, 40 elements at 0.02 s
 /// (2.9e-4, 5.5e-5 without the jolt) too; 0.05 before that.
 pub const C_DYNAMIC_MESH: f64 = 0.03;
-/// The temporal constant C_t of C_t (A/A₀) (ω Δt)², fitted with
+/// The temporal constant C_t of C_t (A ω) (ω Δt)², s/m: the hang-off's
+/// velocity amplitude A ω times the square of the step's phase, fitted with
 /// [`C_DYNAMIC_MESH`], [`C_CONTACT`] and [`C_CONTACT2`] (docs/theory.md
 /// §16.7): the order 2 of the scheme, which the step's errors follow once
-/// the current's jolt no longer rings the window; 0.21 with the order 3/2
-/// before, 0.3 before that.
-pub const C_TIME: f64 = 0.84;
-/// The amplitude A₀ of the temporal term, m (the study's largest).
-pub const AMPLITUDE_SCALE: f64 = 10.0;
+/// the current's jolt no longer rings the window, and the velocity, of the
+/// a-priori scales the one of least cost (A/A₀ and A ω²/g bracket it). Set
+/// by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4; 0.1334 needed).
+/// Before: C_t (A/A₀)(ω Δt)^{3/2} with C_t 0.21 (A₀ = 10 m), 0.3 before that.
+pub const C_TIME: f64 = 0.134;
 /// The factor between the predicted error the choice allows and the target.
 pub const SAFETY: f64 = 1.5;
 /// The Newton tolerance per unit of target (clamped to
@@ -358,8 +360,8 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
 
 /// The temporal error of step `dt` s (docs/theory.md 16.2, 16.3).
 pub fn time_error(s: &Scales, dt: f64) -> f64 {
-    // (16.2) with the order 2 of §16.7
-    let still = if s.amplitude == 0.0 { 0.0 } else { C_TIME * s.amplitude / AMPLITUDE_SCALE * (s.omega * dt).powi(2) };
+    // (16.8): C_t (A ω)(ω Δt)², §16.7
+    let still = if s.amplitude == 0.0 { 0.0 } else { C_TIME * s.amplitude * s.omega * (s.omega * dt).powi(2) };
     match &s.waves {
         None => still,
         // (16.3): S C_wt (ω_w Δt)^{3/2}

@@ -229,10 +229,11 @@ def test_a_step_form_that_generates_the_points_has_spread_one():
 def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin):
     """docs/theory.md 16.3, "The step term's form", and §16.7: over the committed grid runs (the current
     grown over current_ramp), the hang-off's acceleration A ω²/g brings the five calibration cases'
-    step constants within 1.82 of each other at c = 1 (2.43 at c = 2), every other scale within no
-    less than 4; A/A0, the knob's, spreads 9.55-fold at c = 3/2. With the current's jolt (before
-    §16.7) A/A0 spread least, 5.45-fold, the acceleration 7.4-fold: the jolt's ringing, which the step
-    resolved worst, was on the two lines with a current."""
+    step constants within 1.82 of each other at c = 1 (2.43 at c = 2), its velocity A ω (the knob's
+    scale, the least costly by the rule of §16.2) within 3.08 at c = 1.25 (4.36 at 2), every other
+    scale within no less than 4; A/A0, the knob's before, spreads 9.55-fold at c = 3/2. With the
+    current's jolt (before §16.7) A/A0 spread least, 5.45-fold, the acceleration 7.4-fold: the jolt's
+    ringing, which the step resolved worst, was on the two lines with a current."""
     from riser_tools.studies import accuracy_fit as F
 
     rows = list(F.csv.DictReader(open(F.A.Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv")))
@@ -246,7 +247,9 @@ def test_the_present_step_form_varies_least_over_the_calibration_cases(riser_bin
     assert min(spreads, key=spreads.get) == ("acceleration", 1.0)
     assert spreads[("acceleration", 1.0)] == pytest.approx(1.82, abs=0.01)
     assert spreads[("acceleration", 2.0)] == pytest.approx(2.43, abs=0.01)
-    assert all(v > 4.0 for (name, _), v in spreads.items() if name != "acceleration"), spreads
+    assert spreads[("velocity", 2.0)] == pytest.approx(4.36, abs=0.01)
+    assert min(v for (name, _), v in spreads.items() if name == "velocity") == pytest.approx(3.08, abs=0.01)
+    assert all(v > 4.0 for (name, _), v in spreads.items() if name not in ("acceleration", "velocity")), spreads
 
 
 def test_the_ladder_runs_every_knob_step_with_75_steps_a_period(monkeypatch):
@@ -309,13 +312,14 @@ def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
     assert all(o is not None for o in exact)
     assert max(o["oracle_ratio"] for o in exact) <= 2.1
     assert all(o["oracle"][2] <= t / F.SAFETY for o, t in zip(exact, [1e-2, 1e-3, 1e-4] * 8))
-    # the knob itself (docs/theory.md §16.7): above 2 at 1e-3 on the steel catenary (2.53) and the lazy
-    # wave at 10 s (2.76), at 1e-4 on the steel catenary (4.08), the jumper (2.25) and at 10 s the lazy
-    # wave (2.44) and the jumper (2.27); within 2 at 1e-4 on the catenary (1.87), the lazy wave (1.90)
-    # and at 10 s the catenary (1.79) and the steel catenary (1.95), all above 2 before §16.7
+    # the knob itself (docs/theory.md §16.7, by the grid's measure): above 2 at 1e-3 on the steel catenary
+    # (2.53) and the lazy wave at 10 s (2.76), at 1e-4 on the steel catenary (3.52) and at 10 s the lazy
+    # wave (2.44) and the jumper (2.27); within 2 at 1e-4 on the catenary (1.63), the lazy wave (1.67),
+    # the jumper (1.73) and at 10 s the catenary (1.79) and the steel catenary (1.95), all above 2 before
     knob = {(c, t): F.oracle(rows, c, t)["knob_ratio"] for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)}
     assert knob[("steel_catenary", 1e-3)] > 2 and knob[("steel_catenary", 1e-4)] > 2
-    assert max(knob[(c, 1e-4)] for c in ("catenary", "lazy_wave", "catenary_T10", "steel_catenary_T10")) < 2
+    within = ("catenary", "lazy_wave", "lowe_langley_jumper", "catenary_T10", "steel_catenary_T10")
+    assert max(knob[(c, 1e-4)] for c in within) < 2
     loose = [F.oracle(rows, c, 1e-3, safety=1.5 * F.SAFETY) for c in F.ORACLE_CASES]
     assert max(o["oracle_ratio"] for o in loose[:4]) > 2.0 and max(o["oracle_ratio"] for o in loose[4:]) > 2.5
 

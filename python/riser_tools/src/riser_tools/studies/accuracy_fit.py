@@ -15,8 +15,8 @@ against the model.
                              [C_wt C_wk C_wk2 E_w E_c]
 
 With --still, the still-water step term of (16.2) instead (docs/theory.md §16.3, "The step term's
-form"): for each candidate form M (ω Δt)^c, M one of the a-priori scales of STEP_FORMS (the present
-A/A₀; the hang-off's acceleration A ω²/g; the rigid-body inertia of the line over its static top
+form", and §16.7): for each candidate form M (ω Δt)^c, M one of the a-priori scales of STEP_FORMS (A/A₀,
+the form before §16.7; the hang-off's velocity amplitude A ω, the knob's since; its acceleration A ω²/g; the rigid-body inertia of the line over its static top
 tension; the drag of the line moving with the hang-off over it; the quasi-static swing of the top
 tension from the statics with the hang-off moved by ±A), the envelope constant of each of the five
 calibration cases (STEP_CASES, the grid points with at least 75 steps a period and e ≥ 4e-5, less
@@ -47,9 +47,9 @@ import tomllib
 from . import accuracy as A
 
 # the still-water constants of src/sim/accuracy.rs (C_CURVATURE, C_TIME, C_DYNAMIC_MESH), the step
-# term C_T (A/A0)(ω Δt)^STEP_ORDER (docs/theory.md §16.7: the order 2 since the current grows over
-# current_ramp; 3/2 with C_T 0.21 before)
-C_K, C_T, C_D = 7.4e-4, 0.84, 0.03
+# term C_T (A ω)(ω Δt)^STEP_ORDER, C_T in s/m (docs/theory.md §16.7: the hang-off's velocity and the
+# order 2 since the current grows over current_ramp; C_T (A/A0)(ω Δt)^{3/2}, C_T 0.21, before)
+C_K, C_T, C_D = 7.4e-4, 0.134, 0.03
 STEP_ORDER = 2.0
 # the wave constants of src/sim/accuracy.rs: C_WAVE_TIME, C_WAVE_MESH, C_WAVE_MESH2, WAVE_FLOOR, and the
 # current's ringing in a regular wave E_c, 0 since the current grows over current_ramp (§16.7; it was
@@ -87,7 +87,7 @@ def points(binary: str, runs: str):
             h = d["length"] / n
             # (16.2) with the mesh term of the motion, C_d (A ω²/g)(h κ)³ (the run's heave; none: zero)
             still = (C_K * (h * d["max_curvature"]) ** 4 + C_D * d["acceleration_ratio"] * (h * d["max_curvature"]) ** 3
-                     + C_T * amp / 10 * (2 * math.pi / period * dt) ** STEP_ORDER)
+                     + C_T * amp * 2 * math.pi / period * (2 * math.pi / period * dt) ** STEP_ORDER)
             hk = h * d["wave_number"]
             x = dict(t=s * (d["wave_omega"] * dt) ** 1.5, k4=s * hk ** 4, k2=s * hk ** 2, c=fc if regular else 0.0)
             out.append((case, n, dt, A.error(r, ref), still, x))
@@ -130,7 +130,9 @@ C_K2, C_C = 1.0e-3, 2.4e-3
 A0 = 10.0
 # the candidate scales M of the step term M (ω Δt)^c: name -> (description, M of a case's scales)
 STEP_FORMS = {
-    "amplitude": ("A/A0 (the present form)", lambda q: q["A"] / A0),
+    "amplitude": ("A/A0 (the form before docs/theory.md §16.7)", lambda q: q["A"] / A0),
+    "velocity": ("A w, the hang-off's velocity amplitude, m/s (the knob's form since §16.7)",
+                 lambda q: q["A"] * q["w"]),
     "acceleration": ("A w^2/g, the hang-off's acceleration", lambda q: q["A"] * q["w"] ** 2 / q["g"]),
     "inertia": ("(m + m_a) L A w^2 / T0, the line's rigid-body inertia over its top tension",
                 lambda q: q["mass"] * q["L"] * q["A"] * q["w"] ** 2 / q["T0"]),
