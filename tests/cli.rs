@@ -286,7 +286,8 @@ fn default_run_is_ramped_over_one_period_and_reports_its_steady_window() {
 /// first and last periods' top tension extremes apart, over the max. The
 /// ramp's transient dies out in the line's drag, so the catenary heaved at
 /// 10 s drifts at least four times less with the window a period later and
-/// is steady to 1e-5 from 40 s (measured 1.5e-4, 1.1e-5, 3.8e-6); the JSON's
+/// is steady to 1e-5 from 40 s (measured 5.7e-5, 8.2e-6, 3.0e-6; 1.5e-4,
+/// 1.1e-5, 3.8e-6 with the current in full from t = 0); the JSON's
 /// drift is (12.5) of the run's own timeseries.csv; the paper's abrupt start
 /// read from t = 0 is not steady (88 %) and says so; a window shorter than
 /// two periods has no drift.
@@ -327,6 +328,9 @@ fn the_window_s_drift_falls_as_the_start_dies_out() {
     assert!(abrupt["steady"]["warnings"].to_string().contains("the steady window is not steady at 1e-2"));
     let short = run(&["--duration", "40", "--window", "25,40"]);
     assert!(short["steady"]["drift"].is_null(), "{}", short["steady"]);
+    // a motion that stops inside the window (--heave-until) has no period there
+    let stops = run(&["--duration", "60", "--heave-until", "30"]);
+    assert!(stops["steady"]["drift"].is_null(), "{}", stops["steady"]);
 }
 
 /// The current's start (docs/theory.md §5.11, `current_ramp`): grown over
@@ -351,6 +355,15 @@ fn the_current_grown_over_current_ramp_settles_where_the_others_do_without_the_j
     assert!(dip(&jolt) > 1000.0 && dip(&grown) < 0.1 * dip(&jolt), "{} {}", dip(&jolt), dip(&grown));
     assert_eq!(run(&["--set", "static_current=true", "--set", "current_ramp=10"])["steady"], statics["steady"]);
     assert_eq!(run(&[])["top_tension"], grown["top_tension"]);
+    // `--ramp 0` is the paper's start, the current's too, unless its ramp is set
+    let text = |extra: &[&str]| String::from_utf8_lossy(&riser(&[&base[..], extra].concat()).stdout).to_string();
+    assert!(text(&["--ramp", "0"]).contains("the current acts in full from t = 0 (current_ramp = 0"));
+    assert!(text(&["--ramp", "0", "--set", "current_ramp=10"]).contains("the current grows over its first 10 s"));
+    // the default window never starts before the current has grown: still water, 12 s, from 10 s (not 6)
+    let short = json(&riser(&["run", "catenary", "--duration", "12", "--set", "n_elements=20", "--json"]));
+    assert_eq!(short["steady"]["window"], serde_json::json!([10.0, 12.0]));
+    let shorter = json(&riser(&["run", "catenary", "--duration", "8", "--set", "n_elements=20", "--json"]));
+    assert!(shorter["steady"]["warnings"].to_string().contains("ends before the current has grown"), "{shorter}");
 }
 
 /// Issue 31: `--ramp 0` is the paper's abrupt start, the library's Heave

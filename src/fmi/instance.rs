@@ -128,12 +128,16 @@ pub struct Saved {
     /// so that a refused restore names what differs; None when deserialized
     /// (a serialized state carries their hash only).
     params: Option<Vec<Option<(Value, bool)>>>,
+    /// When the waves' and the current's ramps started, s (the run's start
+    /// time): a state restored into an instance started at another time
+    /// keeps its own ramps (docs/theory.md §5.11).
+    ramp_start: f64,
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
 /// (12), the input history, the mode, the parameters' hash (2), the mean
-/// force over the last step (3).
-const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 6;
+/// force over the last step (3), the ramps' start (1).
+const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 7;
 
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
@@ -201,6 +205,9 @@ pub struct Instance {
     /// next step (docs/theory.md §7.3).
     force_mean: V3,
     start_time: f64,
+    /// When the waves' and the current's ramps started, s: the start time, or
+    /// a restored state's.
+    ramp_start: f64,
     last_successful_time: f64,
     last_status: Status,
 }
@@ -274,6 +281,7 @@ impl Instance {
             outputs: None,
             force_mean: V3::zeros(),
             start_time: 0.0,
+            ramp_start: 0.0,
             last_successful_time: 0.0,
             last_status: Status::Ok,
         };
@@ -299,6 +307,7 @@ impl Instance {
         self.outputs = None;
         self.force_mean = V3::zeros();
         self.start_time = 0.0;
+        self.ramp_start = 0.0;
         self.last_successful_time = 0.0;
         self.last_status = Status::Ok;
     }
@@ -465,6 +474,7 @@ impl Instance {
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
         };
         sim.state.time = self.start_time;
+        self.ramp_start = self.start_time;
         let inp = self.split_inputs();
         let coupling = self.coupling();
         let m = self.history.start(coupling, &sim.vessel, &inp);
@@ -1209,6 +1219,7 @@ impl Instance {
             force_mean: self.force_mean,
             hf_watch: self.hf_watch,
             params: Some(self.params.clone()),
+            ramp_start: self.ramp_start,
         })
     }
 
@@ -1227,7 +1238,10 @@ impl Instance {
         if s.state.mesh() != sim.state.mesh() {
             return self.fail("the FMU state has another mesh");
         }
-        if !s.state.is_finite() || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite()) {
+        if !s.state.is_finite()
+            || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite())
+            || !s.ramp_start.is_finite()
+        {
             return self.fail("the FMU state holds numbers that are not finite");
         }
         // a state whose outputs are not finite (a crafted or corrupted blob
@@ -1240,6 +1254,12 @@ impl Instance {
             return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
         }
         sim.integrator.invalidate_tangent();
+        // the state's own ramps (the same unless restored into an instance
+        // started at another time)
+        if s.ramp_start != self.ramp_start {
+            sim.set_ramps_start(s.ramp_start);
+            self.ramp_start = s.ramp_start;
+        }
         // the watch as it was (said once: stays off); a deserialized state
         // starts a new one at its next step
         if self.hf_watch.is_none_or(|w| w.is_on()) {
@@ -1268,6 +1288,7 @@ impl Instance {
         extra.push((s.params_hash >> 32) as f64);
         extra.push((s.params_hash & 0xffff_ffff) as f64);
         extra.extend_from_slice(s.force_mean.as_slice());
+        extra.push(s.ramp_start);
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
         out
@@ -1293,7 +1314,18 @@ impl Instance {
                 };
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
                 let force_mean = V3::new(extra[n + 3], extra[n + 4], extra[n + 5]);
-                Ok(Saved { state, inputs, history, mode, params_hash, force_mean, hf_watch: None, params: None })
+                let ramp_start = extra[n + 6];
+                Ok(Saved {
+                    state,
+                    inputs,
+                    history,
+                    mode,
+                    params_hash,
+                    force_mean,
+                    hf_watch: None,
+                    params: None,
+                    ramp_start,
+                })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),
@@ -1590,6 +1622,32 @@ mod tangent_tests {
             assert!(worst <= 100.0 * tol, "{n_el} el., dt {dt}, tolerance {tol:e}: {worst:e}");
             assert!(fa * 2 < fb, "{n_el} el., dt {dt}: {fa} factorisations carried, {fb} fresh");
         }
+    }
+
+    /// A state saved while the current still grows (its default 10 s ramp,
+    /// docs/theory.md §5.11) and restored into an instance started at
+    /// another time keeps its ramps (they start with the run, at its start
+    /// time): it continues bit for bit as the instance it came from.
+    #[test]
+    fn a_state_restored_into_an_instance_started_later_keeps_its_ramps() {
+        let at = |t0: f64| {
+            let mut i = Instance::new("t", GUID, None, Arc::new(|_, _, _: &str| {}), false).unwrap();
+            assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(5)), Status::Ok);
+            assert_eq!(i.set_param(vr_of("time_step").unwrap(), Value::Real(0.1)), Status::Ok);
+            assert_eq!(i.setup_experiment(t0), Status::Ok);
+            i.enter_initialization_mode();
+            assert_eq!(i.exit_initialization_mode(), Status::Ok);
+            i
+        };
+        let mut i = at(0.0);
+        run(&mut i, 50, 0.1, false);
+        let saved = i.save().unwrap();
+        let bytes = i.serialize(&saved);
+        let first = run(&mut i, 30, 0.1, false);
+        let mut later = at(100.0);
+        let back = later.deserialize(&bytes).unwrap();
+        assert_eq!(later.restore(&back), Status::Ok);
+        assert_eq!(first, run(&mut later, 30, 0.1, false));
     }
 
     /// A saved state continues bit for bit though the tangent is carried:

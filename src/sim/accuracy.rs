@@ -233,7 +233,8 @@ pub struct Scales {
     /// The line's unstretched length, m.
     pub length: f64,
     /// F_c: the current's drag on the static line over the static top
-    /// tension (docs/theory.md 16.4), whose start sets the floor of a still run.
+    /// tension (docs/theory.md 16.4); > 0 with the current in full from t = 0
+    /// (`current_ramp = 0`), the jolt the model does not cover (§16.7).
     pub current_ratio: f64,
     /// √(EI/T) at the static touchdown, m (None: the line rests on no seabed).
     pub touchdown_bending_length: Option<f64>,
@@ -493,16 +494,6 @@ fn coverage(scene: &Scene) -> Result<(), AccuracyError> {
     if scene.hang_off.offset != [0.0; 3] {
         return not("a hang-off offset from the vessel's reference point", "the study moves the hang-off itself");
     }
-    if !crate::loads::current(scene).is_none()
-        && !scene.analysis.static_current
-        && crate::loads::current_ramp(scene).duration == 0.0
-    {
-        return not(
-            "a current in full from t = 0 (current_ramp = 0)",
-            "the study's current grows over current_ramp (default 10 s); the jolt of one in full at once rings the \
-             line in a way the step resolves worst (docs/theory.md §16.7): set current_ramp > 0 or static_current",
-        );
-    }
     Ok(())
 }
 
@@ -756,6 +747,18 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     // the fewest steps a period takes holds for the sea's peak period too
     let period = waves.map_or(excitation.period, |w| excitation.period.min(2.0 * std::f64::consts::PI / w.omega));
     let s = scales(scene, &excitation)?;
+    // a current that acts (its drag on the static line, F_c > 0) in full
+    // from t = 0: its jolt is not calibrated (§16.7)
+    if s.current_ratio > 0.0 && !scene.analysis.static_current && crate::loads::current_ramp(scene).duration == 0.0 {
+        return Err(AccuracyError::NotCovered {
+            feature: "a current in full from t = 0 (current_ramp = 0, which riser run --ramp 0 implies)".to_string(),
+            reason: "the study's current grows over current_ramp (default 10 s); the jolt of one in full at once \
+                     rings the line in a way the step resolves worst (docs/theory.md §16.7): set current_ramp > 0 \
+                     (--set current_ramp=10 keeps the growth with --ramp 0) or static_current"
+                .to_string(),
+        }
+        .into());
+    }
     let budget = target.min(MAX_TARGET) / SAFETY;
     let an = &scene.analysis;
     let ns: Vec<usize> = if pinned.n_elements {

@@ -290,12 +290,18 @@ impl Simulation {
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.
     pub fn start(&mut self, motion: HangOff) {
-        if let Some(sea) = self.sea.as_mut() {
-            sea.set_ramp_start(self.state.time);
-        }
-        self.integrator.set_ramps_start(self.state.time);
+        self.set_ramps_start(self.state.time);
         self.integrator.impose_hang_off(&mut self.state, motion);
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
+    }
+
+    /// Starts the waves' and the current's ramps at `start` s (the run's
+    /// start; a restored state's, docs/theory.md §5.11).
+    pub fn set_ramps_start(&mut self, start: f64) {
+        if let Some(sea) = self.sea.as_mut() {
+            sea.set_ramp_start(start);
+        }
+        self.integrator.set_ramps_start(start);
     }
 
     /// Outputs of the current state.

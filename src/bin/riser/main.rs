@@ -605,23 +605,40 @@ struct RunArgs {
 /// period of the slowest motion after its ramp and one period of the sea
 /// after the sea's (the start's transients have died out by then with the
 /// default ρ∞ = 0.8: docs/figures/abrupt_vs_smooth.png); without motion
-/// or sea (`None`: still water, the line rings from the current's start
-/// only) the second half of the run.
-fn steady_window(asked: Option<(f64, f64)>, settled: Option<f64>, duration: f64) -> ((f64, f64), Option<String>) {
+/// or sea (`None`: still water, the line moves only as the current grows)
+/// the second half of the run. Never before the current has grown
+/// (`current_grown` s, its ramp's end; 0 with the current in the statics or
+/// none, docs/theory.md §5.11).
+fn steady_window(
+    asked: Option<(f64, f64)>,
+    settled: Option<f64>,
+    current_grown: f64,
+    duration: f64,
+) -> ((f64, f64), Option<String>) {
     if let Some(w) = asked {
         return (w, None);
     }
     let Some(t0) = settled else {
-        return ((0.5 * duration, duration), None);
+        if current_grown >= duration {
+            return (
+                (0.5 * duration, duration),
+                Some(format!(
+                    "the run ({duration} s) ends before the current has grown (current_ramp = {current_grown} s): \
+                     the statistics of its second half are of the current's start; run longer or give --window"
+                )),
+            );
+        }
+        return ((current_grown.max(0.5 * duration), duration), None);
     };
+    let t0 = t0.max(current_grown);
     if t0 < duration {
         ((t0, duration), None)
     } else {
         (
             (0.5 * duration, duration),
             Some(format!(
-                "the run ({duration} s) is shorter than the ramp and one period ({t0} s): the statistics of its \
-                 second half are not of a steady state; run longer or give --window"
+                "the run ({duration} s) is shorter than the ramp and one period, or the current's growth ({t0} s): \
+                 the statistics of its second half are not of a steady state; run longer or give --window"
             )),
         )
     }
@@ -766,7 +783,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
     let settled =
         [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
-    let ((w0, w1), short) = steady_window(window, settled, duration);
+    // the current's growth (none with it in the statics, or without drag)
+    let current_grown = if riser::loads::current(&scene).is_none() || scene.analysis.static_current {
+        0.0
+    } else {
+        riser::loads::current_ramp(&scene).duration
+    };
+    let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
     warnings.extend(short);
     // a step too long for the shortest motion (the sea's: Design::report)
     let shortest = motions.all().into_iter().flatten().map(|m| m.1).filter(|p| *p > 0.0).reduce(f64::min);
@@ -867,8 +890,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     }
     // the window's steadiness: a motion of one period in still water
     let periods: Vec<f64> = motions.all().into_iter().flatten().map(|m| m.1).collect();
+    // (a motion that stops in the window, --heave-until, has none)
     let forcing_period = match (periods.first(), sea) {
-        (Some(&p), None) if periods.iter().all(|q| (q - p).abs() <= 1e-9 * p) => Some(p),
+        (Some(&p), None)
+            if periods.iter().all(|q| (q - p).abs() <= 1e-9 * p) && heave_until.is_none_or(|u| u >= w1) =>
+        {
+            Some(p)
+        }
         _ => None,
     };
     let tension: Vec<(f64, f64)> = series.iter().map(|o| (o.time, o.top_tension)).collect();
