@@ -339,7 +339,10 @@ fn the_window_s_drift_falls_as_the_start_dies_out() {
 /// 40 to 60 s: means within 1e-7), without the jolt: the whole run dips below
 /// that equilibrium by less than a tenth of the jolt's dip (measured 63 N
 /// against 1183 N); with `static_current` the ramp does nothing (bit for
-/// bit), and unset it is the default 10 s (bit for bit).
+/// bit), and unset it is the default 10 s (bit for bit). The cable model
+/// likewise (means within 1e-6, a dip under a tenth of the jolt's).
+/// `--ramp 0` puts the current in full at t = 0 unless its ramp is set, and
+/// the default window waits for the current to have grown.
 #[test]
 fn the_current_grown_over_current_ramp_settles_where_the_others_do_without_the_jolt() {
     let base = ["run", "catenary", "--duration", "60", "--set", "n_elements=20", "--set", "time_step=0.05"];
@@ -352,6 +355,8 @@ fn the_current_grown_over_current_ramp_settles_where_the_others_do_without_the_j
         assert!((mean(v) - settled).abs() < 1e-7 * settled, "{} against {settled}", mean(v));
     }
     let dip = |v: &serde_json::Value| settled - v["top_tension"]["min"].as_f64().unwrap();
+    let settled_dip =
+        |v: &serde_json::Value, at: &serde_json::Value| mean(at) - v["top_tension"]["min"].as_f64().unwrap();
     assert!(dip(&jolt) > 1000.0 && dip(&grown) < 0.1 * dip(&jolt), "{} {}", dip(&jolt), dip(&grown));
     assert_eq!(run(&["--set", "static_current=true", "--set", "current_ramp=10"])["steady"], statics["steady"]);
     assert_eq!(run(&[])["top_tension"], grown["top_tension"]);
@@ -359,6 +364,16 @@ fn the_current_grown_over_current_ramp_settles_where_the_others_do_without_the_j
     let text = |extra: &[&str]| String::from_utf8_lossy(&riser(&[&base[..], extra].concat()).stdout).to_string();
     assert!(text(&["--ramp", "0"]).contains("the current acts in full from t = 0 (current_ramp = 0"));
     assert!(text(&["--ramp", "0", "--set", "current_ramp=10"]).contains("the current grows over its first 10 s"));
+    // the cable model grows its current the same way: it settles where its current in the statics does
+    let cable = |extra: &[&str]| run(&[&["--set", "model=cable"][..], extra].concat());
+    let (c_grown, c_statics) = (cable(&[]), cable(&["--set", "static_current=true"]));
+    assert!(
+        (mean(&c_grown) - mean(&c_statics)).abs() < 1e-6 * mean(&c_statics),
+        "{} {}",
+        mean(&c_grown),
+        mean(&c_statics)
+    );
+    assert!(settled_dip(&c_grown, &c_statics) < 0.1 * settled_dip(&cable(&["--set", "current_ramp=0"]), &c_statics));
     // the default window never starts before the current has grown: still water, 12 s, from 10 s (not 6)
     let short = json(&riser(&["run", "catenary", "--duration", "12", "--set", "n_elements=20", "--json"]));
     assert_eq!(short["steady"]["window"], serde_json::json!([10.0, 12.0]));
