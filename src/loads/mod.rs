@@ -74,19 +74,20 @@ pub fn free_surface_of(scene: &Scene, p: &LineProperties) -> FreeSurface {
     }
 }
 
-/// The current profile.
 /// The current's growth from the run's start (t = 0; the engine moves it to
 /// a run's start time): ½(1 − cos(π t/ramp)) over the scene's
 /// `current.ramp` s (`current_ramp`, default [`crate::scene::DEFAULT_CURRENT_RAMP`];
-/// 0: in full from t = 0, the paper's start; docs/theory.md §5.11). None with `static_current`: the
-/// static state holds the current already.
+/// 0: in full from t = 0, the paper's start; docs/theory.md §5.11). None
+/// without a current, or with `static_current`: the static state holds the
+/// current already.
 pub fn current_ramp(scene: &Scene) -> waves::Ramp {
-    if scene.analysis.static_current {
+    if scene.analysis.static_current || scene.current.profile == ProfileKind::None {
         return waves::Ramp::NONE;
     }
     waves::Ramp { start: 0.0, duration: scene.current.ramp.unwrap_or(crate::scene::DEFAULT_CURRENT_RAMP) }
 }
 
+/// The current profile.
 pub fn current(scene: &Scene) -> Current {
     let c = &scene.current;
     let dir = V3::new(c.direction[0], c.direction[1], 0.0);

@@ -80,7 +80,7 @@ pub const C_CONTACT2: f64 = 1.0e-3;
 /// every target the model accepts; the jumper at 10 s from 2e-4, its
 /// reference's own convergence), the window's mean a time mean. With the
 /// current grown over `current_ramp` (docs/theory.md §16.7) it is set with
-/// C_t by the catenary at 10 s, 10 elements at 0.03 s (2.0e-4); before, with
+/// C_t by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4); before, with
 /// the current's jolt, by the lazy wave at 10 s, 40 elements at 0.02 s
 /// (2.9e-4, 5.5e-5 without the jolt) too; 0.05 before that.
 pub const C_DYNAMIC_MESH: f64 = 0.03;

@@ -116,19 +116,12 @@ impl Engine {
 
     /// Starts the waves' ramp and the current's at `start` s (a run's start time).
     pub fn set_ramps_start(&mut self, start: f64) {
-        let sea = match self {
-            Engine::Rod(i) => {
-                i.model.current_ramp.start = start;
-                i.model.sea.as_mut()
+        with_integrator!(self, i => {
+            i.model.current_ramp.start = start;
+            if let Some(sea) = i.model.sea.as_mut() {
+                sea.set_ramp_start(start);
             }
-            Engine::Cable(i) => {
-                i.model.current_ramp.start = start;
-                i.model.sea.as_mut()
-            }
-        };
-        if let Some(sea) = sea {
-            sea.set_ramp_start(start);
-        }
+        })
     }
 
     pub fn options(&self) -> &DynamicOptions {

@@ -783,12 +783,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
     let settled =
         [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
-    // the current's growth (none with it in the statics, or without drag)
-    let current_grown = if riser::loads::current(&scene).is_none() || scene.analysis.static_current {
-        0.0
-    } else {
-        riser::loads::current_ramp(&scene).duration
-    };
+    // the current's growth (none without a current or with it in the statics)
+    let current_grown = riser::loads::current_ramp(&scene).duration;
     let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
     warnings.extend(short);
     // a step too long for the shortest motion (the sea's: Design::report)
