@@ -287,7 +287,7 @@ def test_the_fit_tool_keeps_the_knob_s_constants():
         return float(re.search(rf"pub const {name}: f64 = ([0-9.e+-]+);", text).group(1))
 
     assert (F.C_K, F.C_T, F.C_D) == (const("C_CURVATURE"), const("C_TIME"), const("C_DYNAMIC_MESH"))
-    assert (F.C_K2, F.C_C) == (const("C_CONTACT2"), const("C_CONTACT"))
+    assert (F.C_K2, F.C_C, F.A_S) == (const("C_CONTACT2"), const("C_CONTACT"), const("A_TOUCHDOWN_STILL"))
     assert F.CONSTANTS[:4] == tuple(const(n) for n in ("C_WAVE_TIME", "C_WAVE_MESH", "C_WAVE_MESH2", "WAVE_FLOOR"))
     # the step term's order (16.2): (ω Δt)² in time_error, and no current's ringing E_c (§16.7)
     assert F.STEP_ORDER == 2.0 and "(s.omega * dt).powi(2)" in text
@@ -313,14 +313,16 @@ def test_the_2x_cost_aim_needs_a_model_within_1_5_times_of_every_run_s_error():
     assert all(o is not None for o in exact)
     assert max(o["oracle_ratio"] for o in exact) <= 2.1
     assert all(o["oracle"][2] <= t / F.SAFETY for o, t in zip(exact, [1e-2, 1e-3, 1e-4] * 8))
-    # the knob itself (docs/theory.md §16.7, by the grid's measure): above 2 at 1e-3 on the steel catenary
-    # (2.53) and the lazy wave at 10 s (2.76), at 1e-4 on the steel catenary (3.52) and at 10 s the lazy
-    # wave (2.44) and the jumper (2.27); within 2 at 1e-4 on the catenary (1.63), the lazy wave (1.67),
-    # the jumper (1.73) and at 10 s the catenary (1.79) and the steel catenary (1.95), all above 2 before
+    # the knob itself (docs/theory.md §16.8, by the grid's measure): above 2 at 1e-4 on the steel catenary
+    # (2.98; 3.52 before §16.8), at 1e-3 on the lazy wave at 10 s (2.76) and at 1e-4 at 10 s on the lazy
+    # wave (2.44) and the jumper (2.06); within 2 at every target on the built-in scenes and the jumper at
+    # their own motions but that one (the steel catenary at 1e-3 1.74, 2.53 before; the lazy wave at
+    # 1e-2 0.82, 1.77 before), and at 1e-4 at 10 s on the catenary (1.79) and the steel catenary (1.95)
     knob = {(c, t): F.oracle(rows, c, t)["knob_ratio"] for c in F.ORACLE_CASES for t in (1e-2, 1e-3, 1e-4)}
-    assert knob[("steel_catenary", 1e-3)] > 2 and knob[("steel_catenary", 1e-4)] > 2
-    within = ("catenary", "lazy_wave", "lowe_langley_jumper", "catenary_T10", "steel_catenary_T10")
-    assert max(knob[(c, 1e-4)] for c in within) < 2
+    own = ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper")
+    assert knob[("steel_catenary", 1e-4)] > 2
+    assert max(v for (c, t), v in knob.items() if c in own and (c, t) != ("steel_catenary", 1e-4)) < 2
+    assert max(knob[(c, 1e-4)] for c in ("catenary_T10", "steel_catenary_T10")) < 2
     loose = [F.oracle(rows, c, 1e-3, safety=1.5 * F.SAFETY) for c in F.ORACLE_CASES]
     assert max(o["oracle_ratio"] for o in loose[:4]) > 2.0 and max(o["oracle_ratio"] for o in loose[4:]) > 2.5
 
@@ -329,7 +331,8 @@ def test_the_like_for_like_cost_ratio_runs_the_grid_at_the_knob_s_tolerance():
     """docs/accuracy.md's last column (docs/theory.md §16.3, "The Newton tolerance"): the grid's cells
     run again at the knob's Newton tolerance where it is not the grid's 1e-8 (kind grid_tol, committed
     in docs/accuracy_runs.csv). The steel catenary at 1e-3: the knob at 1e-7 against its cheapest cell,
-    20 elements at 0.2 s, 3.15 (2.53 against the same cell at 1e-8); the catenary at 10 s at 1e-3: 10
+    20 elements at 0.2 s, 2.16 (1.74 against the same cell at 1e-8; 3.15 and 2.53 before the touchdown's
+    term followed the motion, docs/theory.md §16.8); the catenary at 10 s at 1e-3: 10
     elements at 0.2 s, 1.86 (with the current's jolt, before docs/theory.md §16.7, they reached it at
     1e-8 but not at 1e-7, and the next cell counted)."""
     import csv
@@ -349,7 +352,7 @@ def test_the_like_for_like_cost_ratio_runs_the_grid_at_the_knob_s_tolerance():
         return cell, A.work(knob) / A.work(cell)
 
     cell, r = ratio("steel_catenary", 1e-3)
-    assert (cell["n_elements"], float(cell["time_step"])) == ("20", 0.2) and abs(r - 3.15) < 0.01, (cell, r)
+    assert (cell["n_elements"], float(cell["time_step"])) == ("20", 0.2) and abs(r - 2.16) < 0.01, (cell, r)
     cell, r = ratio("catenary_T10", 1e-3)
     assert (cell["n_elements"], float(cell["time_step"])) == ("10", 0.2) and abs(r - 1.86) < 0.01, (cell, r)
 
