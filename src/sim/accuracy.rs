@@ -102,7 +102,7 @@ pub const C_DYNAMIC_MESH: f64 = 0.03;
 /// §16.7): the order 2 of the scheme, which the step's errors follow once
 /// the current's jolt no longer rings the window, and the velocity, of the
 /// a-priori scales the one of least cost (A/A₀ and A ω²/g bracket it). Set
-/// by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4; 0.1363 needed
+/// by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4; 0.1370 needed
 /// since its mesh terms add in quadrature, §16.8; 0.134 and 0.1334 before).
 /// Before §16.7: C_t (A/A₀)(ω Δt)^{3/2} with C_t 0.21 (A₀ = 10 m), 0.3 before that.
 pub const C_TIME: f64 = 0.137;

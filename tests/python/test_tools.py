@@ -379,3 +379,50 @@ def test_the_window_time_mean_is_over_exactly_the_window():
     y2 = a + b * np.cos(w * t2)
     m2 = in_window(t2, 10.0, 40.0)
     assert window_time_mean(t2, y2, 10.0, 40.0) == pytest.approx(time_mean(t2[m2], y2[m2]), rel=1e-12)
+
+
+def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
+    """riser-tools accuracy-search (docs/theory.md §16.8) evaluates the error model with its own copy
+    of src/sim/accuracy.rs: its default model must be the crate's constants, its choices the binary's
+    for the eight heave cases at 1e-2, 1e-3, 1e-4 (scales and statics' departures read from the
+    binary), and the crate's constants must bound every point of the fit's rule (the smallest model
+    over error at least 1) at 0.959 of the work of (16.8), the model of §16.7."""
+    import csv
+    import json
+    import re
+    import subprocess
+    from dataclasses import replace
+
+    from riser_tools.studies import accuracy_search as S
+
+    root = S.A.Path(__file__).resolve().parents[2]
+    text = open(root / "src" / "sim" / "accuracy.rs").read()
+
+    def const(name):
+        return float(re.search(rf"pub const {name}: f64 = ([0-9.e+-]+);", text).group(1))
+
+    m = S.Model()
+    assert (m.c_k, m.c_c2, m.c_c, m.a_s, m.c_d, m.c_t) == tuple(const(n) for n in (
+        "C_CURVATURE", "C_CONTACT2", "C_CONTACT", "A_TOUCHDOWN_STILL", "C_DYNAMIC_MESH", "C_TIME"))
+    assert (m.combine, m.touchdown_motion) == ("rss", True) and "bend.hypot(dynamic)" in text
+    rows = list(csv.DictReader(open(root / "docs" / "accuracy_runs.csv")))
+    cases = {name: S.case_scales(riser_bin, name) for name in S.HEAVE_CASES + tuple(S.A.STILL_CASES)}
+    for name in S.HEAVE_CASES:
+        for t in (1e-2, 1e-3, 1e-4):
+            cmd = S.A.command(riser_bin, name)
+            cmd[cmd.index("--duration") + 1] = "0.2"
+            if "--window" in cmd:
+                i = cmd.index("--window")
+                del cmd[i:i + 2]
+            out = subprocess.run(cmd + ["--set", f"accuracy={t}"], capture_output=True, text=True, check=True)
+            d = json.loads([ln for ln in out.stdout.splitlines() if ln.startswith("{")][0])["accuracy"]
+            assert S.choose(m, cases[name], t) == (d["n_elements"], d["time_step"]), (name, t)
+    pts = S.points(rows, cases, riser_bin)
+    assert len(pts) > 100 and any(c == "steel_still" for c, *_ in pts)
+    assert S.smallest_ratio(m, cases, pts) >= 1.0
+    # without its still part the touchdown's term bounds no point set (the still line's departures), and
+    # (16.8), the model of §16.7, bounds the points too but costs more (0.959 of its work)
+    assert S.least(replace(m, a_s=0.0, c_c=1e9), "c_c2", cases, pts) is None
+    before = replace(m, c_c2=1.0e-3, c_c=2.4e-3, c_t=0.134, combine="sum", touchdown_motion=False)
+    assert S.smallest_ratio(before, cases, pts) >= 1.0
+    assert S.work(m, cases) / S.work(before, cases) == pytest.approx(0.959, abs=0.001)
