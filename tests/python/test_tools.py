@@ -426,3 +426,21 @@ def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
     before = replace(m, c_c2=1.0e-3, c_c=2.4e-3, c_t=0.134, combine="sum", touchdown_motion=False)
     assert S.smallest_ratio(before, cases, pts) >= 1.0
     assert S.work(m, cases) / S.work(before, cases) == pytest.approx(0.959, abs=0.001)
+
+
+def test_the_accuracy_figure_s_frontier_is_the_cheapest_cell_reaching_each_target(tmp_path):
+    """docs/figures/accuracy_cost.png (riser-tools accuracy, doc phase): its solid line at a target is
+    the work of the cheapest grid cell reaching the target, the cell `accuracy-fit --oracle` compares
+    the knob with; a target below every cell's error has none; the figure is written."""
+    import csv
+
+    from riser_tools.studies import accuracy as A
+    from riser_tools.studies import accuracy_fit as F
+
+    rows = list(csv.DictReader(open(A.Path(__file__).resolve().parents[2] / "docs" / "accuracy_runs.csv")))
+    for case in A.FIGURE_CASES:
+        front = A.cost_frontier(rows, case, [1e-2, 1e-3, 1e-4, 1e-9])
+        assert front[:3] == [F.oracle(rows, case, t)["cell"][3] for t in (1e-2, 1e-3, 1e-4)], case
+        assert front[3] is None and front[0] <= front[1] <= front[2]
+    A.plot_cost(rows, tmp_path / "cost.png")
+    assert (tmp_path / "cost.png").stat().st_size > 10_000

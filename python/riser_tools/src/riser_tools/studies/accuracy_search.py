@@ -179,12 +179,13 @@ def least(m: Model, field: str, cases: dict, pts: list, hi: float = 10.0) -> Mod
 
 def work(m: Model, cases: dict) -> float:
     """The geometric mean of the work model over the heave cases' choices at the ten targets (a target
-    no choice reaches counts as 1e3, as in the search of §16.7)."""
+    no choice reaches, which the knob refuses, counts as the ladder's dearest point)."""
+    refused = cost(ELEMENT_LADDER[-1], STEP_LADDER[-1])
     logs = []
     for name in HEAVE_CASES:
         for t in TARGETS:
             c = choose(m, cases[name], t)
-            logs.append(math.log(cost(*c) if c else 1e3))
+            logs.append(math.log(cost(*c) if c else refused))
     return math.exp(sum(logs) / len(logs))
 
 
