@@ -63,8 +63,9 @@ pub const C_CURVATURE: f64 = 7.4e-4;
 /// The seabed constant C_c of (A ω²/g + [`A_TOUCHDOWN_STILL`]) C_c (h/λ)⁴
 /// (the bound of the fine meshes; docs/theory.md §16.8): the touchdown's
 /// mesh error grows with the motion's acceleration (the steel catenary's 20
-/// elements err 5.1e-4 heaved at 15 s and 1.3e-3 at 10 s, 2.5 times, where
-/// ω² grows 2.25 times). Set by its 50 elements heaved at 10 s, 1.26e-4 at
+/// elements err 5.1e-4 heaved at 15 s and 1.44e-3 at 10 s at 0.025 s, 2.8
+/// times, its 30 and 50 elements 1.7 and 1.65–2.0 times, where ω² grows 2.25
+/// times). Set by its 50 elements heaved at 10 s, 1.26e-4 at
 /// 0.0125 s. Before §16.8 the term was static, C_c (h/λ)⁴ with C_c 2.4e-3,
 /// set by the same point; 1.9e-3 before §16.7.
 pub const C_CONTACT: f64 = 1.92e-2;
@@ -102,8 +103,10 @@ pub const C_DYNAMIC_MESH: f64 = 0.03;
 /// §16.7): the order 2 of the scheme, which the step's errors follow once
 /// the current's jolt no longer rings the window, and the velocity, of the
 /// a-priori scales the one of least cost (A/A₀ and A ω²/g bracket it). Set
-/// by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4; 0.1370 needed
-/// since its mesh terms add in quadrature, §16.8; 0.134 and 0.1334 before).
+/// by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4; 0.1363 needed
+/// since its mesh terms add in quadrature and take less of that point's
+/// error, §16.8, 0.137 a margin over it; 0.1334 needed with their sum, 0.134
+/// before).
 /// Before §16.7: C_t (A/A₀)(ω Δt)^{3/2} with C_t 0.21 (A₀ = 10 m), 0.3 before that.
 pub const C_TIME: f64 = 0.137;
 /// The factor between the predicted error the choice allows and the target.
@@ -309,9 +312,10 @@ impl Choice {
     pub fn describe(&self) -> String {
         let mark = |p: bool| if p { " (set)" } else { "" };
         format!(
-            "accuracy {:e}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error model: {:.1e} from \
-             the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = {:.1} m{}, the \
-             motion's A omega^2/g = {:.4}, + {:.1e} from the step, omega dt = {:.4} {})",
+            "accuracy {:e} of the top tension: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{} (error \
+             model: {:.1e} from the mesh, h kappa = {:.3} with the static line's largest curvature {:.4} 1/m at S = \
+             {:.1} m{}, the motion's A omega^2/g = {:.4}, + {:.1e} from the step, omega dt = {:.4} {}; the \
+             curvature, moment and stress converge more slowly: check them by doubling n_elements)",
             self.target,
             self.n_elements,
             mark(self.pinned.n_elements),
@@ -377,7 +381,7 @@ pub fn space_error(s: &Scales, n: usize) -> f64 {
 
 /// The temporal error of step `dt` s (docs/theory.md 16.2, 16.3).
 pub fn time_error(s: &Scales, dt: f64) -> f64 {
-    // (16.8): C_t (A ω)(ω Δt)², §16.7
+    // (16.9): C_t (A ω)(ω Δt)², §16.7
     let still = if s.amplitude == 0.0 { 0.0 } else { C_TIME * s.amplitude * s.omega * (s.omega * dt).powi(2) };
     match &s.waves {
         None => still,

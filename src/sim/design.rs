@@ -380,14 +380,28 @@ pub fn unsteady_window_warning(drift: f64, limit: f64, window: (f64, f64), perio
 /// of `work_top` and `work_hydro`). It grows when its share of the flux
 /// grows from span to span, the last's more than 1.5 times the first's, and
 /// the last span's energy is above 1e-4 of `exchanged` (J, the largest
-/// |`work_top`| + |`work_hydro`| so far). A start's transient takes a falling
-/// share, a steady sea the same share, a motion still growing (a long ramp)
-/// more energy but the same share of a flux that grows with it.
+/// |`work_top`| + |`work_hydro`| so far) and above [`NEGLIGIBLE_DISSIPATION`].
+/// A start's transient takes a falling share, a steady sea the same share, a
+/// motion still growing (a long ramp) more energy but the same share of a
+/// flux that grows with it.
 pub fn dissipation_grows(taken: [f64; 3], flux: [f64; 3], exchanged: f64) -> bool {
     let share = |k: usize| if flux[k] > 0.0 { taken[k] / flux[k] } else { f64::INFINITY };
     let (s0, s1, s2) = (share(0), share(1), share(2));
-    s2.is_finite() && s2 > 1.5 * s0 && s2 > s1 && s1 > s0 && taken[2] > 1e-4 * exchanged
+    s2.is_finite()
+        && s2 > 1.5 * s0
+        && s2 > s1
+        && s1 > s0
+        && taken[2] > 1e-4 * exchanged
+        && taken[2] > NEGLIGIBLE_DISSIPATION
 }
+
+/// The energy, J, below which a span's high-frequency dissipation is the
+/// round-off of a line at rest, not an oscillation: the steel catenary held
+/// still without a current moves 1e-3 J and its dissipation takes 1e-6 J a
+/// span, whose shares of so small a flux may grow by chance (27, 32 and 44
+/// over 20 s: a warning before this floor); the oscillation it guards
+/// against took 40 to 138 J a span (the lazy wave at 0.00625 s, §5.10).
+pub const NEGLIGIBLE_DISSIPATION: f64 = 1.0;
 
 /// Energy in J, to three figures.
 fn joules(x: f64) -> String {
@@ -686,6 +700,12 @@ mod tests {
         let ramp: Vec<[f64; 2]> = t.iter().map(|&x| [x * x * x, 0.0]).collect();
         assert!(growing_dissipation_warning(&t, &of(&|x| 1e-3 * x * x * x), &ramp).is_none());
         assert!(growing_dissipation_warning(&t[..3], &growing[..3], &steady[..3]).is_none());
+        // a line at rest: the same growth, scaled to round-off (1e-6 J of a 1e-3 J flux), is no warning;
+        // scaled to 10 J of a 1e4 J flux it is one
+        let rest: Vec<[f64; 2]> = t.iter().map(|&x| [1e-5 * x, 0.0]).collect();
+        assert!(growing_dissipation_warning(&t, &of(&|x| 1e-7 * (x / 30.0).exp()), &rest).is_none());
+        let scaled: Vec<[f64; 2]> = t.iter().map(|&x| [1e2 * x, 0.0]).collect();
+        assert!(growing_dissipation_warning(&t, &of(&|x| 0.3 * (x / 30.0).exp()), &scaled).is_some());
     }
 
     /// The running watch on the same histories: fed every 0.1 s it speaks

@@ -384,8 +384,8 @@ def test_the_window_time_mean_is_over_exactly_the_window():
 def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
     """riser-tools accuracy-search (docs/theory.md §16.8) evaluates the error model with its own copy
     of src/sim/accuracy.rs: its default model must be the crate's constants, its choices the binary's
-    for the eight heave cases at 1e-2, 1e-3, 1e-4 (scales and statics' departures read from the
-    binary), and the crate's constants must bound every point of the fit's rule (the smallest model
+    for the eight heave cases at the ten targets and its mesh term the binary's with the mesh pinned
+    (scales and statics' departures read from the binary), and the crate's constants must bound every point of the fit's rule (the smallest model
     over error at least 1) at 0.959 of the work of (16.8), the model of §16.7."""
     import csv
     import json
@@ -407,16 +407,30 @@ def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
     assert (m.combine, m.touchdown_motion) == ("rss", True) and "bend.hypot(dynamic)" in text
     rows = list(csv.DictReader(open(root / "docs" / "accuracy_runs.csv")))
     cases = {name: S.case_scales(riser_bin, name) for name in S.HEAVE_CASES + tuple(S.A.STILL_CASES)}
+    def knob(name, sets):
+        cmd = S.A.command(riser_bin, name)
+        cmd[cmd.index("--duration") + 1] = "0.2"
+        if "--window" in cmd:
+            i = cmd.index("--window")
+            del cmd[i:i + 2]
+        for s in sets:
+            cmd += ["--set", s]
+        out = subprocess.run(cmd, capture_output=True, text=True, check=True)
+        return json.loads([ln for ln in out.stdout.splitlines() if ln.startswith("{")][0])["accuracy"]
+
     for name in S.HEAVE_CASES:
-        for t in (1e-2, 1e-3, 1e-4):
-            cmd = S.A.command(riser_bin, name)
-            cmd[cmd.index("--duration") + 1] = "0.2"
-            if "--window" in cmd:
-                i = cmd.index("--window")
-                del cmd[i:i + 2]
-            out = subprocess.run(cmd + ["--set", f"accuracy={t}"], capture_output=True, text=True, check=True)
-            d = json.loads([ln for ln in out.stdout.splitlines() if ln.startswith("{")][0])["accuracy"]
+        for t in S.TARGETS:
+            d = knob(name, [f"accuracy={t}"])
             assert S.choose(m, cases[name], t) == (d["n_elements"], d["time_step"]), (name, t)
+    # the mesh term with n pinned: the model or the statics' departure, the larger (the scales and the
+    # departure's base on max(n, 60) elements, the pinned mesh being the scene's then)
+    for name, meshes in (("steel_catenary", (20, 30, 100, 160)), ("lazy_wave", (10, 20, 30))):
+        for n in meshes:
+            d = knob(name, ["accuracy=1e-2", f"n_elements={n}"])
+            s = replace(cases[name], curvature=d["max_curvature"], bending_length=d["touchdown_bending_length"])
+            base = S.top_row_tension(riser_bin, name, max(n, 60))
+            mine = max(abs(S.top_row_tension(riser_bin, name, n) - base) / base, S.space_error(m, s, n))
+            assert d["predicted_space_error"] == pytest.approx(mine, rel=1e-9), (name, n)
     pts = S.points(rows, cases, riser_bin)
     assert len(pts) > 100 and any(c == "steel_still" for c, *_ in pts)
     assert S.smallest_ratio(m, cases, pts) >= 1.0

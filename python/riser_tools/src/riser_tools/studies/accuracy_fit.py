@@ -3,8 +3,9 @@ against the study's runs (docs/accuracy_runs.csv, written by `riser-tools accura
 
     e_w = S [C_wt (ω_w Δt)^1.5 + min(C_wk2 (h k_w)², C_wk (h k_w)⁴)] + E_w + [regular wave] E_c F_c,
 
-(E_c 0 since the current grows over current_ramp, §16.7) on top of the still-water terms C_κ (h κ)⁴ +
-C_d (A ω²/g)(h κ)³ + C_t (A ω)(ω Δt)² (16.8) with their constants (the run's own heave; none: zero). For each wave case the scales (S, F_c, k_w, ω_w, the line's length and
+(E_c 0 since the current grows over current_ramp, §16.7) on top of the still-water terms
+√([C_κ (h κ)⁴]² + [C_d (A ω²/g)(h κ)³]²) + C_t (A ω)(ω Δt)² (16.9; the seas' lines rest on no seabed)
+with their constants (the run's own heave; none: zero). For each wave case the scales (S, F_c, k_w, ω_w, the line's length and
 largest curvature) are read from the binary's own choice (`--json`'s `accuracy` object); every
 grid run with at least 75 steps per period is a point. Printed: each constant's envelope, the
 smallest value that bounds every point with the others as given (C_wk with C_wk2 left out and
@@ -180,7 +181,9 @@ def step_scales(binary: str, case: str) -> dict:
 
 
 def mesh_error(q: dict, n: int) -> float:
-    """The still-water mesh terms of (16.2) at n elements."""
+    """The still-water mesh terms at n elements the step form's analysis takes off each point (docs/theory.md
+    §16.3): C_κ (h κ)⁴ and the touchdown's term of (16.9), not C_d's (16.2), which is fitted with the step
+    term."""
     h = q["L"] / n
     e = C_K * (h * q["kappa"]) ** 4
     if q["lam"]:
