@@ -29,3 +29,11 @@ def unzipped(fmu_path, tmp_path_factory):
 
 
 os.environ.setdefault("PYTHONHASHSEED", "0")
+
+
+def pytest_configure(config):
+    # matplotlib's mathtext and font-config parsers call pyparsing names that the pinned pyparsing
+    # deprecates ("'setName' deprecated - use 'set_name'"): third-party, harmless, and hundreds a run
+    config.addinivalue_line("filterwarnings", "ignore::DeprecationWarning:matplotlib._mathtext")
+    config.addinivalue_line("filterwarnings", "ignore::DeprecationWarning:matplotlib._fontconfig_pattern")
+    config.addinivalue_line("filterwarnings", "ignore::DeprecationWarning:pyparsing")
