@@ -458,3 +458,25 @@ def test_the_accuracy_figure_s_frontier_is_the_cheapest_cell_reaching_each_targe
         assert front[3] is None and front[0] <= front[1] <= front[2]
     A.plot_cost(rows, tmp_path / "cost.png")
     assert (tmp_path / "cost.png").stat().st_size > 10_000
+
+
+def test_the_accuracy_study_s_later_phases_start_from_the_committed_runs(riser_bin, tmp_path, monkeypatch):
+    """riser-tools accuracy --phase doc (or ladder, verify) on a fresh checkout, without
+    out/accuracy/grid.csv: it starts from docs/accuracy_runs.csv, which it writes back unchanged, and
+    hands every committed run to the document (write_doc, stubbed here: it asks the binary for
+    hundreds of predictions); it once started from nothing and would have written the phase's runs
+    alone over the committed ones."""
+    import csv
+    import shutil
+
+    from riser_tools.studies import accuracy as A
+
+    root = A.Path(__file__).resolve().parents[2]
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    shutil.copy(root / "docs" / "accuracy_runs.csv", docs / "accuracy_runs.csv")
+    seen = []
+    monkeypatch.setattr(A, "write_doc", lambda rows, d, b: seen.append(len(rows)))
+    A.main(["--bin", riser_bin, "--phase", "doc", "--out", str(tmp_path / "out"), "--docs", str(docs)])
+    assert (docs / "accuracy_runs.csv").read_text() == (root / "docs" / "accuracy_runs.csv").read_text()
+    assert seen == [len(list(csv.DictReader(open(root / "docs" / "accuracy_runs.csv"))))] and seen[0] > 700
