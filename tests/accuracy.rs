@@ -259,7 +259,7 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
 /// The steel catenary's are coarser again since the seabed contact's rule
 /// splits at the crossings (docs/theory.md (9.7), C_c and C_c2 refitted):
 /// 30 at 0.1 s, 120 at 0.05 s and 240 at 0.015 s before. The Newton
-/// tolerance is 1e-4 of the target since 2026-11-27 (1e-5 before: 1e-8 and
+/// tolerance was 1e-4 of the target from 2026-11-27 (1e-5 before: 1e-8 and
 /// 1e-9 at 1e-3 and 1e-4; docs/theory.md 16.3, "The Newton tolerance").
 /// Since the current grows over `current_ramp` and the step term took the
 /// hang-off's velocity and the order 2 (docs/theory.md §16.7) the steps at
