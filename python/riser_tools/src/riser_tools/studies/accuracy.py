@@ -365,14 +365,13 @@ def plot_cost(rows, dst):
         ax.grid(True, which="both", lw=0.3)
     for ax in axes[1]:
         ax.set_xlabel("target: relative error of the top tension")
-    for ax in axes[:, 0]:
-        ax.set_ylabel("work (elements x steps x Newton iterations)")
+    fig.supylabel("work (elements x steps x Newton iterations)", fontsize=10)
     axes.flat[0].plot([], [], "x", color="tab:red", ms=8,
                       label="the knob's choice, above the target against the 0.0125 s reference")
-    axes.flat[0].legend(fontsize=7, loc="upper right")
+    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="lower center", ncol=4, fontsize=8)
     fig.suptitle("The accuracy knob's cost against the study's grid (riser-tools accuracy; the grid at its "
                  "tolerance 1e-8, the knob at its own)", fontsize=11)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     Path(dst).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(dst, dpi=110)
     plt.close(fig)
