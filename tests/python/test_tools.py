@@ -390,9 +390,7 @@ def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
     (scales and statics' departures read from the binary), and the crate's constants must bound every point of the fit's rule (the smallest model
     over error at least 1) at 0.959 of the work of (16.8), the model of §16.7."""
     import csv
-    import json
     import re
-    import subprocess
     from dataclasses import replace
 
     from riser_tools.studies import accuracy_search as S
@@ -410,15 +408,7 @@ def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
     rows = list(csv.DictReader(open(root / "docs" / "accuracy_runs.csv")))
     cases = {name: S.case_scales(riser_bin, name) for name in S.HEAVE_CASES + tuple(S.A.STILL_CASES)}
     def knob(name, sets):
-        cmd = S.A.command(riser_bin, name)
-        cmd[cmd.index("--duration") + 1] = "0.2"
-        if "--window" in cmd:
-            i = cmd.index("--window")
-            del cmd[i:i + 2]
-        for s in sets:
-            cmd += ["--set", s]
-        out = subprocess.run(cmd, capture_output=True, text=True, check=True)
-        return json.loads([ln for ln in out.stdout.splitlines() if ln.startswith("{")][0])["accuracy"]
+        return S.A.choice(riser_bin, name, sets)
 
     for name in S.HEAVE_CASES:
         for t in S.TARGETS:

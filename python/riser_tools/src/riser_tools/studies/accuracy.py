@@ -287,19 +287,34 @@ def cheapest_at_tolerance(rows, case, ref, target, tol):
     return min(ok, key=work) if ok else None
 
 
-def predicted(binary, case, target, pinned=None):
-    """The error model's prediction for a case and target (a 0.2 s run reports the choice); with
-    pinned = (n, dt), its prediction for those numerics."""
+def json_of(cmd):
+    """The `--json` object a riser command prints (its line starting with "{"); the command must succeed."""
+    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    return json.loads(next(line for line in p.stdout.splitlines() if line.startswith("{")))
+
+
+def choice(binary, case, sets):
+    """The knob's choice for a case, the `accuracy` object of its `--json` (a 0.2 s run reports it),
+    with `sets` (NAME=VALUE, accuracy among them) given; None where riser refuses."""
     cmd = command(binary, case)
-    for k, v in zip(("n_elements", "time_step"), pinned or ()):
-        cmd += ["--set", f"{k}={v}"]
     cmd[cmd.index("--duration") + 1] = "0.2"
     if "--window" in cmd:
         i = cmd.index("--window")
         del cmd[i:i + 2]
-    p = subprocess.run(cmd + ["--set", f"accuracy={target}"], capture_output=True, text=True)
-    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
-    return json.loads(line)["accuracy"]["predicted_error"] if line else None
+    for s in sets:
+        cmd += ["--set", s]
+    try:
+        return json_of(cmd)["accuracy"]
+    except (subprocess.CalledProcessError, StopIteration):
+        return None
+
+
+def predicted(binary, case, target, pinned=None):
+    """The error model's prediction for a case and target; with pinned = (n, dt), its prediction for
+    those numerics."""
+    sets = [f"{k}={v}" for k, v in zip(("n_elements", "time_step"), pinned or ())] + [f"accuracy={target}"]
+    c = choice(binary, case, sets)
+    return c["predicted_error"] if c else None
 
 
 # the lazy waves grow a high-frequency oscillation below the references' step (docs/accuracy.md, "The

@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import json
 import math
 import subprocess
 import tomllib
@@ -66,12 +65,7 @@ def points(binary: str, runs: str):
         if case in A.STILL_CASES:
             # no sea: the still-water terms alone (their floor E_s F_c went with the current's jolt, §16.7)
             continue
-        cmd = A.command(binary, case)
-        cmd[cmd.index("--duration") + 1] = "0.2"
-        i = cmd.index("--window")
-        del cmd[i:i + 2]
-        p = subprocess.run(cmd + ["--set", "accuracy=1e-2"], capture_output=True, text=True, check=True)
-        d = json.loads([line for line in p.stdout.splitlines() if line.startswith("{")][0])["accuracy"]
+        d = A.choice(binary, case, ["accuracy=1e-2"])
         m = [r for r in rows if r["case"] == case and r["completed"] == "True"]
         ref = next((r for r in m if r["kind"] == "reference"), None)
         if ref is None:
@@ -151,17 +145,13 @@ STEP_FORMS = {
 STEP_EXPONENTS = (1.0, 1.25, 1.5, 2.0)
 
 
-def _json(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    return json.loads([line for line in p.stdout.splitlines() if line.startswith("{")][0])
-
 
 def step_scales(binary: str, case: str) -> dict:
     """A heave case's scales: the line's (its scene as riser prints it), the static top tension and
     its quasi-static swing (`riser statics` with the anchor, and the seabed, moved by -+A: the
     hang-off moved by +-A), the mesh terms' scales as the binary reports them."""
     scene, amp, period, _ = A.CASES[case]
-    d = _json([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json",
+    d = A.json_of([binary, "run", scene, "--heave", f"{amp},{period}", "--duration", "0.2", "--json",
                "--set", "accuracy=1e-2"])["accuracy"]
     sc = tomllib.loads(subprocess.run([binary, "scene", scene], capture_output=True, text=True, check=True).stdout)
     line, env = sc["line"], sc["environment"]
@@ -171,7 +161,7 @@ def step_scales(binary: str, case: str) -> dict:
         sets = ["--set", f"anchor_z={sc['anchor']['z'] + dz}"]
         if "seabed" in sc:
             sets += ["--set", f"seabed_z={sc['seabed']['z'] + dz}"]
-        return _json([binary, "statics", scene, "--json"] + (sets if dz else []))["top_tension"]
+        return A.json_of([binary, "statics", scene, "--json"] + (sets if dz else []))["top_tension"]
 
     t0, up, down = top(0.0), top(-amp), top(amp)
     return dict(A=amp, w=2 * math.pi / period, T=period, g=env["gravity"], rho=rho, L=line["length"],

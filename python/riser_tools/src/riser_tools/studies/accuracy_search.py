@@ -20,9 +20,7 @@ from __future__ import annotations
 
 import argparse
 import csv
-import json
 import math
-import subprocess
 from dataclasses import dataclass, replace
 
 from . import accuracy as A
@@ -109,30 +107,21 @@ def choose(m: Model, s: Case, target: float) -> tuple[int, float] | None:
     return None
 
 
-def _json(cmd: list[str]) -> dict:
-    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    return json.loads([line for line in p.stdout.splitlines() if line.startswith("{")][0])
-
 
 def top_row_tension(binary: str, scene: str, n: int) -> float:
     """The static line's tension at the hang-off on n elements, as src/sim/accuracy.rs
     static_mesh_error reads it: the shape's first row (the top force's magnitude differs from it by the
     top element's shear where the mesh kinks the line)."""
-    return _json([binary, "statics", scene, "--set", f"n_elements={n}", "--json"])["shape"][0][4]
+    return A.json_of([binary, "statics", scene, "--set", f"n_elements={n}", "--json"])["shape"][0][4]
 
 
 def case_scales(binary: str, name: str) -> Case:
-    cmd = A.command(binary, name)
-    cmd[cmd.index("--duration") + 1] = "0.2"
-    if "--window" in cmd:
-        i = cmd.index("--window")
-        del cmd[i:i + 2]
-    d = _json(cmd + ["--set", "accuracy=1e-2"])["accuracy"]
-    scene = cmd[cmd.index("run") + 1]
+    d = A.choice(binary, name, ["accuracy=1e-2"])
+    scene = A.CASES[name][0]
     tops = {n: top_row_tension(binary, scene, n) for n in STATIC_MESHES}
     # the departure's base: the scales' mesh, the scene's own of at least 60 elements (src/sim/accuracy.rs
     # scales, static_mesh_error)
-    base_n = max(_json([binary, "statics", scene, "--json"])["n_elements"], 60)
+    base_n = max(A.json_of([binary, "statics", scene, "--json"])["n_elements"], 60)
     base = tops.get(base_n) or top_row_tension(binary, scene, base_n)
     period = d["motion_period"] if d["motion_period"] is not None else math.inf
     return Case(name=name, length=d["length"], curvature=d["max_curvature"],
@@ -160,9 +149,9 @@ def points(rows: list, cases: dict, binary: str) -> list:
                 out.append((name, n, dt, e))
     # the still steel catenary: its statics against the converged line (its reference's mesh)
     steel = cases["steel_catenary"]
-    ref_top = _json([binary, "statics", "steel_catenary", "--set", "n_elements=320", "--json"])["top_tension"]
+    ref_top = A.json_of([binary, "statics", "steel_catenary", "--set", "n_elements=320", "--json"])["top_tension"]
     for n in STATIC_MESHES:
-        top = _json([binary, "statics", "steel_catenary", "--set", f"n_elements={n}", "--json"])["top_tension"]
+        top = A.json_of([binary, "statics", "steel_catenary", "--set", f"n_elements={n}", "--json"])["top_tension"]
         e = abs(top - ref_top) / ref_top
         if e >= FLOOR:
             cases.setdefault("steel_still", replace(steel, name="steel_still", amplitude=0.0, acceleration=0.0,
