@@ -186,6 +186,10 @@ pub struct Instance {
     /// The warning that the accuracy knob does not cover the path between
     /// communication points has been logged.
     warned_split: bool,
+    /// The accuracy knob's choice (None: the numerics are the master's or
+    /// the scene's), kept for the warning of a line in compression beyond
+    /// what the knob covers, logged once ([`Instance::warn_compression`]).
+    knob: Option<crate::sim::accuracy::Choice>,
     /// The energy the step's high-frequency dissipation takes, span by span
     /// (docs/theory.md §5.10); `None` once the log has said it grows, and
     /// before the first step.
@@ -274,6 +278,7 @@ impl Instance {
             hinted_velocities: false,
             warned_reach: false,
             warned_split: false,
+            knob: None,
             hf_watch: None,
             sim: None,
             step_start: None,
@@ -300,6 +305,7 @@ impl Instance {
         self.hinted_velocities = false;
         self.warned_reach = false;
         self.warned_split = false;
+        self.knob = None;
         self.hf_watch = None;
         self.sim = None;
         self.step_start = None;
@@ -458,12 +464,13 @@ impl Instance {
         );
         let scene = match crate::sim::accuracy::apply(scene, None, pinned) {
             Ok((scene, choice)) => {
-                if let Some(c) = choice {
+                if let Some(c) = &choice {
                     self.log(Status::Ok, Category::Events, &c.describe());
-                    if let Some(w) = crate::sim::accuracy::warning(&c) {
+                    if let Some(w) = crate::sim::accuracy::warning(c) {
                         self.log(Status::Warning, Category::Warning, &w);
                     }
                 }
+                self.knob = choice;
                 scene
             }
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
@@ -588,6 +595,18 @@ impl Instance {
             alone.iter().map(|a| format!("{a}_velocity")).collect::<Vec<_>>().join(", ")
         );
         self.log(Status::Ok, Category::Events, &msg);
+    }
+
+    /// Warns once, where the accuracy knob chose the numerics, when the line
+    /// at `t` s is in compression beyond what the knob's error model covers
+    /// (docs/theory.md §16.9, as `riser run` says over its steady window);
+    /// the knob is then dropped, so that the check costs nothing more.
+    fn warn_compression(&mut self, t: f64) {
+        let (Some(c), Some(o)) = (self.knob.as_ref(), self.outputs.as_ref()) else { return };
+        if let Some(w) = crate::sim::accuracy::compression_warning(c, o.min_tension) {
+            self.knob = None;
+            self.log(Status::Warning, Category::Warning, &format!("at t = {t} s {w}"));
+        }
     }
 
     /// Warns once when the hang-off at `t` s is farther from the anchor than
@@ -751,6 +770,7 @@ impl Instance {
         match result {
             Ok(()) => {
                 self.warn_reach(t_end);
+                self.warn_compression(t_end);
                 self.watch_dissipation(now, t_end);
                 self.history.commit(now, &inp, &path);
                 self.last_successful_time = t_end;
@@ -1387,6 +1407,36 @@ mod discard_tests {
         assert!(messages.lock().unwrap().iter().any(|m| m.contains("discarded") && m.contains("Newton")));
         // no further step from a failed one
         assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
+    }
+
+    /// The knob's compression check through the FMU (docs/theory.md §16.9):
+    /// the steel catenary at accuracy 1e-2, chosen for the design motion,
+    /// heaved by the master 10 m at 20 s, goes into compression at its
+    /// touchdown beyond the 8 % of its static top tension the knob covers:
+    /// the log says so once; heaved 2.5 m at 20 s it does not.
+    #[test]
+    fn the_log_warns_once_when_the_knob_s_line_goes_into_compression() {
+        for (amplitude, warned) in [(10.0, 1), (2.5, 0)] {
+            let messages = Arc::new(Mutex::new(Vec::<String>::new()));
+            let m2 = messages.clone();
+            let logger: Logger = Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into()));
+            let mut i = Instance::new("t", GUID, None, logger, true).unwrap();
+            let scene = Value::String("steel_catenary".into());
+            assert_eq!(i.set_param(vr_of("scene").unwrap(), scene), Status::Ok);
+            assert_eq!(i.set_param(vr_of("accuracy").unwrap(), Value::Real(1e-2)), Status::Ok);
+            i.enter_initialization_mode();
+            assert_eq!(i.exit_initialization_mode(), Status::Ok);
+            let (h, w) = (0.1, 2.0 * std::f64::consts::PI / 20.0);
+            for k in 0..600 {
+                let t = k as f64 * h;
+                let ramp = if t < 20.0 { 0.5 * (1.0 - (std::f64::consts::PI * t / 20.0).cos()) } else { 1.0 };
+                assert_eq!(i.set_real(vr_of("heave").unwrap(), amplitude * ramp * (w * t).sin()), Status::Ok);
+                assert_eq!(i.do_step(t, h), Status::Ok);
+            }
+            let log = messages.lock().unwrap();
+            let n = log.iter().filter(|m| m.contains("beyond the 8 % the error model was calibrated on")).count();
+            assert_eq!(n, warned, "{amplitude} m: {log:?}");
+        }
     }
 
     #[test]

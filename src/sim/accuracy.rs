@@ -136,6 +136,18 @@ pub const MAX_TARGET: f64 = 1e-2;
 pub const MIN_PERIOD: f64 = 10.0;
 /// The largest hang-off amplitude the model covers, m (the jumper's 10 m heave).
 pub const MAX_AMPLITUDE: f64 = 10.0;
+/// The largest compression the model covers, as a fraction of the static
+/// top tension (docs/theory.md §16.9): the least axial force of the study's
+/// runs, over their steady windows, is −7.5 % of it (the lazy wave heaved at
+/// 10 s on the 20 elements the knob takes for 1e-2: −1.62 kN of 21.76 kN;
+/// −5.6 % on 160 elements). A motion that pushes the line further into
+/// compression (dynamic compression at the touchdown as the hang-off falls
+/// faster than the line sinks, a sag bend buckling) is not covered: the
+/// steel catenary heaved 10 m at 20 s (−110 kN, −38 %) misses 1e-2 by 14
+/// times, at 27 s (−25 kN, −8.7 %) by 4 times. Which motion does it is
+/// known only from the run: the static line is refused ([`scales`]), the
+/// run warns ([`compression_warning`]).
+pub const MAX_COMPRESSION: f64 = 0.08;
 /// The fewest steps a period of the motion the choice takes: (16.2) bounds
 /// every grid point of the study up to ω Δt = 2π/75 (the steel catenary at
 /// 15 s and 0.2 s); at 50 steps a period it under-predicts in waves (the
@@ -651,6 +663,22 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
             .into());
         }
     }
+    // a line in compression in its statics: beyond what the study's runs reached
+    let top_tension = rep.shape.first().map_or(f64::NAN, |r| r.tension);
+    if d.min_tension < -MAX_COMPRESSION * top_tension {
+        return Err(AccuracyError::NotCovered {
+            feature: "a line in compression".to_string(),
+            reason: format!(
+                "its statics reaches an axial force of {:.2} kN at S = {:.1} m, {:.1} % of its top tension, beyond \
+                 the {:.0} % of the study's runs",
+                d.min_tension / 1e3,
+                d.min_tension_s,
+                -100.0 * d.min_tension / top_tension,
+                100.0 * MAX_COMPRESSION
+            ),
+        }
+        .into());
+    }
     // the tension at the touchdown: the shape's rows interpolated
     let touchdown_bending_length = d.touchdown_s.and_then(|s_td| {
         let rows = &rep.shape;
@@ -676,7 +704,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         current_ratio: current_load_ratio(scene, &rep.shape),
         touchdown_bending_length,
         acceleration_ratio,
-        top_tension: rep.shape.first().map_or(f64::NAN, |r| r.tension),
+        top_tension,
         waves: wave_scales(scene)?.map(|w| {
             let (load_ratio, current_ratio) = wave_load_ratios(scene, &rep.shape, &w);
             WaveScales { load_ratio, current_ratio, ..w }
@@ -896,6 +924,27 @@ pub fn apply(
     scene.analysis.time_step = choice.time_step;
     scene.analysis.newton_tolerance = choice.newton_tolerance;
     Ok((scene, Some(choice)))
+}
+
+/// The warning of a run on the knob's numerics whose line went into
+/// compression beyond [`MAX_COMPRESSION`] of its static top tension
+/// (`min_tension`, N: the least axial force of the run's steady window, or
+/// of the FMU's run so far); None within it (docs/theory.md §16.9).
+pub fn compression_warning(choice: &Choice, min_tension: f64) -> Option<String> {
+    let top = choice.scales.top_tension;
+    (min_tension < -MAX_COMPRESSION * top).then(|| {
+        format!(
+            "accuracy {:e}: the line goes into compression, {:.2} kN ({:.1} % of its static top tension), beyond \
+             the {:.0} % the error model was calibrated on: a line pushed into compression by its motion is \
+             sensitive to the numerics, and the knob's choice may miss its target several-fold (the steel \
+             catenary heaved 10 m at 20 s: 14 times at 1e-2); check the answer by halving time_step and doubling \
+             n_elements (docs/theory.md 16.9)",
+            choice.target,
+            min_tension / 1e3,
+            -100.0 * min_tension / top,
+            100.0 * MAX_COMPRESSION
+        )
+    })
 }
 
 /// The warning of a choice whose pinned numerics keep the predicted error

@@ -884,6 +884,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             whole_min_tension / 1e3
         ));
     }
+    // the knob's choice: compression beyond its calibration (docs/theory.md 16.9)
+    warnings.extend(choice.as_ref().and_then(|c| riser::sim::accuracy::compression_warning(c, steady_min_tension)));
     // the window's steadiness: a motion of one period in still water
     let periods: Vec<f64> = motions.all().into_iter().flatten().map(|m| m.1).collect();
     // (a motion that stops in the window, --heave-until, has none)
