@@ -8,7 +8,7 @@ TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
+.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test fmu-test-release check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
 
 all: build
 
@@ -122,12 +122,20 @@ fmu: build venv
 vessel-fmu: venv
 	$(PY) -m pythonfmu build -f osp/vessel/Vessel6.py -d osp/vessel6
 
-# The FMU as fmpy drives it (tests/python).
-fmu-test: fmu
+# The FMU as fmpy and libcosim drive it (tests/python), packaged from the
+# fasttest build (out/check/riser.fmu: the same sources and FMU, without the
+# release profile's fat LTO, whose link took 2.5 of `make test`'s 11 minutes
+# on a clean clone; the Python tests take as long on either build). The FMU
+# as shipped (release) runs in `make demo`, and all of them in
+# `make fmu-test-release`.
+fmu-test: venv check-fmu
+	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q tests/python
+
+fmu-test-release: fmu
 	$(PY) -m pytest -q tests/python
 
 # Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
-# the packaged FMU (release, as shipped) through fmpy and libcosim.
+# the FMU packaged from the same build through fmpy and libcosim.
 test: lint doc rust-test fmu-test
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
@@ -139,7 +147,7 @@ check: lint rust-test venv check-fmu
 	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
 		$(PY) -m pytest -q tests/python -k "not fuzz and not sweep"
 
-check-fmu:
+check-fmu: venv
 	$(CARGO) build --profile $(TEST_PROFILE) --lib --bin riser
 	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
 		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu

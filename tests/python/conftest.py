@@ -6,8 +6,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 
-# `make test` runs these against the shipped FMU and CLI (release profile);
-# `make check` points them at its fasttest build with RISER_FMU and RISER_BIN.
+# `make test` and `make check` point these with RISER_FMU and RISER_BIN at
+# the FMU and CLI of the fasttest build; without them (`make
+# fmu-test-release`) they run the shipped FMU and CLI (release profile).
 @pytest.fixture(scope="session")
 def fmu_path():
     # absolute: some tests hand the path to tools run in a temporary directory
