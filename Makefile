@@ -148,7 +148,7 @@ check: lint rust-test venv check-fmu
 		$(PY) -m pytest -q tests/python -k "not fuzz and not sweep"
 
 check-fmu: venv
-	$(CARGO) build --profile $(TEST_PROFILE) --lib --bin riser
+	$(CARGO) test --profile $(TEST_PROFILE) --no-run
 	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
 		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu
 

@@ -140,14 +140,15 @@ def test_the_references_refuse_bad_input_naming_the_argument(call, field):
     ("[runn]\nduration = 10.0\n", "runn"),
     ("[parameters]\nn_elements = 10\n", "run"),
 ])
-def test_a_spec_refuses_bad_input_naming_the_field(tmp_path, text, field):
-    """riser-sweep's spec (riser_sweep.spec.load_spec), before any FMU is read: each error's
-    message starts with the field (the grid's FMU checks are test_sweep.py's)."""
+def test_a_spec_refuses_bad_input_naming_the_field(tmp_path, fmu_path, text, field):
+    """riser-sweep's spec (riser_sweep.spec.load_spec) with the FMU under test (its variables name
+    the parameters): each error's message starts with the field (the grid's FMU checks are
+    test_sweep.py's)."""
     from riser_sweep import SpecError, load_spec
     p = tmp_path / "spec.toml"
     p.write_text(text)
     with pytest.raises(SpecError) as e:
-        load_spec(p)
+        load_spec(p, fmu=fmu_path)
     assert field in str(e.value).split(":")[0], str(e.value)
 
 
