@@ -147,10 +147,13 @@ check: lint rust-test venv check-fmu
 	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
 		$(PY) -m pytest -q tests/python -k "not fuzz and not sweep"
 
+# The FMU of the fasttest build: the library and the CLI as `cargo test`
+# builds them (its cdylib stays in deps/), not `cargo build`'s, which would
+# rebuild faer and the crate without the dev-dependency's feature (a minute).
 check-fmu: venv
 	$(CARGO) test --profile $(TEST_PROFILE) --no-run
 	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
-		--lib target/$(TEST_PROFILE)/libriser.so --out $(CHECK_DIR)/riser.fmu
+		--lib target/$(TEST_PROFILE)/deps/libriser.so --out $(CHECK_DIR)/riser.fmu
 
 clean:
 	$(CARGO) clean
