@@ -605,7 +605,7 @@ impl Instance {
         let (Some(c), Some(o)) = (self.knob.as_ref(), self.outputs.as_ref()) else { return };
         if let Some(w) = crate::sim::accuracy::compression_warning(c, o.min_tension) {
             self.knob = None;
-            self.log(Status::Warning, Category::Warning, &format!("at t = {t} s {w}"));
+            self.log(Status::Warning, Category::Warning, &format!("at t = {t:.3} s {w}"));
         }
     }
 
