@@ -195,7 +195,7 @@ fn without_accuracy_nothing_changes() {
 
 #[test]
 fn what_the_model_does_not_cover_is_refused_naming_why() {
-    let cases: [(&[&str], &str); 14] = [
+    let cases: [(&[&str], &str); 15] = [
         (&["--set", "model=cable"], "does not cover the cable model"),
         (&["--set", "rho_infinity=1"], "does not cover rho_infinity = 1"),
         // the catenary's low point (z = -70.4 m) is 3.2 m above a seabed at -73.6 m: a heave of 2.5 m may touch it
@@ -236,6 +236,9 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
         (&["--heave", "1,5"], "period 5 s is shorter than the 10 s"),
         // the catenary's anchor is 92.2 m from its hang-off, its length 100 m: a 10 m heave takes it taut
         (&["--heave", "10,20"], "may take the line taut"),
+        // 5 m at 10 s (sway: the largest amplitude and shortest period of the motions): 0.201 g, twice
+        // the study's largest (docs/theory.md 16.9)
+        (&["--sway", "5,10"], "accelerates the hang-off by A omega^2/g = 0.201 g, beyond the 0.101 g"),
     ];
     for (extra, message) in cases {
         let mut args = vec!["run", "catenary", "--duration", "1", "--set", "accuracy=1e-3"];
