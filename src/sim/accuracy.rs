@@ -194,6 +194,15 @@ pub const C_WAVE_MESH2: f64 = 0.018;
 /// with the step (the jumper in the JONSWAP sea: 5.6e-5 at 160 elements and
 /// 0.025 s, of which the step term is 3.1e-5).
 pub const WAVE_FLOOR: f64 = 3.5e-5;
+/// The coarsest mesh taken in waves, as h κ (the element's length times the
+/// static line's largest curvature; docs/theory.md §16.9): the wave study's
+/// meshes reach 0.60 (the jumper's 10 elements), and the lazy wave's 20
+/// elements (0.82) were checked in a regular wave, with heave and in a
+/// JONSWAP sea at 1e-2 and 1e-3 (2.6–5.2e-4); its 10 (1.64), the mesh whose
+/// static bend alone errs 5.3e-3, erred 1.27e-2 in a 6 m regular wave at
+/// 10 s, twice the model's 6.5e-3: a coarse mesh's error of the bend grows
+/// with the sea's load, which no wave term follows.
+pub const MAX_WAVE_BEND: f64 = 1.0;
 /// The smallest target covered in waves (the references' own spread in a
 /// regular wave: 1.4e-4 against their half mesh).
 pub const MIN_TARGET_WAVES: f64 = 1e-3;
@@ -844,7 +853,13 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     let ns: Vec<usize> = if pinned.n_elements {
         vec![an.n_elements]
     } else {
-        ELEMENT_LADDER.iter().copied().filter(|&n| nodes_on_buoyancy_ends(scene, n)).collect()
+        ELEMENT_LADDER
+            .iter()
+            .copied()
+            .filter(|&n| nodes_on_buoyancy_ends(scene, n))
+            // in waves, no mesh coarser than the bend the study's waves were checked on (16.9)
+            .filter(|&n| s.waves.is_none() || s.length / n as f64 * s.curvature <= MAX_WAVE_BEND)
+            .collect()
     };
     let dts: Vec<f64> = if pinned.time_step {
         vec![an.time_step]
