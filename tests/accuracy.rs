@@ -274,6 +274,9 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
 /// predictions moved by up to 10 % (the lazy wave's at 1e-2) and the jumper's 1e-4 is 24 elements at
 /// 0.015 s (30 at 0.02 s before). The Newton tolerance is the target's
 /// square since, at most 1e-6 (1e-6 at 1e-2 and 1e-3, where it was 1e-7).
+/// On the seabed no element is longer than 1.2 bending lengths since
+/// (docs/theory.md §16.9): the steel catenary's 1e-2 is 20 elements (10 at
+/// 0.1 s, 6.5e-3 predicted, before).
 const STILL_WATER_CHOICES: [(&str, f64, usize, f64, f64, f64); 12] = [
     ("catenary", 1e-2, 10, 0.1, 1e-6, 0.0009736596449860005),
     ("catenary", 1e-3, 10, 0.075, 1e-6, 0.0006019719032809062),
@@ -281,7 +284,7 @@ const STILL_WATER_CHOICES: [(&str, f64, usize, f64, f64, f64); 12] = [
     ("lazy_wave", 1e-2, 20, 0.1, 1e-6, 0.0025450353044249767),
     ("lazy_wave", 1e-3, 40, 0.05, 1e-6, 0.00042121789984047816),
     ("lazy_wave", 1e-4, 80, 0.02, 1e-8, 5.9987960117259724e-05),
-    ("steel_catenary", 1e-2, 10, 0.1, 1e-6, 0.006495938408601286),
+    ("steel_catenary", 1e-2, 20, 0.1, 1e-6, 0.0022445414625302676),
     ("steel_catenary", 1e-3, 40, 0.05, 1e-6, 0.0004888842045395281),
     ("steel_catenary", 1e-4, 80, 0.02, 1e-8, 5.1392584000594525e-05),
     ("docs/cases/lowe_langley_jumper.toml", 1e-2, 10, 0.1, 1e-6, 0.0015023657855729156),
@@ -635,6 +638,36 @@ fn in_waves_the_lazy_wave_takes_no_mesh_coarser_than_the_wave_study_s() {
     let run = |sets: &[&str]| {
         let mut args = vec!["run", "lazy_wave", "--duration", "40", "--window", "20,40", "--json"];
         for s in ["wave_kind=airy", "wave_height=6", "wave_period=10"].iter().chain(sets) {
+            args.extend_from_slice(&["--set", s]);
+        }
+        run_json(&args)
+    };
+    let tension = |v: &serde_json::Value| -> Vec<f64> {
+        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    let reference = tension(&run(&["n_elements=80", "time_step=0.025"]));
+    let error = |v: &serde_json::Value| {
+        let t = tension(v);
+        (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2]
+    };
+    let knob = run(&["accuracy=1e-2"]);
+    assert_eq!(knob["n_elements"].as_u64(), Some(20));
+    assert!(error(&knob) <= 1e-2, "{:.2e}", error(&knob));
+    let coarse = run(&["accuracy=1e-2", "n_elements=10"]);
+    assert!(error(&coarse) > 1e-2, "the 10 elements reach the target: {:.2e}", error(&coarse));
+}
+
+/// On the seabed no element longer than 1.2 bending lengths, the study's
+/// coarsest there (docs/theory.md §16.9, MAX_TOUCHDOWN_ELEMENT): the steel
+/// catenary heaved 2.5 m at 15 s in a current of 1.0 m/s at the top to 0.3
+/// m/s at the bottom, which moves its touchdown, at 1e-2: its 10 elements
+/// (h/λ = 2.35), which the knob took before, err 1.9e-2; it takes 20 (1.17)
+/// now, within the target against 80 elements at 0.025 s.
+#[test]
+fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
+    let run = |sets: &[&str]| {
+        let mut args = vec!["run", "steel_catenary", "--heave", "2.5,15", "--duration", "60", "--json"];
+        for s in ["current_top=1.0", "current_bottom=0.3"].iter().chain(sets) {
             args.extend_from_slice(&["--set", s]);
         }
         run_json(&args)

@@ -203,6 +203,15 @@ pub const WAVE_FLOOR: f64 = 3.5e-5;
 /// 10 s, twice the model's 6.5e-3: a coarse mesh's error of the bend grows
 /// with the sea's load, which no wave term follows.
 pub const MAX_WAVE_BEND: f64 = 1.0;
+/// The longest element taken on a line resting on its seabed, in bending
+/// lengths λ = √(EI/T) at the static touchdown (docs/theory.md §16.9): the
+/// coarsest of the study's grid and ladder on the seabed (the steel
+/// catenary's 20 elements, h/λ = 1.17), on which the touchdown's terms were
+/// fitted. Coarser meshes are extrapolations: the steel catenary's 10
+/// elements (2.35), within 1e-2 heaved in still water (3.7e-3 at 15 s),
+/// erred 1.9e-2 with a current of 1.0 to 0.3 m/s moving its touchdown, and
+/// its 12 (1.96) erred 8.2e-3 heaved at 10 s against the model's 4.8e-3.
+pub const MAX_TOUCHDOWN_ELEMENT: f64 = 1.2;
 /// The smallest target covered in waves (the references' own spread in a
 /// regular wave: 1.4e-4 against their half mesh).
 pub const MIN_TARGET_WAVES: f64 = 1e-3;
@@ -859,6 +868,8 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
             .filter(|&n| nodes_on_buoyancy_ends(scene, n))
             // in waves, no mesh coarser than the bend the study's waves were checked on (16.9)
             .filter(|&n| s.waves.is_none() || s.length / n as f64 * s.curvature <= MAX_WAVE_BEND)
+            // on the seabed, no element longer than two bending lengths (16.9)
+            .filter(|&n| s.touchdown_bending_length.is_none_or(|l| s.length / n as f64 <= MAX_TOUCHDOWN_ELEMENT * l))
             .collect()
     };
     let dts: Vec<f64> = if pinned.time_step {

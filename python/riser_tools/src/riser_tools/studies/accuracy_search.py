@@ -25,11 +25,13 @@ from dataclasses import dataclass, replace
 
 from . import accuracy as A
 
-# src/sim/accuracy.rs ELEMENT_LADDER, STEP_LADDER, SAFETY, MIN_STEPS_PER_PERIOD, MAX_TARGET
+# src/sim/accuracy.rs ELEMENT_LADDER, STEP_LADDER, SAFETY, MIN_STEPS_PER_PERIOD, MAX_TARGET,
+# MAX_TOUCHDOWN_ELEMENT
 ELEMENT_LADDER = (10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100, 120, 160, 200, 240, 320, 400, 480, 640, 800)
 STEP_LADDER = (0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125)
 SAFETY = 1.5
 MAX_TARGET = 1e-2
+MAX_TOUCHDOWN_ELEMENT = 1.2
 TARGETS = (1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1.2e-4, 1e-4)
 # the meshes the statics is solved on for the departure check (those the choices reach)
 STATIC_MESHES = (10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100, 120, 160)
@@ -93,9 +95,11 @@ def cost(n: int, dt: float) -> float:
 def choose(m: Model, s: Case, target: float) -> tuple[int, float] | None:
     """The knob's choice (src/sim/accuracy.rs choose, nothing pinned): the cheapest ladder point whose
     predicted error is within target/SAFETY, a mesh whose statics departs by more than SAFETY times
-    its model skipped, a smaller departure counted as its mesh term."""
+    its model skipped, a smaller departure counted as its mesh term; on the seabed no element longer
+    than MAX_TOUCHDOWN_ELEMENT bending lengths (docs/theory.md §16.9)."""
     budget = min(target, MAX_TARGET) / SAFETY
-    ns = [n for n in ELEMENT_LADDER if not s.buoyancy_tens or n % 10 == 0]
+    ns = [n for n in ELEMENT_LADDER if (not s.buoyancy_tens or n % 10 == 0)
+          and (not s.bending_length or s.length / n <= MAX_TOUCHDOWN_ELEMENT * s.bending_length)]
     dts = [dt for dt in STEP_LADDER if dt * A.STEPS_PER_PERIOD <= s.period * (1 + 1e-9)]
     cands = sorted((cost(n, dt), n, dt) for n in ns for dt in dts if space_error(m, s, n) + time_error(m, s, dt) <= budget)
     for _, n, dt in cands:
