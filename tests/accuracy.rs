@@ -627,6 +627,28 @@ fn a_line_pushed_into_compression_beyond_the_calibration_is_warned_or_refused() 
     assert!(!out.status.success() && err.contains("does not cover a line in compression"), "{err}");
 }
 
+/// The knob at 1e-2 on `riser run ARGS` with `sets` (each a `--set`), and
+/// the same run with `n_elements` pinned to `coarse`: the knob's
+/// n_elements and both runs' errors (16.1) of the steady top tension
+/// against 80 elements at 0.025 s.
+fn knob_and_coarse_against_80_elements(args: &[&str], sets: &[&str], coarse: usize) -> (u64, f64, f64) {
+    let run = |more: &[&str]| {
+        let mut all: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+        all.push("--json".into());
+        for s in sets.iter().chain(more) {
+            all.extend(["--set".to_string(), s.to_string()]);
+        }
+        let v = run_json(&all.iter().map(|a| a.as_str()).collect::<Vec<_>>());
+        let t: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        (v["n_elements"].as_u64().unwrap(), t)
+    };
+    let (_, reference) = run(&["n_elements=80", "time_step=0.025"]);
+    let error = |t: &[f64]| (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2];
+    let (n, knob) = run(&["accuracy=1e-2"]);
+    let (_, pinned) = run(&["accuracy=1e-2", &format!("n_elements={coarse}")]);
+    (n, error(&knob), error(&pinned))
+}
+
 /// In waves no mesh coarser than h κ = 1 is taken (docs/theory.md §16.9,
 /// MAX_WAVE_BEND): the lazy wave in a 6 m regular wave at 10 s at 1e-2
 /// took its 10 elements (h κ = 1.64, the model's 6.5e-3) and erred 1.27e-2;
@@ -635,26 +657,14 @@ fn a_line_pushed_into_compression_beyond_the_calibration_is_warned_or_refused() 
 /// miss it.
 #[test]
 fn in_waves_the_lazy_wave_takes_no_mesh_coarser_than_the_wave_study_s() {
-    let run = |sets: &[&str]| {
-        let mut args = vec!["run", "lazy_wave", "--duration", "40", "--window", "20,40", "--json"];
-        for s in ["wave_kind=airy", "wave_height=6", "wave_period=10"].iter().chain(sets) {
-            args.extend_from_slice(&["--set", s]);
-        }
-        run_json(&args)
-    };
-    let tension = |v: &serde_json::Value| -> Vec<f64> {
-        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-    };
-    let reference = tension(&run(&["n_elements=80", "time_step=0.025"]));
-    let error = |v: &serde_json::Value| {
-        let t = tension(v);
-        (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2]
-    };
-    let knob = run(&["accuracy=1e-2"]);
-    assert_eq!(knob["n_elements"].as_u64(), Some(20));
-    assert!(error(&knob) <= 1e-2, "{:.2e}", error(&knob));
-    let coarse = run(&["accuracy=1e-2", "n_elements=10"]);
-    assert!(error(&coarse) > 1e-2, "the 10 elements reach the target: {:.2e}", error(&coarse));
+    let (n, knob, coarse) = knob_and_coarse_against_80_elements(
+        &["run", "lazy_wave", "--duration", "40", "--window", "20,40"],
+        &["wave_kind=airy", "wave_height=6", "wave_period=10"],
+        10,
+    );
+    assert_eq!(n, 20);
+    assert!(knob <= 1e-2, "{knob:.2e}");
+    assert!(coarse > 1e-2, "the 10 elements reach the target: {coarse:.2e}");
 }
 
 /// On the seabed no element longer than 1.2 bending lengths, the study's
@@ -665,24 +675,12 @@ fn in_waves_the_lazy_wave_takes_no_mesh_coarser_than_the_wave_study_s() {
 /// now, within the target against 80 elements at 0.025 s.
 #[test]
 fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
-    let run = |sets: &[&str]| {
-        let mut args = vec!["run", "steel_catenary", "--heave", "2.5,15", "--duration", "60", "--json"];
-        for s in ["current_top=1.0", "current_bottom=0.3"].iter().chain(sets) {
-            args.extend_from_slice(&["--set", s]);
-        }
-        run_json(&args)
-    };
-    let tension = |v: &serde_json::Value| -> Vec<f64> {
-        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-    };
-    let reference = tension(&run(&["n_elements=80", "time_step=0.025"]));
-    let error = |v: &serde_json::Value| {
-        let t = tension(v);
-        (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2]
-    };
-    let knob = run(&["accuracy=1e-2"]);
-    assert_eq!(knob["n_elements"].as_u64(), Some(20));
-    assert!(error(&knob) <= 1e-2, "{:.2e}", error(&knob));
-    let coarse = run(&["accuracy=1e-2", "n_elements=10"]);
-    assert!(error(&coarse) > 1e-2, "the 10 elements reach the target: {:.2e}", error(&coarse));
+    let (n, knob, coarse) = knob_and_coarse_against_80_elements(
+        &["run", "steel_catenary", "--heave", "2.5,15", "--duration", "60"],
+        &["current_top=1.0", "current_bottom=0.3"],
+        10,
+    );
+    assert_eq!(n, 20);
+    assert!(knob <= 1e-2, "{knob:.2e}");
+    assert!(coarse > 1e-2, "the 10 elements reach the target: {coarse:.2e}");
 }
