@@ -672,7 +672,8 @@ fn in_waves_the_lazy_wave_takes_no_mesh_coarser_than_the_wave_study_s() {
 /// catenary heaved 2.5 m at 15 s in a current of 1.0 m/s at the top to 0.3
 /// m/s at the bottom, which moves its touchdown, at 1e-2: its 10 elements
 /// (h/λ = 2.35), which the knob took before, err 1.9e-2; it takes 20 (1.17)
-/// now, within the target against 80 elements at 0.025 s.
+/// now, within the target against 80 elements at 0.025 s. A bending length
+/// the ladder's 800 elements cannot follow so is refused, naming it.
 #[test]
 fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
     let (n, knob, coarse) = knob_and_coarse_against_80_elements(
@@ -683,4 +684,20 @@ fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
     assert_eq!(n, 20);
     assert!(knob <= 1e-2, "{knob:.2e}");
     assert!(coarse > 1e-2, "the 10 elements reach the target: {coarse:.2e}");
+    // EI a ten-thousandth: λ = 0.17 m needs 1985 elements, beyond the ladder's 800: refused naming it
+    let out = riser(&[
+        "run",
+        "steel_catenary",
+        "--duration",
+        "1",
+        "--set",
+        "bending_stiffness=2.71e3",
+        "--set",
+        "accuracy=1e-2",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("touchdown bending length") && err.contains("1985 elements"),
+        "{err}"
+    );
 }

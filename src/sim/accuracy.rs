@@ -868,10 +868,40 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
             .filter(|&n| nodes_on_buoyancy_ends(scene, n))
             // in waves, no mesh coarser than the bend the study's waves were checked on (16.9)
             .filter(|&n| s.waves.is_none() || s.length / n as f64 * s.curvature <= MAX_WAVE_BEND)
-            // on the seabed, no element longer than two bending lengths (16.9)
+            // on the seabed, no element longer than MAX_TOUCHDOWN_ELEMENT bending lengths (16.9)
             .filter(|&n| s.touchdown_bending_length.is_none_or(|l| s.length / n as f64 <= MAX_TOUCHDOWN_ELEMENT * l))
             .collect()
     };
+    if ns.is_empty() {
+        let finest = ELEMENT_LADDER[ELEMENT_LADDER.len() - 1];
+        let (feature, need) = match s.touchdown_bending_length {
+            Some(l) if s.length / finest as f64 > MAX_TOUCHDOWN_ELEMENT * l => (
+                format!("a touchdown bending length sqrt(EI/T) of {l:.3} m on a {} m line", s.length),
+                format!(
+                    "no element on the seabed longer than {MAX_TOUCHDOWN_ELEMENT} bending lengths, {:.0} elements",
+                    (s.length / (MAX_TOUCHDOWN_ELEMENT * l)).ceil()
+                ),
+            ),
+            _ => (
+                format!(
+                    "a line of h kappa = {:.2} per element at {finest} elements in waves",
+                    s.length * s.curvature / finest as f64
+                ),
+                format!(
+                    "in waves no mesh above h kappa = {MAX_WAVE_BEND}, {:.0} elements",
+                    (s.length * s.curvature / MAX_WAVE_BEND).ceil()
+                ),
+            ),
+        };
+        return Err(AccuracyError::NotCovered {
+            feature,
+            reason: format!(
+                "the model takes {need} (docs/theory.md §16.9), more than the {finest} of its ladder (a bending \
+                 boundary layer that short is the cable model's to leave out)"
+            ),
+        }
+        .into());
+    }
     let dts: Vec<f64> = if pinned.time_step {
         vec![an.time_step]
     } else {
