@@ -633,27 +633,25 @@ fn a_line_pushed_into_compression_beyond_the_calibration_is_warned_or_refused() 
 /// warning it checks): the knob's n_elements and both runs' errors (16.1)
 /// of the steady top tension against 80 elements at 0.025 s.
 fn knob_and_coarse_against_80_elements(args: &[&str], sets: &[&str], coarse: usize) -> (u64, f64, f64) {
+    // the run's n_elements, steady top tension and stderr
     let run = |more: &[&str]| {
         let mut all: Vec<String> = args.iter().map(|a| a.to_string()).collect();
         all.push("--json".into());
         for s in sets.iter().chain(more) {
             all.extend(["--set".to_string(), s.to_string()]);
         }
-        let v = run_json(&all.iter().map(|a| a.as_str()).collect::<Vec<_>>());
+        let out = riser(&all.iter().map(|a| a.as_str()).collect::<Vec<_>>());
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "riser {all:?}: {err}");
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let t: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-        (v["n_elements"].as_u64().unwrap(), t)
+        (v["n_elements"].as_u64().unwrap(), t, err)
     };
-    let (_, reference) = run(&["n_elements=80", "time_step=0.025"]);
+    let (_, reference, _) = run(&["n_elements=80", "time_step=0.025"]);
     let error = |t: &[f64]| (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2];
-    let (n, knob) = run(&["accuracy=1e-2"]);
-    let (_, pinned) = run(&["accuracy=1e-2", &format!("n_elements={coarse}")]);
+    let (n, knob, _) = run(&["accuracy=1e-2"]);
+    let (_, pinned, err) = run(&["accuracy=1e-2", &format!("n_elements={coarse}")]);
     // the pinned mesh is beyond the cap: the knob says its prediction does not hold
-    let mut short: Vec<String> = args.iter().map(|a| a.to_string()).collect();
-    for s in sets.iter().chain(&["accuracy=1e-2", &format!("n_elements={coarse}")]) {
-        short.extend(["--set".to_string(), s.to_string()]);
-    }
-    let out = riser(&short.iter().map(|a| a.as_str()).collect::<Vec<_>>());
-    let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("its prediction does not hold there"), "{err}");
     (n, error(&knob), error(&pinned))
 }

@@ -254,6 +254,16 @@ impl Excitation {
             format!("for a motion of {} m at period {} s", self.amplitude, self.period)
         }
     }
+
+    /// A ω²/g: the hang-off's acceleration over `gravity` (m/s²); 0 held
+    /// still.
+    pub fn acceleration_ratio(&self, gravity: f64) -> f64 {
+        if self.amplitude == 0.0 {
+            return 0.0;
+        }
+        let omega = 2.0 * std::f64::consts::PI / self.period;
+        self.amplitude * omega * omega / gravity
+    }
 }
 
 /// Which numerics the user set explicitly (`--set`, the FMU's master): they
@@ -309,6 +319,24 @@ pub struct Scales {
     pub top_tension: f64,
     /// The sea's scales (None: still water).
     pub waves: Option<WaveScales>,
+}
+
+impl Scales {
+    /// h/λ of a mesh of `n` elements on the seabed where it is beyond
+    /// [`MAX_TOUCHDOWN_ELEMENT`] (None: within it, or no seabed contact;
+    /// docs/theory.md §16.9).
+    pub fn touchdown_overlength(&self, n: usize) -> Option<f64> {
+        let l = self.touchdown_bending_length?;
+        let r = self.length / n as f64 / l;
+        (r > MAX_TOUCHDOWN_ELEMENT).then_some(r)
+    }
+
+    /// h κ of a mesh of `n` elements in waves where it is beyond
+    /// [`MAX_WAVE_BEND`] (None: within it, or still water; §16.9).
+    pub fn wave_overbend(&self, n: usize) -> Option<f64> {
+        let hk = self.length / n as f64 * self.curvature;
+        (self.waves.is_some() && hk > MAX_WAVE_BEND).then_some(hk)
+    }
 }
 
 /// The scales of a scene's sea that set its error (docs/theory.md §16.4).
@@ -718,11 +746,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         (t > 0.0).then(|| (ei / t).sqrt())
     });
     let omega = 2.0 * std::f64::consts::PI / excitation.period;
-    let acceleration_ratio = if excitation.amplitude == 0.0 {
-        0.0
-    } else {
-        excitation.amplitude * omega * omega / scene.environment.gravity
-    };
+    let acceleration_ratio = excitation.acceleration_ratio(scene.environment.gravity);
     Ok(Scales {
         curvature: d.max_curvature,
         curvature_s: d.max_curvature_s,
@@ -798,9 +822,9 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
         }
         .into());
     }
-    let omega = 2.0 * std::f64::consts::PI / excitation.period;
-    let acceleration = excitation.amplitude * omega * omega / scene.environment.gravity;
+    let acceleration = excitation.acceleration_ratio(scene.environment.gravity);
     if acceleration > MAX_ACCELERATION_RATIO {
+        let omega = 2.0 * std::f64::consts::PI / excitation.period;
         return Err(AccuracyError::Motion {
             message: format!(
                 "a hang-off motion of amplitude {} m{} at period {} s{} accelerates the hang-off by A omega^2/g = \
@@ -874,33 +898,32 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
             .iter()
             .copied()
             .filter(|&n| nodes_on_buoyancy_ends(scene, n))
-            // in waves, no mesh coarser than the bend the study's waves were checked on (16.9)
-            .filter(|&n| s.waves.is_none() || s.length / n as f64 * s.curvature <= MAX_WAVE_BEND)
-            // on the seabed, no element longer than MAX_TOUCHDOWN_ELEMENT bending lengths (16.9)
-            .filter(|&n| s.touchdown_bending_length.is_none_or(|l| s.length / n as f64 <= MAX_TOUCHDOWN_ELEMENT * l))
+            // the caps of §16.9: the touchdown's elements, the bend in waves
+            .filter(|&n| s.touchdown_overlength(n).is_none() && s.wave_overbend(n).is_none())
             .collect()
     };
     // a cap the ladder's finest mesh breaks: refused naming it (an empty list for
     // another reason, no mesh with nodes on the buoyancy ends, is Unreachable below)
     let finest = ELEMENT_LADDER[ELEMENT_LADDER.len() - 1];
     if ns.is_empty() {
-        let h = s.length / finest as f64;
-        let cap = match (s.touchdown_bending_length, s.waves) {
-            (Some(l), _) if h > MAX_TOUCHDOWN_ELEMENT * l => Some((
-                format!("a touchdown bending length sqrt(EI/T) of {l:.3} m on a {} m line", s.length),
-                format!(
-                    "no element on the seabed longer than {MAX_TOUCHDOWN_ELEMENT} bending lengths, {:.0} elements",
-                    (s.length / (MAX_TOUCHDOWN_ELEMENT * l)).ceil()
-                ),
-            )),
-            (_, Some(_)) if h * s.curvature > MAX_WAVE_BEND => Some((
+        let cap = match (s.touchdown_overlength(finest), s.wave_overbend(finest)) {
+            (Some(_), _) => s.touchdown_bending_length.map(|l| {
+                (
+                    format!("a touchdown bending length sqrt(EI/T) of {l:.3} m on a {} m line", s.length),
+                    format!(
+                        "no element on the seabed longer than {MAX_TOUCHDOWN_ELEMENT} bending lengths, {:.0} elements",
+                        (s.length / (MAX_TOUCHDOWN_ELEMENT * l)).ceil()
+                    ),
+                )
+            }),
+            (None, Some(_)) => Some((
                 format!("a static curvature of {:.4} 1/m on a {} m line in waves", s.curvature, s.length),
                 format!(
                     "in waves no mesh above h kappa = {MAX_WAVE_BEND}, {:.0} elements",
                     (s.length * s.curvature / MAX_WAVE_BEND).ceil()
                 ),
             )),
-            _ => None,
+            (None, None) => None,
         };
         if let Some((feature, need)) = cap {
             return Err(AccuracyError::NotCovered {
@@ -1052,24 +1075,20 @@ pub fn warning(choice: &Choice) -> Option<String> {
             choice.predicted()
         ));
     }
-    let s = &choice.scales;
-    let h = s.length / choice.n_elements as f64;
+    let (s, n) = (&choice.scales, choice.n_elements);
     if choice.pinned.n_elements {
-        if let Some(l) = s.touchdown_bending_length
-            && h > MAX_TOUCHDOWN_ELEMENT * l
-        {
+        if let Some(r) = s.touchdown_overlength(n) {
             parts.push(format!(
-                "the n_elements you set makes elements of {h:.2} m, {:.2} bending lengths sqrt(EI/T) at the \
+                "the n_elements you set makes elements of {:.2} m, {r:.2} bending lengths sqrt(EI/T) at the \
                  touchdown, beyond the {MAX_TOUCHDOWN_ELEMENT} the model was calibrated on: its prediction does not \
                  hold there (docs/theory.md 16.9)",
-                h / l
+                s.length / n as f64
             ));
         }
-        if s.waves.is_some() && h * s.curvature > MAX_WAVE_BEND {
+        if let Some(hk) = s.wave_overbend(n) {
             parts.push(format!(
-                "the n_elements you set makes h kappa = {:.2} in waves, beyond the {MAX_WAVE_BEND} the model was \
-                 calibrated on: its prediction does not hold there (docs/theory.md 16.9)",
-                h * s.curvature
+                "the n_elements you set makes h kappa = {hk:.2} in waves, beyond the {MAX_WAVE_BEND} the model was \
+                 calibrated on: its prediction does not hold there (docs/theory.md 16.9)"
             ));
         }
     }
