@@ -195,7 +195,7 @@ fn without_accuracy_nothing_changes() {
 
 #[test]
 fn what_the_model_does_not_cover_is_refused_naming_why() {
-    let cases: [(&[&str], &str); 15] = [
+    let cases: [(&[&str], &str); 16] = [
         (&["--set", "model=cable"], "does not cover the cable model"),
         (&["--set", "rho_infinity=1"], "does not cover rho_infinity = 1"),
         // the catenary's low point (z = -70.4 m) is 3.2 m above a seabed at -73.6 m: a heave of 2.5 m may touch it
@@ -239,6 +239,12 @@ fn what_the_model_does_not_cover_is_refused_naming_why() {
         // 5 m at 10 s (sway: the largest amplitude and shortest period of the motions): 0.201 g, twice
         // the study's largest (docs/theory.md 16.9)
         (&["--sway", "5,10"], "accelerates the hang-off by A omega^2/g = 0.2012 g, beyond the 0.101 g"),
+        // heave and surge of 2.5 m at 10 s each: their resultant, 3.536 m, at 10 s is 0.1423 g (each alone
+        // is the study's 0.1006)
+        (
+            &["--heave", "2.5,10", "--surge", "2.5,10"],
+            "amplitude 3.536 m at period 10 s accelerates the hang-off by A omega^2/g = 0.1423 g",
+        ),
     ];
     for (extra, message) in cases {
         let mut args = vec!["run", "catenary", "--duration", "1", "--set", "accuracy=1e-3"];

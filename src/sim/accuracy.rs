@@ -795,7 +795,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
                  {r:.3} of the line's weight in water, {weight:.1} N/m, beyond the {MAX_MOTION_DRAG} of the study's \
                  such line (the catenary heaved 2.5 m at 10 s): the motion's drag, not the weight, shapes the line \
                  and the mesh errs up to 9 times the model (docs/theory.md 16.10); at {} m the model covers this \
-                 line from a period of {:.2} s",
+                 line from a period of {:.2} s (in the FMU, accuracy_motion_period)",
                 drag_per_speed2 * v * v,
                 excitation.amplitude,
                 (2.0 * std::f64::consts::PI * excitation.amplitude / v_max * 100.0).ceil() / 100.0
@@ -899,7 +899,7 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
                  {acceleration:.4} g, beyond the {MAX_ACCELERATION_RATIO} g of the study's motions (2.5 m at 10 s, \
                  the design motion): at this period the model covers up to {:.3} m, this amplitude from a period \
                  of {:.2} s",
-                excitation.amplitude,
+                (excitation.amplitude * 1e3).round() / 1e3,
                 given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude"),
                 excitation.period,
                 given(an.accuracy_motion_period, "accuracy_motion_period"),

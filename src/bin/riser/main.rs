@@ -267,8 +267,9 @@ impl Motions {
         if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
     }
 
-    /// The motion the accuracy knob chooses for: the largest amplitude of the
-    /// translations with their shortest period (a run with rotations alone:
+    /// The motion the accuracy knob chooses for: the translations' resultant
+    /// amplitude √(Σ A²) (heave, surge and sway are orthogonal: in phase, the
+    /// hang-off's path) with their shortest period (a run with rotations alone:
     /// the shortest of theirs, amplitude 0; the knob refuses a hang-off offset
     /// from the reference point, about which the rotations turn the vessel,
     /// so they do not move it); None: the hang-off held still.
@@ -276,7 +277,7 @@ impl Motions {
         let translations = [self.heave, self.surge, self.sway];
         let shortest = |ms: &[Option<(f64, f64)>]| ms.iter().flatten().map(|m| m.1).reduce(f64::min);
         let period = shortest(&translations).or_else(|| shortest(&self.all()))?;
-        let amplitude = translations.into_iter().flatten().map(|m| m.0.abs()).fold(0.0, f64::max);
+        let amplitude = translations.into_iter().flatten().map(|m| m.0 * m.0).sum::<f64>().sqrt();
         Some(riser::sim::accuracy::Excitation { period, amplitude })
     }
 
