@@ -715,8 +715,10 @@ fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
     );
 }
 
-/// A uniform line hanging free to its anchor is covered as heavy in water
-/// as the study's such line and no more driven by its motion's drag
+/// A uniform line hanging free to its anchor or resting on its seabed is
+/// covered down to the weight in water over the weight in air of the
+/// study's line of its kind (0.64, 0.62), and, hanging free, up to the
+/// study's drag of its motion over its weight
 /// (docs/theory.md §16.10, MIN_WEIGHT_RATIO and MAX_MOTION_DRAG): the
 /// catenary has w/(m g) = 0.643 and, heaved 2.5 m at 10 s, D_m = ½ ρ C_d D
 /// (A ω)² / w = 0.168. At 140 kg/m (w/(m g) 0.421) it is refused naming its
@@ -724,7 +726,8 @@ fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
 /// 0.075 s, tolerance 1e-6) miss 1e-3 against 80 elements at 0.025 s
 /// (2.5e-3 against 160 at 0.0125 s). With C_d 1.2 for 0.6 (D_m 0.337) it is
 /// refused naming D_m and the period from which it is covered (14.08 s),
-/// which separates refused and accepted.
+/// which separates refused and accepted. The steel catenary at 140 kg/m
+/// (0.571) is refused, at its own 162.1 (0.630) taken.
 #[test]
 fn a_line_hanging_free_lighter_or_more_driven_than_the_study_s_is_refused() {
     let scene = |sets: &[&str], heave: &str| {
@@ -769,4 +772,17 @@ fn a_line_hanging_free_lighter_or_more_driven_than_the_study_s_is_refused() {
     assert!(err.contains(&format!("from a period of {:.2} s", (t_from * 100.0).ceil() / 100.0)), "{err}");
     let refused = |t: &str| !scene(&["cd_normal=1.2", "accuracy=1e-3"], &format!("2.5,{t}")).status.success();
     assert!(refused("14.0") && !refused("14.1"));
+
+    // on the seabed: the steel catenary's water and diameter, 0.2731 m
+    let steel = |m: &str| {
+        let mass = format!("mass_per_length={m}");
+        riser(&["statics", "steel_catenary", "--set", "accuracy=1e-3", "--set", &mass])
+    };
+    let ratio = 1.0 - rho * std::f64::consts::PI / 4.0 * 0.2731f64.powi(2) / 140.0;
+    let err = String::from_utf8_lossy(&steel("140").stderr).to_string();
+    assert!(
+        err.contains(&format!("is {ratio:.3} of its weight in air")) && err.contains("resting on its seabed"),
+        "{err}"
+    );
+    assert!(steel("162.1").status.success());
 }
