@@ -727,7 +727,8 @@ fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
 /// (2.5e-3 against 160 at 0.0125 s). With C_d 1.2 for 0.6 (D_m 0.337) it is
 /// refused naming D_m and the period from which it is covered (14.08 s),
 /// which separates refused and accepted. The steel catenary at 140 kg/m
-/// (0.571) is refused, at its own 162.1 (0.630) taken.
+/// (0.571) is refused, at its own 162.1 (0.630) taken; the jumper, whose
+/// heavier variants miss, at 180 kg/m (0.316, above its 0.254) refused.
 #[test]
 fn a_line_hanging_free_lighter_or_more_driven_than_the_study_s_is_refused() {
     let scene = |sets: &[&str], heave: &str| {
@@ -785,4 +786,18 @@ fn a_line_hanging_free_lighter_or_more_driven_than_the_study_s_is_refused() {
         "{err}"
     );
     assert!(steel("162.1").status.success());
+
+    // with a sag bend: the jumper made heavier, 180 kg/m for 165 (its water 1000 kg/m³, D 0.396 m)
+    let jumper = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/lowe_langley_jumper.toml");
+    let out = riser(&["statics", jumper, "--set", "accuracy=1e-4", "--set", "mass_per_length=180"]);
+    let ratio = 1.0 - 1000.0 * std::f64::consts::PI / 4.0 * 0.396f64.powi(2) / 180.0;
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success()
+            && err.contains("heavier in water")
+            && err.contains(&format!("is {ratio:.3} of its weight in air"))
+            && err.contains("with a sag bend below its anchor"),
+        "{err}"
+    );
+    assert!(riser(&["statics", jumper, "--set", "accuracy=1e-4"]).status.success());
 }
