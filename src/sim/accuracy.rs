@@ -164,13 +164,17 @@ pub const MAX_ACCELERATION_RATIO: f64 = 0.101;
 /// misses: at 190 kg/m (0.574) 1e-4 by 1.19 times heaved 2.5 m at 11.6 s
 /// (within at 10 and 14.6 s); at 160, 140, 120 kg/m (0.494, 0.421, 0.325)
 /// 1e-4 by up to 6 times and 1e-3 by up to 4.7 at periods from 10 to 19.3
-/// s, some with the motion's drag (D_m, [`MAX_MOTION_DRAG`]) below the
-/// study's (160 kg/m at 14 s, D_m 0.158: 1.7 times at 1e-4; 120 kg/m at
+/// s, some with the motion's drag (F_m, [`MAX_MOTION_DRAG`]) below the
+/// study's (160 kg/m at 14 s, F_m 0.158: 1.7 times at 1e-4; 120 kg/m at
 /// 19.3 s, 0.169: 3.8 times), its near-anchor tension falling to a few kN
 /// and its first in-plane period near the motion's or its second
 /// harmonic's. Heavier (300 kg/m, 0.730), with added mass (C_a = 1) or EI
 /// ÷10, ×10, it keeps its targets.
 pub const MIN_WEIGHT_RATIO: f64 = 0.64;
+/// The largest w/(m g) of a uniform line hanging free to its anchor that
+/// the model covers (docs/theory.md §16.10): the heaviest probed, the
+/// catenary at 300 kg/m (0.730), kept its targets heaved 2.5 m at 10 s.
+pub const MAX_WEIGHT_RATIO: f64 = 0.73;
 /// The least w/(m g) of a uniform line resting on its seabed that the model
 /// covers (docs/theory.md §16.10): the study's such line, the steel
 /// catenary, has 0.630. Made lighter, at 120 kg/m (0.500) heaved 2.5 m near
@@ -181,6 +185,11 @@ pub const MIN_WEIGHT_RATIO: f64 = 0.64;
 /// of 1e-4): the bound stays at the study's, as the catenary at 0.574 kept
 /// its targets at two periods and missed at a third.
 pub const MIN_WEIGHT_RATIO_SEABED: f64 = 0.62;
+/// The largest w/(m g) of a uniform line resting on its seabed that the
+/// model covers (docs/theory.md §16.10): the heaviest probed, the steel
+/// catenary at 200 kg/m (0.700), kept its targets heaved 2.5 m at 10 and
+/// 15 s.
+pub const MAX_WEIGHT_RATIO_SEABED: f64 = 0.70;
 /// The largest w/(m g) of a uniform line with a sag bend below its anchor,
 /// clear of the seabed, that the model covers (docs/theory.md §16.10): the
 /// study's such line, the Lowe & Langley jumper, has 0.254. Made heavier,
@@ -189,8 +198,12 @@ pub const MIN_WEIGHT_RATIO_SEABED: f64 = 0.62;
 /// 2.5e-4 on 160 elements, is seven times the model's); made lighter, at
 /// 145 kg/m (0.151), or without added mass, it kept its targets.
 pub const MAX_WEIGHT_RATIO_SAG: f64 = 0.26;
+/// The least w/(m g) of a uniform line with a sag bend below its anchor that
+/// the model covers (docs/theory.md §16.10): the lightest probed, the jumper
+/// at 145 kg/m (0.151), kept its targets (with 0.93 of 1e-4).
+pub const MIN_WEIGHT_RATIO_SAG: f64 = 0.15;
 /// The largest drag of the hang-off's motion over the weight in water that
-/// the model covers on a uniform line hanging free to its anchor, D_m of
+/// the model covers on a uniform line hanging free to its anchor, F_m of
 /// docs/theory.md (16.10): the study's such line, the catenary heaved 2.5 m
 /// at 10 s, reaches 0.168 (at 10 m its line goes taut and is refused). A
 /// faster motion, a larger C_d D for the weight, is beyond the calibration:
@@ -294,7 +307,7 @@ impl Excitation {
         if self.amplitude == 0.0 && self.period.is_infinite() {
             "for the hang-off held still".to_string()
         } else {
-            format!("for a motion of {} m at period {} s", self.amplitude, self.period)
+            format!("for a motion of {} m at period {} s", (self.amplitude * 1e3).round() / 1e3, self.period)
         }
     }
 
@@ -597,11 +610,13 @@ impl LineClass {
         if touchdown_s.is_some() {
             return Some(LineClass::OnSeabed);
         }
-        let anchor_z = rows.last()?.z;
-        let lowest = rows.iter().map(|r| r.z).fold(f64::INFINITY, f64::min);
-        // down to its anchor: no sag below it beyond 5 % of the length (the
-        // catenary's dips 0.3–0.4 m, the jumper's sag bend 37 m, 22 %)
-        Some(if lowest >= anchor_z - 0.05 * scene.line.length { LineClass::HangingFree } else { LineClass::SagBend })
+        // down to its anchor: no sag below it beyond 10 % of the length (the
+        // catenary's dips 0.3–0.4 m, 0.4 %; the jumper's sag bend 37 m, 22 %)
+        Some(if sag_below_anchor(rows) <= 0.1 * scene.line.length {
+            LineClass::HangingFree
+        } else {
+            LineClass::SagBend
+        })
     }
 
     /// What the class is, for a message.
@@ -616,30 +631,50 @@ impl LineClass {
     /// The range of w/(m g) the model covers for the class (16.10).
     pub fn weight_ratios(self) -> (f64, f64) {
         match self {
-            LineClass::HangingFree => (MIN_WEIGHT_RATIO, f64::INFINITY),
-            LineClass::OnSeabed => (MIN_WEIGHT_RATIO_SEABED, f64::INFINITY),
-            LineClass::SagBend => (f64::NEG_INFINITY, MAX_WEIGHT_RATIO_SAG),
+            LineClass::HangingFree => (MIN_WEIGHT_RATIO, MAX_WEIGHT_RATIO),
+            LineClass::OnSeabed => (MIN_WEIGHT_RATIO_SEABED, MAX_WEIGHT_RATIO_SEABED),
+            LineClass::SagBend => (MIN_WEIGHT_RATIO_SAG, MAX_WEIGHT_RATIO_SAG),
         }
     }
 
-    /// The study's line that bounds the class, and what the lines beyond
-    /// the bound did.
-    pub fn evidence(self) -> &'static str {
-        match self {
-            LineClass::HangingFree => {
+    /// What the study's line of the class and its variants beyond the
+    /// bound on the `heavier` or the lighter side did.
+    pub fn evidence(self, heavier: bool) -> &'static str {
+        match (self, heavier) {
+            (LineClass::HangingFree, false) => {
                 "the study's catenary has 0.643; made lighter (190 kg/m, 0.574, and less) it misses 1e-4 by up to 6 \
                  times and 1e-3 by up to 4.7"
             }
-            LineClass::OnSeabed => {
+            (LineClass::HangingFree, true) => {
+                "the study's catenary has 0.643, and made heavier it was probed up to 300 kg/m, 0.730, within its \
+                 targets; beyond, the model is not calibrated"
+            }
+            (LineClass::OnSeabed, false) => {
                 "the study's steel catenary has 0.630; made lighter (120 kg/m, 0.500) it misses 1e-3 and 1e-4 by up \
                  to 1.5 times near its first in-plane period"
             }
-            LineClass::SagBend => {
+            (LineClass::OnSeabed, true) => {
+                "the study's steel catenary has 0.630, and made heavier it was probed up to 200 kg/m, 0.700, within \
+                 its targets; beyond, the model is not calibrated"
+            }
+            (LineClass::SagBend, false) => {
+                "the study's jumper has 0.254, and made lighter it was probed down to 145 kg/m, 0.151, within its \
+                 targets; beyond, the model is not calibrated"
+            }
+            (LineClass::SagBend, true) => {
                 "the study's jumper has 0.254; made heavier (180 and 200 kg/m, 0.316 and 0.384) it misses 1e-4 by 2.5 \
                  and 2.3 times, its step's error seven times the model's"
             }
         }
     }
+}
+
+/// How far the static line's lowest point is below its anchor (the last of
+/// `rows`, hang-off to anchor), m; 0 when the anchor is the lowest.
+pub fn sag_below_anchor(rows: &[super::report::ShapeRow]) -> f64 {
+    let anchor_z = rows.last().map_or(0.0, |r| r.z);
+    let lowest = rows.iter().map(|r| r.z).fold(f64::INFINITY, f64::min);
+    (anchor_z - lowest).max(0.0)
 }
 
 /// The line's weight in water per length, w = (m − ρ π D²/4) g, N/m.
@@ -649,7 +684,7 @@ pub fn weight_in_water(scene: &Scene) -> f64 {
 }
 
 /// ½ ρ C_d D (A ω)², N/m: the drag across the line of the hang-off's
-/// velocity amplitude, the numerator of D_m (16.10).
+/// velocity amplitude, the numerator of F_m (16.10).
 pub fn motion_drag(scene: &Scene, excitation: &Excitation) -> f64 {
     let (line, env) = (&scene.line, &scene.environment);
     if excitation.amplitude == 0.0 || !excitation.period.is_finite() {
@@ -868,20 +903,40 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     let class = LineClass::of(scene, &rep.shape, d.touchdown_s);
     let weight = weight_in_water(scene);
     if let Some(class) = class {
+        if weight <= 0.0 {
+            return Err(AccuracyError::NotCovered {
+                feature: "a line that floats".to_string(),
+                reason: format!(
+                    "its weight in water is {weight:.1} N/m (its mass less the water its diameter displaces): the \
+                     study's lines all sink (docs/theory.md 16.10)"
+                ),
+            }
+            .into());
+        }
         let ratio = weight / (scene.line.mass_per_length * scene.environment.gravity);
         let (least, most) = class.weight_ratios();
         if ratio < least || ratio > most {
-            let (side, bound) =
-                if ratio < least { ("lighter", ("below", least)) } else { ("heavier", ("above", most)) };
+            let heavier = ratio > most;
+            let sag = sag_below_anchor(&rep.shape);
+            let kind = match class {
+                LineClass::SagBend => format!(
+                    "{} (its static low point is {sag:.1} m, {:.0} % of its length, below its anchor)",
+                    class.name(),
+                    100.0 * sag / scene.line.length
+                ),
+                _ => class.name().to_string(),
+            };
             return Err(AccuracyError::NotCovered {
-                feature: format!("a line {side} in water than the calibration's"),
+                feature: format!(
+                    "a line {} in water than the calibration's",
+                    if heavier { "heavier" } else { "lighter" }
+                ),
                 reason: format!(
                     "its weight in water, {weight:.1} N/m, is {ratio:.3} of its weight in air, {} the {} the model \
-                     covers of a line {}: {} (docs/theory.md 16.10)",
-                    bound.0,
-                    bound.1,
-                    class.name(),
-                    class.evidence()
+                     covers of a line {kind}: {} (docs/theory.md 16.10)",
+                    if heavier { "above" } else { "below" },
+                    if heavier { most } else { least },
+                    class.evidence(heavier)
                 ),
             }
             .into());
@@ -892,7 +947,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         let r = drag / weight;
         if r > MAX_MOTION_DRAG {
             let v = excitation.amplitude * 2.0 * std::f64::consts::PI / excitation.period;
-            // the period from which this amplitude is covered: D_m ∝ (A ω)²
+            // the period from which this amplitude is covered: F_m ∝ (A ω)²
             let t_from = excitation.period * (r / MAX_MOTION_DRAG).sqrt();
             return Err(AccuracyError::NotCovered {
                 feature: "a line hanging free to its anchor whose motion's drag outweighs the study's".to_string(),
@@ -900,8 +955,9 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
                     "the drag of the hang-off's velocity A omega = {v:.3} m/s, 1/2 rho C_d D (A omega)^2 = \
                      {drag:.1} N/m, is {r:.3} of the line's weight in water, {weight:.1} N/m, beyond the \
                      {MAX_MOTION_DRAG} of the study's such line (the catenary heaved 2.5 m at 10 s; docs/theory.md \
-                     16.10); at {} m the model covers this line from a period of {:.2} s (in the FMU, \
-                     accuracy_motion_period)",
+                     16.10); at this period the model covers this line up to {:.3} m, at {} m from a period of \
+                     {:.2} s (in the FMU, accuracy_motion_amplitude and accuracy_motion_period)",
+                    (excitation.amplitude * (MAX_MOTION_DRAG / r).sqrt() * 1e3).floor() / 1e3,
                     (excitation.amplitude * 1e3).round() / 1e3,
                     (t_from * 100.0).ceil() / 100.0
                 ),

@@ -277,7 +277,8 @@ impl Motions {
         let translations = [self.heave, self.surge, self.sway];
         let shortest = |ms: &[Option<(f64, f64)>]| ms.iter().flatten().map(|m| m.1).reduce(f64::min);
         let period = shortest(&translations).or_else(|| shortest(&self.all()))?;
-        let amplitude = translations.into_iter().flatten().map(|m| m.0 * m.0).sum::<f64>().sqrt();
+        // (a fold from +0: an empty sum of f64 is −0)
+        let amplitude = translations.into_iter().flatten().fold(0.0, |s, m| s + m.0 * m.0).sqrt();
         Some(riser::sim::accuracy::Excitation { period, amplitude })
     }
 
