@@ -811,3 +811,30 @@ fn a_line_beyond_the_weight_in_water_or_the_motion_s_drag_of_the_study_s_is_refu
     );
     assert!(riser(&["statics", jumper, "--set", "accuracy=1e-4"]).status.success());
 }
+
+/// No mesh whose statics kinks the line is taken (docs/theory.md §16.10,
+/// MAX_STATIC_KINK): the lazy wave with modules of 540 N/m (670 in the
+/// scene), heaved 2.5 m at 10 s at 1e-2, took 10 elements, whose static line
+/// bends 2.55 times the converged one's largest curvature with its top
+/// tension within 6e-4, and erred 4.4e-2 (against 320 elements at 0.0125 s);
+/// it takes 20 now, within the target against 80 elements at 0.025 s, and
+/// the 10, pinned, still miss it.
+#[test]
+fn no_mesh_whose_statics_kinks_the_line_is_taken() {
+    let run = |sets: &[&str]| {
+        let mut args = vec!["run", "lazy_wave", "--heave", "2.5,10", "--duration", "40", "--json"];
+        for s in ["buoyancy_load=540"].iter().chain(sets) {
+            args.extend_from_slice(&["--set", s]);
+        }
+        let v = run_json(&args);
+        let t: Vec<f64> = v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        (v["n_elements"].as_u64().unwrap(), t)
+    };
+    let (_, reference) = run(&["n_elements=80", "time_step=0.025"]);
+    let error = |t: &[f64]| (0..3).map(|k| (t[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2];
+    let (n, knob) = run(&["accuracy=1e-2"]);
+    assert_eq!(n, 20);
+    assert!(error(&knob) <= 1e-2, "{:.2e}", error(&knob));
+    let (_, kinked) = run(&["n_elements=10", "time_step=0.1", "newton_tolerance=1e-6"]);
+    assert!(error(&kinked) > 1e-2, "the 10 elements reach the target: {:.2e}", error(&kinked));
+}
