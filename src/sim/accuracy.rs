@@ -52,7 +52,10 @@
 pub use super::error::AccuracyError;
 use super::error::RiserError;
 use super::report::solve_scene;
-use super::{Engine, design::Design};
+use super::{
+    Engine,
+    design::{Design, DesignNumbers},
+};
 use crate::model::State;
 use crate::scene::{HangOffEnd, Model, Scene};
 
@@ -311,14 +314,23 @@ impl Excitation {
         }
     }
 
-    /// A ω²/g: the hang-off's acceleration over `gravity` (m/s²); 0 held
-    /// still.
-    pub fn acceleration_ratio(&self, gravity: f64) -> f64 {
+    /// ω = 2π/T, rad/s (0 held still, T infinite).
+    pub fn omega(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.period
+    }
+
+    /// A ω: the hang-off's velocity amplitude, m/s; 0 held still.
+    pub fn velocity(&self) -> f64 {
         if self.amplitude == 0.0 {
             return 0.0;
         }
-        let omega = 2.0 * std::f64::consts::PI / self.period;
-        self.amplitude * omega * omega / gravity
+        self.amplitude * self.omega()
+    }
+
+    /// A ω²/g: the hang-off's acceleration over `gravity` (m/s²); 0 held
+    /// still.
+    pub fn acceleration_ratio(&self, gravity: f64) -> f64 {
+        self.velocity() * self.omega() / gravity
     }
 }
 
@@ -687,11 +699,7 @@ pub fn weight_in_water(scene: &Scene) -> f64 {
 /// velocity amplitude, the numerator of F_m (16.10).
 pub fn motion_drag(scene: &Scene, excitation: &Excitation) -> f64 {
     let (line, env) = (&scene.line, &scene.environment);
-    if excitation.amplitude == 0.0 || !excitation.period.is_finite() {
-        return 0.0;
-    }
-    let v = excitation.amplitude * 2.0 * std::f64::consts::PI / excitation.period;
-    0.5 * env.water_density * line.cd_normal * line.outer_diameter * v * v
+    0.5 * env.water_density * line.cd_normal * line.outer_diameter * excitation.velocity().powi(2)
 }
 
 /// The relative difference of the static top tension solved on `n` elements
@@ -724,12 +732,18 @@ pub fn static_mesh_departure(scene: &Scene, n: usize, s: &Scales) -> Result<(f64
     mesh.analysis.n_elements = n;
     let rep = solve_scene(&mesh)?;
     let top = rep.shape.first().map_or(f64::NAN, |r| r.tension);
-    let mut engine = Engine::from_scene(&mesh)?;
+    let curvature = static_design(&mesh, &rep)?.max_curvature;
+    Ok((((top - s.top_tension) / s.top_tension).abs(), curvature / s.curvature))
+}
+
+/// The design numbers (curvature, touchdown, least tension) of `scene`'s
+/// static line `rep`, as `riser statics` reports them.
+fn static_design(scene: &Scene, rep: &super::report::StaticReport) -> Result<DesignNumbers, RiserError> {
+    let mut engine = Engine::from_scene(scene)?;
     engine.set_static_frame(&rep.solution.config);
     let state = State::at_rest(rep.solution.config.clone(), 0.0);
     let touchdown = engine.outputs(&state).touchdown_s;
-    let curvature = Design::new(&mesh).numbers(&engine, &state, touchdown).max_curvature;
-    Ok((((top - s.top_tension) / s.top_tension).abs(), curvature / s.curvature))
+    Ok(Design::new(scene).numbers(&engine, &state, touchdown))
 }
 
 /// The relative cost of a run of `n` elements at step `dt`, the study's work
@@ -883,11 +897,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     let mut fine = scene.clone();
     fine.analysis.n_elements = fine.analysis.n_elements.max(60);
     let rep = solve_scene(&fine)?;
-    let mut engine = Engine::from_scene(&fine)?;
-    engine.set_static_frame(&rep.solution.config);
-    let state = State::at_rest(rep.solution.config.clone(), 0.0);
-    let touchdown = engine.outputs(&state).touchdown_s;
-    let d = Design::new(&fine).numbers(&engine, &state, touchdown);
+    let d = static_design(&fine, &rep)?;
     // a line clear of its seabed in the statics that the motion may bring
     // down onto it: the seabed term is calibrated on a line resting on it
     if let (None, Some(bed)) = (d.touchdown_s, scene.seabed.as_ref()) {
@@ -968,7 +978,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         let drag = motion_drag(scene, excitation);
         let r = drag / weight;
         if r > MAX_MOTION_DRAG {
-            let v = excitation.amplitude * 2.0 * std::f64::consts::PI / excitation.period;
+            let v = excitation.velocity();
             // the period from which this amplitude is covered: F_m ∝ (A ω)²
             let t_from = excitation.period * (r / MAX_MOTION_DRAG).sqrt();
             return Err(AccuracyError::NotCovered {
@@ -997,7 +1007,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         let ei = scene.line.bending_stiffness;
         (t > 0.0).then(|| (ei / t).sqrt())
     });
-    let omega = 2.0 * std::f64::consts::PI / excitation.period;
+    let omega = excitation.omega();
     let acceleration_ratio = excitation.acceleration_ratio(scene.environment.gravity);
     Ok(Scales {
         curvature: d.max_curvature,
@@ -1076,7 +1086,7 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     }
     let acceleration = excitation.acceleration_ratio(scene.environment.gravity);
     if acceleration > MAX_ACCELERATION_RATIO {
-        let omega = 2.0 * std::f64::consts::PI / excitation.period;
+        let omega = excitation.omega();
         return Err(AccuracyError::Motion {
             message: format!(
                 "a hang-off motion of amplitude {} m{} at period {} s{} accelerates the hang-off by A omega^2/g = \

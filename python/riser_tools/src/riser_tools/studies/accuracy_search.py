@@ -96,7 +96,9 @@ def choose(m: Model, s: Case, target: float) -> tuple[int, float] | None:
     """The knob's choice (src/sim/accuracy.rs choose, nothing pinned): the cheapest ladder point whose
     predicted error is within target/SAFETY, a mesh whose statics departs by more than SAFETY times
     its model skipped, a smaller departure counted as its mesh term; on the seabed no element longer
-    than MAX_TOUCHDOWN_ELEMENT bending lengths (docs/theory.md §16.9)."""
+    than MAX_TOUCHDOWN_ELEMENT bending lengths (docs/theory.md §16.9). The knob's kink cap
+    (MAX_STATIC_KINK, §16.10) is not repeated: on the study's cases the meshes it excludes (the lazy
+    wave's 30 elements) depart in top tension too."""
     budget = min(target, MAX_TARGET) / SAFETY
     ns = [n for n in ELEMENT_LADDER if (not s.buoyancy_tens or n % 10 == 0)
           and (not s.bending_length or s.length / n <= MAX_TOUCHDOWN_ELEMENT * s.bending_length)]
