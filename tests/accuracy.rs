@@ -818,7 +818,7 @@ fn a_line_beyond_the_weight_in_water_or_the_motion_s_drag_of_the_study_s_is_refu
 /// bends 2.55 times the converged one's largest curvature with its top
 /// tension within 6e-4, and erred 4.4e-2 (against 320 elements at 0.0125 s);
 /// it takes 20 now, within the target against 80 elements at 0.025 s, and
-/// the 10, pinned, still miss it.
+/// the 10, pinned, still miss it, and are warned of.
 #[test]
 fn no_mesh_whose_statics_kinks_the_line_is_taken() {
     let run = |sets: &[&str]| {
@@ -837,4 +837,12 @@ fn no_mesh_whose_statics_kinks_the_line_is_taken() {
     assert!(error(&knob) <= 1e-2, "{:.2e}", error(&knob));
     let (_, kinked) = run(&["n_elements=10", "time_step=0.1", "newton_tolerance=1e-6"]);
     assert!(error(&kinked) > 1e-2, "the 10 elements reach the target: {:.2e}", error(&kinked));
+    // pinned with the knob, the kinked mesh stands and is warned of; the 20 are not
+    let warned = |n: &str| {
+        let out = riser(&["statics", "lazy_wave", "--set", "buoyancy_load=540", "--set", "accuracy=1e-2", "--set", n]);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).contains("the n_elements you set kinks the static line")
+    };
+    assert!(warned("n_elements=10"));
+    assert!(!warned("n_elements=20"));
 }

@@ -13,8 +13,10 @@ above 1e-4 (its run is its statics: no current). A model is admissible if it bou
 work is the geometric mean of the work model (cost) of its choices over the eight cases at the ten
 targets. Printed: the bend's two mesh terms summed, in quadrature or the larger (each with its
 least C_t), the touchdown's still part A_s (each with its least C_c2, C_c and C_t), the powers p, q
-of the motion's mesh term C_d (A ω²/g)^p (h κ)^q, the crate's constants' smallest model/error, and
-their choices at 1e-2, 1e-3, 1e-4 with the work over the cheapest grid cell reaching the target.
+of the motion's mesh term C_d (A ω²/g)^p (h κ)^q, a step term falling with the mesh (A ω)(ω Δt)²
+[C_t + C_th g(n)] at 75 and 100 steps a period (not the knob's: docs/theory.md §16.8, "The step term's
+forms searched again"), the crate's constants' smallest model/error, and their choices at 1e-2,
+1e-3, 1e-4 with the work over the cheapest grid cell reaching the target.
 """
 from __future__ import annotations
 
@@ -54,6 +56,22 @@ class Model:
     # the powers p, q of C_d (A ω²/g)^p (h κ)^q (1 and 3 in the knob)
     accel_power: float = 1.0
     bend_power: float = 3.0
+    # a step term that falls with the mesh, (A ω)(ω Δt)² [C_t + C_th g(n)] (not the knob's: C_th 0), g
+    # one of STEP_MESH_FACTORS; and the fewest steps a period taken (the knob's 75)
+    c_th: float = 0.0
+    step_mesh: str = "10/n"
+    steps_per_period: float = A.STEPS_PER_PERIOD
+
+
+# the candidate mesh factors g(n) of a step term (A ω)(ω Δt)² [C_t + C_th g(n)] (docs/theory.md §16.8,
+# "The step term's forms searched again"): the coarse meshes' steps err most (the catenary at 10 s: 10
+# elements 4 times its 20 at 0.075 s)
+STEP_MESH_FACTORS = {
+    "10/n": lambda s, n: 10.0 / n,
+    "(10/n)^2": lambda s, n: (10.0 / n) ** 2,
+    "h kappa": lambda s, n: s.length / n * s.curvature,
+    "(h kappa)^2": lambda s, n: (s.length / n * s.curvature) ** 2,
+}
 
 
 @dataclass
@@ -84,8 +102,11 @@ def space_error(m: Model, s: Case, n: int) -> float:
     return mesh + contact
 
 
-def time_error(m: Model, s: Case, dt: float) -> float:
-    return 0.0 if s.amplitude == 0.0 else m.c_t * s.amplitude * s.omega * (s.omega * dt) ** 2
+def time_error(m: Model, s: Case, dt: float, n: int) -> float:
+    if s.amplitude == 0.0:
+        return 0.0
+    c = m.c_t + (m.c_th * STEP_MESH_FACTORS[m.step_mesh](s, n) if m.c_th else 0.0)
+    return c * s.amplitude * s.omega * (s.omega * dt) ** 2
 
 
 def cost(n: int, dt: float) -> float:
@@ -102,13 +123,14 @@ def choose(m: Model, s: Case, target: float) -> tuple[int, float] | None:
     budget = min(target, MAX_TARGET) / SAFETY
     ns = [n for n in ELEMENT_LADDER if (not s.buoyancy_tens or n % 10 == 0)
           and (not s.bending_length or s.length / n <= MAX_TOUCHDOWN_ELEMENT * s.bending_length)]
-    dts = [dt for dt in STEP_LADDER if dt * A.STEPS_PER_PERIOD <= s.period * (1 + 1e-9)]
-    cands = sorted((cost(n, dt), n, dt) for n in ns for dt in dts if space_error(m, s, n) + time_error(m, s, dt) <= budget)
+    dts = [dt for dt in STEP_LADDER if dt * m.steps_per_period <= s.period * (1 + 1e-9)]
+    cands = sorted((cost(n, dt), n, dt) for n in ns for dt in dts
+                   if space_error(m, s, n) + time_error(m, s, dt, n) <= budget)
     for _, n, dt in cands:
         model, dep = space_error(m, s, n), s.departures.get(n, 0.0)
         if dep > SAFETY * model:
             continue
-        if max(dep, model) + time_error(m, s, dt) <= budget:
+        if max(dep, model) + time_error(m, s, dt, n) <= budget:
             return n, dt
     return None
 
@@ -168,7 +190,8 @@ def points(rows: list, cases: dict, binary: str) -> list:
 
 def smallest_ratio(m: Model, cases: dict, pts: list) -> float:
     """The smallest model/error over the points: ≥ 1 if the model bounds them all."""
-    return min((space_error(m, cases[c], n) + time_error(m, cases[c], dt)) / e for c, n, dt, e in pts)
+    return min((space_error(m, cases[c], n) + time_error(m, cases[c], dt, n)) / e for c, n, dt, e in pts
+               if dt * m.steps_per_period <= cases[c].period * (1 + 1e-9))
 
 
 def least(m: Model, field: str, cases: dict, pts: list, hi: float = 10.0) -> Model | None:
@@ -254,6 +277,25 @@ def main(argv=None) -> int:
                     scan.append((work(m, cases) / w0, m))
     for w, m in sorted(scan, key=lambda x: x[0])[:3]:
         print(f"  p {m.accel_power:g}, q {m.bend_power:g}, C_d {m.c_d:g}: C_t {m.c_t:.4f}, work {w:.3f}")
+    print("the step term falling with the mesh, (A w)(w dt)^2 [C_t + C_th g(n)], each with its least C_t, C_c2, "
+          "C_c; the worst work ratio of the four lines at their own motions over the cheapest grid cell, at "
+          "1e-2, 1e-3, 1e-4:")
+    own = ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper")
+    for spp in (A.STEPS_PER_PERIOD, 100.0):
+        for g in STEP_MESH_FACTORS:
+            for c_th in (0.0, 0.05, 0.1, 0.13):
+                if c_th == 0.0 and g != "10/n":
+                    continue
+                m = jointly(Model(c_th=c_th, step_mesh=g, steps_per_period=spp), cases, pts)
+                if m is None:
+                    print(f"  {spp:g} steps a period, g {g}, C_th {c_th:g}: no C_c2, C_c bounds the points")
+                    continue
+                worst = max(cost(*choose(m, cases[k], t)) / cost(*cheapest_cell(rows, k, t))
+                            for k in own for t in (1e-2, 1e-3, 1e-4))
+                steel = cost(*choose(m, cases["steel_catenary"], 1e-4)) / cost(*cheapest_cell(rows, "steel_catenary", 1e-4))
+                print(f"  {spp:g} steps a period, " + ("no mesh factor" if c_th == 0.0 else f"g {g}, C_th {c_th:g}")
+                      + f": C_t {m.c_t:.4f}, work {work(m, cases) / w0:.3f}, worst {worst:.2f}, "
+                      f"the steel catenary at 1e-4 {steel:.2f}")
     m = Model()
     print(f"(16.9) with the crate's constants: smallest model/error {smallest_ratio(m, cases, pts):.4f}, "
           f"work {work(m, cases) / w0:.3f} of (16.8)'s")
