@@ -388,13 +388,36 @@ for case in cases:
 
 
 def run_heave_child(fmu_path, unzipped, cases):
-    """HEAVE_CHILD's logs and series, one (log, [(t, top_tension)]) per case."""
-    p = subprocess.run([sys.executable, "-c", HEAVE_CHILD, fmu_path, unzipped, json.dumps(cases)],
-                       capture_output=True, text=True, timeout=300)
-    assert p.returncode == 0, p.stderr
-    chunks = [c.split("@@end")[0].split("@@series") for c in p.stdout.split("@@begin")[1:]]
-    assert len(chunks) == len(cases), p.stdout
-    return [(log, json.loads(series)) for log, series in chunks]
+    """HEAVE_CHILD's logs and series, one (log, [(t, top_tension)]) per case, each case in its own
+    child, the children at once (the runs are independent; their output goes to files, so that no
+    child waits on a full pipe)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        children = []
+        for i, case in enumerate(cases):
+            out, err = open(f"{tmp}/{i}.out", "w+"), open(f"{tmp}/{i}.err", "w+")
+            children.append((subprocess.Popen([sys.executable, "-c", HEAVE_CHILD, fmu_path, unzipped,
+                                               json.dumps([case])], stdout=out, stderr=err, text=True), out, err))
+        try:
+            for p, _, _ in children:
+                p.wait(timeout=300)
+        finally:
+            for p, _, _ in children:
+                if p.poll() is None:
+                    p.kill()
+        results = []
+        for p, out, err in children:
+            out.seek(0)
+            err.seek(0)
+            stdout, stderr = out.read(), err.read()
+            out.close()
+            err.close()
+            assert p.returncode == 0, stderr
+            chunks = [c.split("@@end")[0].split("@@series") for c in stdout.split("@@begin")[1:]]
+            assert len(chunks) == 1, stdout
+            results.extend((log, json.loads(series)) for log, series in chunks)
+    return results
 
 
 def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):

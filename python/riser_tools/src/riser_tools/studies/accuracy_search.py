@@ -23,6 +23,8 @@ from __future__ import annotations
 import argparse
 import csv
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 
 from . import accuracy as A
@@ -146,7 +148,9 @@ def top_row_tension(binary: str, scene: str, n: int) -> float:
 def case_scales(binary: str, name: str) -> Case:
     d = A.choice(binary, name, ["accuracy=1e-2"])
     scene = A.CASES[name][0]
-    tops = {n: top_row_tension(binary, scene, n) for n in STATIC_MESHES}
+    # the statics on each mesh, one binary per core at a time (independent runs)
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        tops = dict(zip(STATIC_MESHES, pool.map(lambda n: top_row_tension(binary, scene, n), STATIC_MESHES)))
     # the departure's base: the scales' mesh, the scene's own of at least 60 elements (src/sim/accuracy.rs
     # scales, static_mesh_error)
     base_n = max(A.json_of([binary, "statics", scene, "--json"])["n_elements"], 60)
