@@ -390,29 +390,33 @@ for case in cases:
 def run_heave_child(fmu_path, unzipped, cases):
     """HEAVE_CHILD's logs and series, one (log, [(t, top_tension)]) per case, each case in its own
     child, the children at once (the runs are independent; their output goes to files, so that no
-    child waits on a full pipe)."""
+    child waits on a full pipe), all within one deadline of 300 s."""
+    import contextlib
     import tempfile
+    import time
 
-    with tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory() as tmp, contextlib.ExitStack() as stack:
         children = []
-        for i, case in enumerate(cases):
-            out, err = open(f"{tmp}/{i}.out", "w+"), open(f"{tmp}/{i}.err", "w+")
-            children.append((subprocess.Popen([sys.executable, "-c", HEAVE_CHILD, fmu_path, unzipped,
-                                               json.dumps([case])], stdout=out, stderr=err, text=True), out, err))
         try:
+            for i, case in enumerate(cases):
+                out = stack.enter_context(open(f"{tmp}/{i}.out", "w+"))
+                err = stack.enter_context(open(f"{tmp}/{i}.err", "w+"))
+                p = subprocess.Popen([sys.executable, "-c", HEAVE_CHILD, fmu_path, unzipped, json.dumps([case])],
+                                     stdout=out, stderr=err, text=True)
+                children.append((p, out, err))
+            deadline = time.monotonic() + 300.0
             for p, _, _ in children:
-                p.wait(timeout=300)
+                p.wait(timeout=max(deadline - time.monotonic(), 0.0))
         finally:
             for p, _, _ in children:
                 if p.poll() is None:
                     p.kill()
+                    p.wait()
         results = []
         for p, out, err in children:
             out.seek(0)
             err.seek(0)
             stdout, stderr = out.read(), err.read()
-            out.close()
-            err.close()
             assert p.returncode == 0, stderr
             chunks = [c.split("@@end")[0].split("@@series") for c in stdout.split("@@begin")[1:]]
             assert len(chunks) == 1, stdout

@@ -413,10 +413,11 @@ def test_the_search_tool_is_the_knob_s_arithmetic(riser_bin):
         return S.A.choice(riser_bin, name, sets)
 
     # the binary's choices, one binary per core at a time
+    import os
     from concurrent.futures import ThreadPoolExecutor
 
     pairs = [(name, t) for name in S.HEAVE_CASES for t in S.TARGETS]
-    with ThreadPoolExecutor(max_workers=2) as pool:
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
         chosen = list(pool.map(lambda p: knob(p[0], [f"accuracy={p[1]}"]), pairs))
     for (name, t), d in zip(pairs, chosen):
         assert S.choose(m, cases[name], t) == (d["n_elements"], d["time_step"]), (name, t)
