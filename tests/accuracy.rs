@@ -727,7 +727,8 @@ fn on_the_seabed_no_element_is_longer_than_the_study_s_coarsest() {
 /// tolerance 1e-6) miss 1e-3 against 80 elements at 0.025 s (2.5e-3 against
 /// 160 at 0.0125 s); at 400 kg/m (0.798), beyond the heaviest probed, it is
 /// refused too; at 60 kg/m it floats, and is refused as such. With C_d 1.2
-/// for 0.6 (F_m 0.337) it is refused naming F_m, the amplitude covered at
+/// for 0.6 (F_m 0.337), in a 0.5 m/s current (in its own 0.8 m/s the current
+/// load ratio, 0.088, is refused first), it is refused naming F_m, the amplitude covered at
 /// its period and the period from which its own is covered (14.08 s), which
 /// separates refused and accepted. The steel catenary at 140 kg/m (0.571)
 /// is refused, at its own 162.1 (0.630) taken; the jumper, whose heavier
@@ -772,7 +773,9 @@ fn a_line_beyond_the_weight_in_water_or_the_motion_s_drag_of_the_study_s_is_refu
     assert!(e > 1e-3, "the 10 elements at 0.075 s reach 1e-3 ({e:.2e}): the refusal would not be needed");
 
     // the motion's drag: C_d 1.2 doubles F_m, refused at 10 s, covered from the period named
-    let out = scene(&["cd_normal=1.2", "accuracy=1e-3"], "2.5,10");
+    // (in a 0.5 m/s current: in its own 0.8 m/s, C_d 1.2 makes F_c 0.088, above the current's bound)
+    let slow = ["current_top=0.5", "current_bottom=0.5"];
+    let out = scene(&["cd_normal=1.2", slow[0], slow[1], "accuracy=1e-3"], "2.5,10");
     let err = String::from_utf8_lossy(&out.stderr);
     let dm = drag(1.2, 2.5, 10.0) / weight(226.7);
     let t_from = 10.0 * (dm / 0.17).sqrt();
@@ -781,7 +784,8 @@ fn a_line_beyond_the_weight_in_water_or_the_motion_s_drag_of_the_study_s_is_refu
     assert!(err.contains(&format!("from a period of {:.2} s", (t_from * 100.0).ceil() / 100.0)), "{err}");
     let a_max = 2.5 * (0.17 / dm).sqrt();
     assert!(err.contains(&format!("up to {:.3} m", (a_max * 1e3).floor() / 1e3)), "{err}");
-    let refused = |t: &str| !scene(&["cd_normal=1.2", "accuracy=1e-3"], &format!("2.5,{t}")).status.success();
+    let refused =
+        |t: &str| !scene(&["cd_normal=1.2", slow[0], slow[1], "accuracy=1e-3"], &format!("2.5,{t}")).status.success();
     assert!(refused("14.0") && !refused("14.1"));
 
     // on the seabed: the steel catenary's water and diameter, 0.2731 m
@@ -898,4 +902,55 @@ fn a_run_that_is_its_statics_is_covered_over_a_wider_weight_range() {
     // heaved, or heaved with the motion declared 0
     refused(&["--set", "static_current=true", "--heave", "2.5,10"]);
     refused(&["--set", "static_current=true", "--heave", "2.5,10", "--set", "accuracy_motion_amplitude=0"]);
+}
+
+/// A current stronger than the study's on a line of its class is refused
+/// (docs/theory.md §16.10 "A stronger current", MAX_CURRENT_RATIOS): the
+/// catenary heaved 2.5 m at 10 s in a uniform 1.2 m/s (its current load
+/// ratio F_c 0.099, above the 0.069 of the 1.0 m/s that kept 1e-4) is
+/// refused at 1e-4, and the numerics the knob took for it, 16 elements at
+/// 0.02 s, miss 1e-4 against 80 elements at 0.0125 s (within 1.7e-6 of 160);
+/// in 1.0 m/s it is accepted; a run that is its statics (held still, the
+/// current in the statics) is accepted in 1.5 m/s.
+#[test]
+fn a_current_stronger_than_the_study_s_is_refused() {
+    let heaved = |speed: &str, sets: &[&str]| {
+        let (top, bottom) = (format!("current_top={speed}"), format!("current_bottom={speed}"));
+        let mut args = vec!["run", "catenary", "--heave", "2.5,10", "--duration", "40", "--json"];
+        for s in [top.as_str(), bottom.as_str()].iter().chain(sets) {
+            args.extend_from_slice(&["--set", s]);
+        }
+        riser(&args)
+    };
+    let top_tension = |out: &std::process::Output| -> Vec<f64> {
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    let refused = heaved("1.2", &["accuracy=1e-4"]);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        !refused.status.success() && err.contains("is 0.099 of the static top tension (F_c), above the 0.069"),
+        "{err}"
+    );
+    let reference = top_tension(&heaved("1.2", &["n_elements=80", "time_step=0.0125", "newton_tolerance=1e-10"]));
+    let before = top_tension(&heaved("1.2", &["n_elements=16", "time_step=0.02", "newton_tolerance=1e-8"]));
+    let e = (0..3).map(|k| (before[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2];
+    assert!(e > 1e-4, "{e:.2e}");
+    assert!(heaved("1.0", &["accuracy=1e-4"]).status.success());
+    let still = riser(&[
+        "run",
+        "catenary",
+        "--duration",
+        "1",
+        "--set",
+        "current_top=1.5",
+        "--set",
+        "current_bottom=1.5",
+        "--set",
+        "static_current=true",
+        "--set",
+        "accuracy=1e-4",
+    ]);
+    assert!(still.status.success(), "{}", String::from_utf8_lossy(&still.stderr));
 }

@@ -206,6 +206,19 @@ pub const MAX_WEIGHT_RATIO_SAG: f64 = 0.26;
 /// at 145 kg/m (0.151), kept its targets (with 0.93 of 1e-4).
 pub const MIN_WEIGHT_RATIO_SAG: f64 = 0.15;
 
+/// The largest current load ratio F_c (the current's drag over the static
+/// line, over its static top tension; docs/theory.md (16.4)) the model
+/// covers of a uniform line hanging free, on its seabed and with a sag bend,
+/// in a run that is not its statics (docs/theory.md §16.10, "A stronger
+/// current"): the farthest probed within the targets. The study's catenary
+/// in its 0.8 m/s has 0.044; heaved 2.5 m at 10 s in 1.0 m/s (0.069) it kept
+/// 1e-4 (8.9e-5), in 1.2 m/s (0.099) it missed it by 1.6 times and in 1.5
+/// m/s (0.155) by 1.3 (held still, with the current grown over 3 s, by 1.2).
+/// The steel catenary (the study's without a current) kept its targets in
+/// 0.8 m/s (0.122) heaved at 10 and 15 s, the jumper in 0.5 and 0.8 m/s
+/// (0.179, 0.457) heaved at 10 s.
+pub const MAX_CURRENT_RATIOS: [f64; 3] = [0.069, 0.123, 0.458];
+
 /// The w/(m g) ranges, [least, largest], the model covers of a run that is
 /// its statics (docs/theory.md §16.10, "Held still"), hanging free, on its
 /// seabed and with a sag bend: the hang-off held still by the run itself
@@ -680,6 +693,15 @@ impl LineClass {
         }
     }
 
+    /// The largest current load ratio F_c covered ([`MAX_CURRENT_RATIOS`]).
+    pub fn max_current_ratio(self) -> f64 {
+        match self {
+            LineClass::HangingFree => MAX_CURRENT_RATIOS[0],
+            LineClass::OnSeabed => MAX_CURRENT_RATIOS[1],
+            LineClass::SagBend => MAX_CURRENT_RATIOS[2],
+        }
+    }
+
     /// What the probes of a line of the class in a run that is its statics
     /// did beyond the bound on the `heavier` or the lighter side.
     pub fn still_evidence(self, heavier: bool) -> &'static str {
@@ -945,6 +967,16 @@ pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
     }))
 }
 
+/// Whether a run is its statics (docs/theory.md §16.10, "Held still"): the
+/// run's own motion still ([`STILL`]: not a motion declared 0 over the run's,
+/// nor the FMU's, whose master may move it), no waves, and no current growing
+/// in it (none on the static line `rows`, or `static_current`).
+fn statics_only(scene: &Scene, excitation: &Excitation, rows: &[super::report::ShapeRow]) -> bool {
+    *excitation == STILL
+        && scene.waves.as_ref().is_none_or(|w| w.kind == crate::scene::waves::WaveKind::None)
+        && (scene.analysis.static_current || current_load_ratio(scene, rows) == 0.0)
+}
+
 /// The scales of `scene` for `excitation`: the static line's largest
 /// curvature (solved on the scene's mesh, at least 60 elements).
 pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserError> {
@@ -1000,12 +1032,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
             .into());
         }
         let ratio = weight / (scene.line.mass_per_length * scene.environment.gravity);
-        // a run that is its statics (16.10, "Held still"): the run's own
-        // motion still (not a motion declared 0 over the run's, nor the FMU's,
-        // whose master may move it), no waves, and no current growing in it
-        let still = *excitation == STILL
-            && scene.waves.as_ref().is_none_or(|w| w.kind == crate::scene::waves::WaveKind::None)
-            && (scene.analysis.static_current || current_load_ratio(scene, &rep.shape) == 0.0);
+        let still = statics_only(scene, excitation, &rep.shape);
         let (least, most) = if still { class.still_weight_ratios() } else { class.weight_ratios() };
         if ratio < least || ratio > most {
             let heavier = ratio > most;
@@ -1046,6 +1073,25 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
                         )
                     },
                     if still { class.still_evidence(heavier) } else { class.evidence(heavier) }
+                ),
+            }
+            .into());
+        }
+    }
+    // (16.10): a current within the strongest probed on a line of its class
+    // (a run that is its statics aside: nothing grows in it)
+    if let Some(class) = class.filter(|_| !statics_only(scene, excitation, &rep.shape)) {
+        let fc = current_load_ratio(scene, &rep.shape);
+        if fc > class.max_current_ratio() {
+            return Err(AccuracyError::NotCovered {
+                feature: "a current stronger than the calibration's".to_string(),
+                reason: format!(
+                    "its drag over the static line is {fc:.3} of the static top tension (F_c), above the {} the \
+                     model covers of a line {}: the study's catenary in its 0.8 m/s has 0.044 and heaved 2.5 m at \
+                     10 s kept its targets in 1.0 m/s (0.069), but missed 1e-4 by 1.6 times in 1.2 m/s (0.099); \
+                     the steel catenary was probed up to 0.122, the jumper up to 0.457 (docs/theory.md 16.10)",
+                    class.max_current_ratio(),
+                    class.name()
                 ),
             }
             .into());
