@@ -42,6 +42,14 @@ fn run_json(args: &[&str]) -> serde_json::Value {
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
+/// The steady window's top tension [min, mean, max] (N) of a successful
+/// `riser run --json`.
+fn steady_top_tension(out: &std::process::Output) -> Vec<f64> {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
 /// Runs `scene` with each target and checks its error against the reference.
 fn reaches_its_targets(scene: &str) {
     let (_, amplitude, period) = *CASES.iter().find(|c| c.0 == scene).unwrap();
@@ -764,11 +772,7 @@ fn a_line_beyond_the_weight_in_water_or_the_motion_s_drag_of_the_study_s_is_refu
     assert!(err.contains("does not cover a line that floats"), "{err}");
 
     // the knob's numerics before the refusal miss 1e-3
-    let tension = |out: std::process::Output| -> Vec<f64> {
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-    };
+    let tension = |out: std::process::Output| steady_top_tension(&out);
     let light = ["mass_per_length=140", "newton_tolerance=1e-6"];
     let before = tension(scene(&[light[0], light[1], "n_elements=10", "time_step=0.075"], "2.5,10"));
     let converged = tension(scene(&[light[0], "n_elements=80", "time_step=0.025"], "2.5,10"));
@@ -929,11 +933,7 @@ fn a_current_stronger_than_the_study_s_is_refused() {
         }
         riser(&args)
     };
-    let top_tension = |out: &std::process::Output| -> Vec<f64> {
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        v["steady"]["top_tension"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-    };
+    let top_tension = steady_top_tension;
     let refused = heaved("1.2", &["accuracy=1e-4"]);
     let err = String::from_utf8_lossy(&refused.stderr);
     assert!(
