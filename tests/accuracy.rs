@@ -922,7 +922,10 @@ fn a_run_that_is_its_statics_is_covered_over_a_wider_weight_range() {
 /// modules put it in no class, is bounded too: in a uniform 1.2 m/s (F_c
 /// 0.901) heaved at 20 s it is refused at 1e-3, where the 20 elements at
 /// 0.1 s it took err above 1e-2 (its coarse line pushed into compression).
-/// A seabed stiffness beyond the probed 1e6 to 1e7 Pa/m is refused.
+/// A seabed stiffness beyond the probed 1e6 to 1e7 Pa/m is refused, and a
+/// sag bend shallower than 16 % of the line's length (the jumper shortened
+/// to 136 m, 11 %, missed 1e-4 by 2.75 times at 10 s; at 150 m, 16.3 %, it
+/// kept it).
 #[test]
 fn a_current_stronger_than_the_study_s_is_refused() {
     let heaved = |speed: &str, sets: &[&str]| {
@@ -976,6 +979,16 @@ fn a_current_stronger_than_the_study_s_is_refused() {
     let before = top_tension(&lazy(&["n_elements=20", "time_step=0.1", "newton_tolerance=1e-6"]));
     let e = (0..3).map(|k| (before[k] - reference[k]).abs()).fold(0.0, f64::max) / reference[2];
     assert!(e > 1e-2, "{e:.2e}");
+    // a shallow sag bend: the jumper shortened to 136 m (11 % sag) refused, to 150 m (16.3 %) taken
+    let jumper = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/lowe_langley_jumper.toml");
+    let shortened = |length: &str| {
+        riser(&["run", jumper, "--heave", "2.5,10", "--duration", "1", "--set", length, "--set", "accuracy=1e-4"])
+    };
+    let out = shortened("length=136");
+    assert!(
+        !out.status.success() && String::from_utf8_lossy(&out.stderr).contains("does not cover a shallow sag bend")
+    );
+    assert!(shortened("length=150").status.success());
     // a seabed stiffer or softer than the probed: refused
     for k in ["3e5", "3e7"] {
         let out = riser(&[
