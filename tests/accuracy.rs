@@ -925,7 +925,8 @@ fn a_run_that_is_its_statics_is_covered_over_a_wider_weight_range() {
 /// A seabed stiffness beyond the probed 1e6 to 1e7 Pa/m is refused, and a
 /// sag bend shallower than 16 % of the line's length (the jumper shortened
 /// to 136 m, 11 %, missed 1e-4 by 2.75 times at 10 s; at 150 m, 16.3 %, it
-/// kept it).
+/// kept it), or with less drag than the jumper's C_d 1.0 (0.8 and 0.6
+/// missed 1e-4 by 1.37 and 2.7 times at 15 s).
 #[test]
 fn a_current_stronger_than_the_study_s_is_refused() {
     let heaved = |speed: &str, sets: &[&str]| {
@@ -989,6 +990,11 @@ fn a_current_stronger_than_the_study_s_is_refused() {
         !out.status.success() && String::from_utf8_lossy(&out.stderr).contains("does not cover a shallow sag bend")
     );
     assert!(shortened("length=150").status.success());
+    // a sag bend with less drag than the jumper's 1.0: refused (0.8 missed 1e-4 at 15 s)
+    let out = shortened("cd_normal=0.8");
+    assert!(
+        !out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a drag coefficient cd_normal = 0.8")
+    );
     // a seabed stiffer or softer than the probed: refused
     for k in ["3e5", "3e7"] {
         let out = riser(&[
