@@ -126,6 +126,51 @@ fn targets_between_the_three_are_reached() {
     reaches("lazy_wave", "lazy_wave", 2.5, 30.0, &[5e-4]);
 }
 
+/// The jumper heaved 2.5 m at 10 s, the design motion (docs/theory.md §16.10,
+/// "The jumper at 10 s"). After the ramp the line rings at its 3.2 Hz mode,
+/// with a time constant of about 6 s at any numerics, so that its default
+/// window (20 to 40 s) holds what is left of it: 1.6e-4 of the top tension at
+/// 160 elements and 0.00625 s. (a) That window is not the steady response at
+/// 1e-4: 80 elements at 0.0125 s differ there from the study's reference of
+/// the window 40 to 60 s by more than 1e-4 (2.0e-4 measured), and in that
+/// window by less than 1e-5 (2.1e-6: the mesh is no part of it). (b) The
+/// knob's 1e-4 run over the default window says so (its steadiness warning's
+/// limit is the target). (c) In the window 40 to 60 s, where the study
+/// measures this case, the knob's choices keep 1e-4, 1.2e-4 and 2e-4 against
+/// the study's reference (320 elements at 0.0125 s, itself within 7.7e-6 of
+/// 0.003125 s there): 2.5e-5, 3.4e-5 and 5.8e-5 measured; in the default
+/// window they measured 1.45e-4 against 0.003125 s at 1e-4.
+#[test]
+fn the_jumper_at_10_s_rings_from_its_start_and_is_within_its_targets_past_it() {
+    let jumper = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/lowe_langley_jumper.toml");
+    let refs = reference("lowe_langley_jumper_T10");
+    let e = |tt: &[f64]| (0..3).map(|k| (tt[k] - refs[k]).abs()).fold(0.0, f64::max) / refs[2];
+    let run = |duration: &str, window: &str, sets: &[&str]| {
+        let mut args = vec!["run", jumper, "--heave", "2.5,10", "--duration", duration, "--window", window, "--json"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        riser(&args)
+    };
+    let fine = ["n_elements=80", "time_step=0.0125", "newton_tolerance=1e-10"];
+    let (early, late) = std::thread::scope(|s| {
+        let early = s.spawn(|| steady_top_tension(&run("40", "20,40", &fine)));
+        let late = steady_top_tension(&run("60", "40,60", &fine));
+        (early.join().unwrap(), late)
+    });
+    assert!(e(&early) > 1e-4, "the default window's ringing: {:.2e}", e(&early));
+    assert!(e(&late) < 1e-5, "80 elements at 0.0125 s from 40 to 60 s: {:.2e}", e(&late));
+
+    let out = run("40", "20,40", &["accuracy=1e-4"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && err.contains("the steady window is not steady at 1e-4"), "{err}");
+
+    for target in [1e-4, 1.2e-4, 2e-4] {
+        let tt = steady_top_tension(&run("60", "40,60", &[&format!("accuracy={target}")]));
+        assert!(e(&tt) <= target, "accuracy {target:e}: error {:.2e} from 40 to 60 s", e(&tt));
+    }
+}
+
 #[test]
 fn the_choice_is_printed_and_explicit_numerics_win() {
     let base = ["run", "catenary", "--heave", "2.5,20", "--duration", "0.4", "--json", "--set", "accuracy=1e-3"];

@@ -93,8 +93,9 @@ pub const A_TOUCHDOWN_STILL: f64 = 0.02;
 /// pair of least cost (the choices' work over the eight heave cases at ten
 /// targets) that bounds every grid and ladder point with at least 75 steps a
 /// period, Δt ≥ 0.0125 s and e ≥ [`MIN_TARGET`] (below it any error meets
-/// every target the model accepts; the jumper at 10 s from 2e-4, its
-/// reference's own convergence), the window's mean a time mean. With the
+/// every target the model accepts; the jumper at 10 s in the window 40 to
+/// 60 s, past its start's ringing, docs/theory.md §16.10), the window's
+/// mean a time mean. With the
 /// current grown over `current_ramp` (docs/theory.md §16.7) it is set with
 /// C_t by the catenary at 10 s, 10 elements at 0.075 s (6.0e-4); before, with
 /// the current's jolt, by the lazy wave at 10 s, 40 elements at 0.02 s

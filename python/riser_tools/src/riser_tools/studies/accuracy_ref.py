@@ -67,7 +67,8 @@ def run_phase(binary, path, cases, steps, max_wall):
 
 
 def series_of(binary, case, dt=0.0125):
-    """The reference mesh's run at dt with --out: t and top tension, and the steady window (2T, 4T)."""
+    """The reference mesh's run at dt with --out: t and top tension, and the steady window (2T, 4T; later in
+    the study's LATE_WINDOW)."""
     with tempfile.TemporaryDirectory() as d:
         cmd = A.command(binary, case) + ["--set", f"n_elements={n_ref(case)}", "--set", f"time_step={dt}", "--set",
                                          f"newton_tolerance={TOL}", "--out", d]
@@ -75,7 +76,7 @@ def series_of(binary, case, dt=0.0125):
         with open(Path(d) / "timeseries.csv", newline="") as f:
             rows = list(csv.DictReader(f))
     t = [float(r["t"]) for r in rows]
-    return t, [float(r["top_tension"]) for r in rows], (2 * A.CASES[case][2], 4 * A.CASES[case][2])
+    return t, [float(r["top_tension"]) for r in rows], A.heave_window(case)
 
 
 def time_mean(t, f, w0, w1):
