@@ -196,12 +196,20 @@ pub const MIN_WEIGHT_RATIO_SEABED: f64 = 0.62;
 pub const MAX_WEIGHT_RATIO_SEABED: f64 = 0.70;
 /// The largest w/(m g) of a uniform line with a sag bend below its anchor,
 /// clear of the seabed, that the model covers (docs/theory.md §16.10): the
-/// study's such line, the Lowe & Langley jumper, has 0.254. Made heavier,
-/// at 180 and 200 kg/m for 165 (0.316, 0.384), heaved 2.5 m at 10 s, it
-/// misses 1e-4 by 2.5 and 2.3 times (at 200 kg/m the step's error at 0.02 s,
-/// 2.5e-4 on 160 elements, is seven times the model's); made lighter, at
-/// 145 kg/m (0.151), or without added mass, it kept its targets.
-pub const MAX_WEIGHT_RATIO_SAG: f64 = 0.26;
+/// study's such line, the Lowe & Langley jumper, has 0.254. Made heavier, at
+/// 180 to 280 kg/m for 165 (0.316 to 0.560), heaved 2.5 m at 10, 15 and
+/// 20 s, it keeps 1e-2, 1e-3 and 1e-4 measured past its start's ringing
+/// (the window 8T to 10T, against 160 elements at 0.003125 s; at most 0.26
+/// of 1e-4); in the default window it rings at its axial mode after the
+/// ramp, as the study's jumper at 10 s does, and misses there by up to 3.6
+/// times at any numerics (the run warns). Heaved 10 m at 27 s it keeps them
+/// up to 220 kg/m (0.440; 0.19 of 1e-4), but at 240 and 280 kg/m its
+/// converged response leaves its period after five periods (a 7 Hz
+/// oscillation grows, the energy balance closed to 1e-5 J), which the
+/// knob's numerics, damping it, do not follow (7e-2 off). 0.441: 220 kg/m's
+/// 0.4402 rounded up (0.26 before the probes past the ringing, the study's
+/// 0.254 rounded up).
+pub const MAX_WEIGHT_RATIO_SAG: f64 = 0.441;
 /// The least w/(m g) of a uniform line with a sag bend below its anchor that
 /// the model covers (docs/theory.md §16.10): the lightest probed, the jumper
 /// at 145 kg/m (0.151), kept its targets (with 0.93 of 1e-4).
@@ -260,14 +268,16 @@ pub const SEABED_STIFFNESS_RANGE: (f64, f64) = (1e6, 1e7);
 /// mesh. Probed held still, against 320 elements at 0.05 s, at 1e-2, 1e-3
 /// and 1e-4, every run within its target: the catenary from 110 kg/m
 /// (0.264) to 800 kg/m (0.899), the steel catenary from 100 (0.400) to 250
-/// kg/m (0.760), the jumper from 145 (0.151) to 200 kg/m (0.384). A current
+/// kg/m (0.760), the jumper from 145 (0.151) to 220 kg/m (0.440, rounded
+/// up to 0.441: the motion's bound, [`MAX_WEIGHT_RATIO_SAG`]; 200 kg/m
+/// before it was widened, tenth session). A current
 /// that grows in the run is not covered beyond the motion's ranges: the
 /// catenary at 100 kg/m (0.190) in its 0.8 m/s current grown over 10 s
 /// missed 1e-4 by 1.6 times, at 110 kg/m in 1.2 m/s by 29 and in 1.5 m/s by
 /// 250 times (the growth still rings in the window, on a coarse mesh
 /// otherwise than on a fine one), where the study's catenary in 1.5 m/s
 /// kept it.
-pub const STILL_WEIGHT_RATIOS: [(f64, f64); 3] = [(0.263, 0.899), (0.399, 0.76), (0.15, 0.385)];
+pub const STILL_WEIGHT_RATIOS: [(f64, f64); 3] = [(0.263, 0.899), (0.399, 0.76), (0.15, 0.441)];
 /// The largest drag of the hang-off's motion over the weight in water that
 /// the model covers on a uniform line hanging free to its anchor, F_m of
 /// docs/theory.md (16.10): the study's such line, the catenary heaved 2.5 m
@@ -751,7 +761,7 @@ impl LineClass {
                  within its targets; beyond, the model is not calibrated"
             }
             (LineClass::SagBend, _) => {
-                "in a run that is its statics, the jumper was probed from 145 to 200 kg/m, 0.151 to 0.384, within its \
+                "in a run that is its statics, the jumper was probed from 145 to 220 kg/m, 0.151 to 0.440, within its \
                  targets; beyond, the model is not calibrated"
             }
         }
@@ -782,8 +792,9 @@ impl LineClass {
                  targets; beyond, the model is not calibrated"
             }
             (LineClass::SagBend, true) => {
-                "the study's jumper has 0.254; made heavier (180 and 200 kg/m, 0.316 and 0.384) it misses 1e-4 by 2.5 \
-                 and 2.3 times, its step's error seven times the model's"
+                "the study's jumper has 0.254, and made heavier it was probed up to 220 kg/m, 0.440, within its \
+                 targets; at 240 kg/m, 0.487, heaved 10 m at 27 s, its response leaves its period (a 7 Hz \
+                 oscillation grows), which the model does not follow"
             }
         }
     }
