@@ -171,6 +171,45 @@ fn the_jumper_at_10_s_rings_from_its_start_and_is_within_its_targets_past_it() {
     }
 }
 
+/// Translations of different periods (docs/theory.md §16.10, "Translations
+/// of different periods"): the jumper heaved 2 m at 10 s and surged 5 m at
+/// 40 s, a wave-frequency heave with a slow surge. Taken before as one
+/// harmonic of the resultant amplitude at the shortest period (5.385 m at
+/// 10 s, 0.217 g), it was refused; chosen for the resultants of its
+/// velocities, accelerations (0.0815 g) and jerks, it is taken, the CLI naming
+/// the translations, and its 1e-3 and 1e-4 (10 elements at 0.04 s, 24 at
+/// 0.02 s) keep their targets over one period of the surge after the ramp
+/// and one more (80 to 120 s) against 80 elements at 0.0125 s (8.8e-6 from
+/// 160 at 0.00625 s there): 6.8e-5 and 3.7e-5 measured against the finer.
+#[test]
+fn translations_of_different_periods_keep_their_targets() {
+    let jumper = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/lowe_langley_jumper.toml");
+    let run = |sets: &[&str]| {
+        let mut args = vec!["run", jumper, "--heave", "2,10", "--surge", "5,40", "--duration", "120", "--json"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        riser(&args)
+    };
+    let (refs, coarse) = std::thread::scope(|s| {
+        let refs =
+            s.spawn(|| steady_top_tension(&run(&["n_elements=80", "time_step=0.0125", "newton_tolerance=1e-10"])));
+        let coarse: Vec<_> = [1e-3, 1e-4].map(|t| (t, run(&[&format!("accuracy={t}")]))).into();
+        (refs.join().unwrap(), coarse)
+    });
+    for (target, out) in coarse {
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("for translations of resultant amplitude 5.385 m, the shortest of period 10 s"), "{err}");
+        let tt = steady_top_tension(&out);
+        let e = (0..3).map(|k| (tt[k] - refs[k]).abs()).fold(0.0, f64::max) / refs[2];
+        assert!(e <= target, "accuracy {target:e}: error {e:.2e} from 80 to 120 s");
+    }
+    // the one harmonic of the resultant amplitude at the shortest period: beyond the study's acceleration
+    let out = riser(&["run", jumper, "--heave", "5.385,10", "--duration", "1", "--set", "accuracy=1e-3"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("= 0.2168 g"), "{err}");
+}
+
 /// A jumper heavier than the study's (docs/theory.md §16.10, "With a sag
 /// bend"): at 220 kg/m for 165 (w/(m g) 0.440 for 0.254) heaved 2.5 m at
 /// 10 s it rings from its start as the study's does, by 2.6e-4 of its top
@@ -405,7 +444,7 @@ fn the_still_water_choice_is_unchanged_by_the_wave_terms() {
             );
         }
         // a motion given: the heave's own period and amplitude, as before
-        let c = choose(&s, Some(Excitation { period: 10.0, amplitude: 2.5 }), Default::default()).unwrap();
+        let c = choose(&s, Some(Excitation::harmonic(2.5, 10.0)), Default::default()).unwrap();
         assert_eq!((c.n_elements, c.time_step), (n, dt), "{scene} at {target:e} with heave 2.5 m / 10 s");
     }
 }

@@ -308,10 +308,10 @@ pub const MIN_SLACK: f64 = 0.05;
 /// The user's `accuracy_motion_amplitude` and `accuracy_motion_period`
 /// replace either of its two.
 pub const DESIGN_EXCITATION: Excitation =
-    Excitation { period: crate::scene::DESIGN_MOTION_PERIOD, amplitude: crate::scene::DESIGN_MOTION_AMPLITUDE };
+    Excitation::harmonic(crate::scene::DESIGN_MOTION_AMPLITUDE, crate::scene::DESIGN_MOTION_PERIOD);
 /// The hang-off held still (`riser run` without a motion): no step term of
 /// the motion, no period to take steps of.
-pub const STILL: Excitation = Excitation { period: f64::INFINITY, amplitude: 0.0 };
+pub const STILL: Excitation = Excitation::harmonic(0.0, f64::INFINITY);
 /// The step constant C_wt of S C_wt (ω_w Δt)^{3/2} in waves (§16.4, eq. 16.3):
 /// the jumper's error in its regular wave, 160 elements, falls from 4.1e-4 to
 /// 5.4e-5 from Δt = 0.1 to 0.025 s (S = 0.62): 0.042 to 0.047 a point.
@@ -367,43 +367,109 @@ pub const ELEMENT_LADDER: [usize; 20] =
 /// follows, and the lazy wave at 30 s buckles in its sag bend at 0.01 s).
 pub const STEP_LADDER: [f64; 11] = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125];
 
-/// The hang-off's motion the choice is for: its shortest period and largest
-/// translation amplitude.
+/// The hang-off's motion the choice is for: the harmonic translations of
+/// heave, surge and sway, each A_i sin(ω_i t) along its own axis, summarised
+/// by the scales the model takes (docs/theory.md §16.10, "Translations of
+/// different periods"): their shortest period, and the resultants over the
+/// three orthogonal axes of their amplitudes, velocities, accelerations and
+/// jerks, √(Σ (A_i ω_iᵏ)²) for k = 0 to 3 (what the hang-off reaches when
+/// their peaks meet, as translations of incommensurate periods do). A single
+/// harmonic is [`Excitation::harmonic`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Excitation {
-    /// s
+    /// The shortest period of the translations, s (∞: held still).
     pub period: f64,
-    /// m
+    /// The resultant amplitude √(Σ A_i²), m: the hang-off's farthest
+    /// excursion from its mean position.
     pub amplitude: f64,
+    /// The resultant velocity amplitude √(Σ (A_i ω_i)²), m/s: the motion's
+    /// drag (F_m, eq. 16.10).
+    velocity: f64,
+    /// The resultant acceleration amplitude √(Σ (A_i ω_i²)²), m/s²: the
+    /// line's dynamic response, the mesh's term of the motion (16.2).
+    acceleration: f64,
+    /// The step term's amplitude, m: the amplitude of a harmonic at the
+    /// shortest period with the translations' resultant jerk,
+    /// √(Σ (A_i ω_i³)²)/ω³, so that C_t (A ω)(ω Δt)² is C_t Δt² √(Σ (A_i
+    /// ω_i³)²), the step's error of each translation's third derivative;
+    /// A of a single harmonic.
+    step_amplitude: f64,
+    /// More than one translation of different periods.
+    combined: bool,
 }
 
 impl Excitation {
-    /// "for a motion of 2.5 m at period 10 s" or "for the hang-off held still".
+    /// A single harmonic translation of `amplitude` m at `period` s (0 m:
+    /// held still).
+    pub const fn harmonic(amplitude: f64, period: f64) -> Excitation {
+        let omega = 2.0 * std::f64::consts::PI / period;
+        let (velocity, acceleration) =
+            if amplitude == 0.0 { (0.0, 0.0) } else { (amplitude * omega, amplitude * omega * omega) };
+        Excitation { period, amplitude, velocity, acceleration, step_amplitude: amplitude, combined: false }
+    }
+
+    /// The translations (amplitude m, period s) along the three orthogonal
+    /// axes, at most one each (None: none given). Translations of one period
+    /// are a single harmonic of their resultant amplitude.
+    pub fn of_translations(translations: &[(f64, f64)]) -> Option<Excitation> {
+        let period = translations.iter().map(|t| t.1).reduce(f64::min)?;
+        // (folds from +0: an empty sum of f64 is −0)
+        let resultant = |k: i32| {
+            translations
+                .iter()
+                .map(|&(a, t)| a * (2.0 * std::f64::consts::PI / t).powi(k))
+                .fold(0.0, |s, x| s + x * x)
+                .sqrt()
+        };
+        let amplitude = resultant(0);
+        if translations.iter().all(|t| t.1 == period) {
+            return Some(Excitation::harmonic(amplitude, period));
+        }
+        let omega = 2.0 * std::f64::consts::PI / period;
+        Some(Excitation {
+            period,
+            amplitude,
+            velocity: resultant(1),
+            acceleration: resultant(2),
+            step_amplitude: resultant(3) / omega.powi(3),
+            combined: true,
+        })
+    }
+
+    /// "for a motion of 2.5 m at period 10 s", "for translations of
+    /// resultant amplitude 5.6 m, the shortest of period 10 s" or "for the
+    /// hang-off held still".
     pub fn describe(&self) -> String {
+        let a = (self.amplitude * 1e3).round() / 1e3;
         if self.amplitude == 0.0 {
             "for the hang-off held still".to_string()
+        } else if self.combined {
+            format!("for translations of resultant amplitude {a} m, the shortest of period {} s", self.period)
         } else {
-            format!("for a motion of {} m at period {} s", (self.amplitude * 1e3).round() / 1e3, self.period)
+            format!("for a motion of {a} m at period {} s", self.period)
         }
     }
 
-    /// ω = 2π/T, rad/s (0 held still, T infinite).
+    /// ω = 2π/T of the shortest period, rad/s (0 held still, T infinite).
     pub fn omega(&self) -> f64 {
         2.0 * std::f64::consts::PI / self.period
     }
 
-    /// A ω: the hang-off's velocity amplitude, m/s; 0 held still.
+    /// The resultant velocity amplitude (A ω of a harmonic), m/s; 0 held
+    /// still.
     pub fn velocity(&self) -> f64 {
-        if self.amplitude == 0.0 {
-            return 0.0;
-        }
-        self.amplitude * self.omega()
+        self.velocity
     }
 
-    /// A ω²/g: the hang-off's acceleration over `gravity` (m/s²); 0 held
-    /// still.
+    /// The resultant acceleration amplitude over `gravity` (m/s²), A ω²/g of
+    /// a harmonic; 0 held still.
     pub fn acceleration_ratio(&self, gravity: f64) -> f64 {
-        self.velocity() * self.omega() / gravity
+        self.acceleration / gravity
+    }
+
+    /// Translations of different periods (not a single harmonic).
+    pub fn is_combined(&self) -> bool {
+        self.combined
     }
 }
 
@@ -442,7 +508,9 @@ pub struct Scales {
     pub curvature_s: f64,
     /// Circular frequency of the motion, rad/s.
     pub omega: f64,
-    /// Amplitude of the motion, m.
+    /// The step term's amplitude of the motion, m: its amplitude, or for
+    /// translations of different periods the amplitude at the shortest
+    /// period with their resultant jerk ([`Excitation`]).
     pub amplitude: f64,
     /// The line's unstretched length, m.
     pub length: f64,
@@ -1218,6 +1286,18 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
             let v = excitation.velocity();
             // the period from which this amplitude is covered: F_m ∝ (A ω)²
             let t_from = excitation.period * (r / MAX_MOTION_DRAG).sqrt();
+            if excitation.is_combined() {
+                return Err(AccuracyError::NotCovered {
+                    feature: "a line hanging free to its anchor whose motion's drag outweighs the study's".to_string(),
+                    reason: format!(
+                        "the drag of the translations' resultant velocity amplitude, {v:.3} m/s, 1/2 rho C_d D v^2 \
+                         = {drag:.1} N/m, is {r:.3} of the line's weight in water, {weight:.1} N/m, beyond the \
+                         {MAX_MOTION_DRAG} of the study's such line (the catenary heaved 2.5 m at 10 s; \
+                         docs/theory.md 16.10): smaller amplitudes or longer periods are covered"
+                    ),
+                }
+                .into());
+            }
             return Err(AccuracyError::NotCovered {
                 feature: "a line hanging free to its anchor whose motion's drag outweighs the study's".to_string(),
                 reason: format!(
@@ -1250,7 +1330,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         curvature: d.max_curvature,
         curvature_s: d.max_curvature_s,
         omega,
-        amplitude: excitation.amplitude,
+        amplitude: excitation.step_amplitude,
         length: scene.line.length,
         current_ratio: current_load_ratio(scene, &rep.shape),
         touchdown_bending_length,
@@ -1277,7 +1357,10 @@ pub fn excitation_for(scene: &Scene, motion: Option<Excitation>) -> Excitation {
         Some(m) => m,
         None => DESIGN_EXCITATION,
     };
-    Excitation { amplitude: amplitude.unwrap_or(base.amplitude), period: period.unwrap_or(base.period) }
+    if amplitude.is_none() && period.is_none() {
+        return base;
+    }
+    Excitation::harmonic(amplitude.unwrap_or(base.amplitude), period.unwrap_or(base.period))
 }
 
 /// The numerics for the scene's `accuracy` target, the run's `motion` (see
@@ -1322,6 +1405,17 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
         .into());
     }
     let acceleration = excitation.acceleration_ratio(scene.environment.gravity);
+    if acceleration > MAX_ACCELERATION_RATIO && excitation.is_combined() {
+        return Err(AccuracyError::Motion {
+            message: format!(
+                "translations of different periods whose resultant acceleration amplitude, sqrt(sum (A_i \
+                 omega_i^2)^2), is {acceleration:.4} g accelerate the hang-off beyond the {MAX_ACCELERATION_RATIO} \
+                 g of the study's motions (2.5 m at 10 s, the design motion): smaller amplitudes or longer periods \
+                 are covered"
+            ),
+        }
+        .into());
+    }
     if acceleration > MAX_ACCELERATION_RATIO {
         let omega = excitation.omega();
         return Err(AccuracyError::Motion {
@@ -1612,6 +1706,42 @@ mod tests {
     use super::*;
     use crate::sim::report::ShapeRow;
 
+    /// Translations of different periods (docs/theory.md §16.10): heave 2 m
+    /// at 10 s with surge 5 m at 40 s have the shortest period, 10 s, and the
+    /// resultants √(Σ (A ω^k)²) in closed form: amplitude √29 m, velocity,
+    /// acceleration and jerk of the two harmonics; the step term
+    /// C_t (A_s ω)(ω Δt)² of the step amplitude A_s is C_t Δt² times the
+    /// resultant jerk. One translation, or several of one period, are the
+    /// single harmonic of their resultant amplitude, to the bit (the model's
+    /// choices for one motion unchanged).
+    #[test]
+    fn translations_of_different_periods_take_their_resultant_scales() {
+        let w = |t: f64| 2.0 * std::f64::consts::PI / t;
+        let e = Excitation::of_translations(&[(2.0, 10.0), (5.0, 40.0)]).unwrap();
+        let rel = |a: f64, b: f64| ((a - b) / b).abs();
+        assert!(e.is_combined() && e.period == 10.0);
+        assert!(rel(e.amplitude, 29f64.sqrt()) < 1e-15);
+        assert!(rel(e.velocity(), (2.0 * w(10.0)).hypot(5.0 * w(40.0))) < 1e-15);
+        assert!(rel(e.acceleration_ratio(1.0), (2.0 * w(10.0).powi(2)).hypot(5.0 * w(40.0).powi(2))) < 1e-15);
+        let jerk = (2.0 * w(10.0).powi(3)).hypot(5.0 * w(40.0).powi(3));
+        let s = Scene::load("catenary").unwrap();
+        let sc = scales(&s, &e).unwrap();
+        let dt = 0.05;
+        assert!(rel(time_error(&sc, dt), C_TIME * jerk * dt * dt) < 1e-14);
+        assert!(e.describe().contains("translations of resultant amplitude 5.385 m, the shortest of period 10 s"));
+        // one harmonic, or two of one period, to the bit
+        assert_eq!(Excitation::of_translations(&[(2.5, 10.0)]), Some(Excitation::harmonic(2.5, 10.0)));
+        assert_eq!(Excitation::of_translations(&[(2.5, 10.0)]), Some(DESIGN_EXCITATION));
+        let same = Excitation::of_translations(&[(2.0, 12.0), (1.5, 12.0)]).unwrap();
+        assert_eq!(same, Excitation::harmonic(2.5, 12.0));
+        assert!(!same.is_combined());
+        assert_eq!(Excitation::of_translations(&[]), None);
+        // the design motion: A ω and A ω² as before
+        let d = DESIGN_EXCITATION;
+        assert_eq!(d.velocity(), 2.5 * w(10.0));
+        assert_eq!(d.acceleration_ratio(9.81), 2.5 * w(10.0) * w(10.0) / 9.81);
+    }
+
     /// The lazy wave's modules span 50 to 80 m of its 100 m: n equal
     /// elements put nodes at k·100/n m, on both ends exactly when n is a
     /// multiple of 10 (50 n/100 and 80 n/100 whole); a line without modules
@@ -1635,14 +1765,14 @@ mod tests {
     fn a_mesh_whose_statics_departs_from_the_converged_line_is_not_taken() {
         let mut lazy = Scene::load("lazy_wave").unwrap();
         lazy.analysis.accuracy = 5e-4;
-        let s = scales(&lazy, &Excitation { period: 30.0, amplitude: 2.5 }).unwrap();
+        let s = scales(&lazy, &Excitation::harmonic(2.5, 30.0)).unwrap();
         let e30 = static_mesh_error(&lazy, 30, &s).unwrap();
         assert!(e30 > 4e-3 && e30 > SAFETY * space_error(&s, 30), "30 elements: {e30:e}");
         for n in [20, 40] {
             let e = static_mesh_error(&lazy, n, &s).unwrap();
             assert!(e < 2e-4 && e <= space_error(&s, n), "{n} elements: {e:e}");
         }
-        let c = choose(&lazy, Some(Excitation { period: 30.0, amplitude: 2.5 }), Pinned::default()).unwrap();
+        let c = choose(&lazy, Some(Excitation::harmonic(2.5, 30.0)), Pinned::default()).unwrap();
         assert_ne!(c.n_elements, 30);
     }
 
@@ -1655,7 +1785,7 @@ mod tests {
     fn a_static_departure_within_the_safety_factor_is_the_mesh_term() {
         let mut catenary = Scene::load("catenary").unwrap();
         catenary.analysis.accuracy = 1e-3;
-        let motion = Excitation { period: 30.0, amplitude: 0.5 };
+        let motion = Excitation::harmonic(0.5, 30.0);
         let s = scales(&catenary, &motion).unwrap();
         let (model, departure) = (space_error(&s, 10), static_mesh_error(&catenary, 10, &s).unwrap());
         assert!(departure > model && departure <= SAFETY * model, "{departure:e} against {model:e}");

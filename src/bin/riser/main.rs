@@ -267,19 +267,22 @@ impl Motions {
         if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
     }
 
-    /// The motion the accuracy knob chooses for: the translations' resultant
-    /// amplitude √(Σ A²) (heave, surge and sway are orthogonal: in phase, the
-    /// hang-off's path) with their shortest period (a run with rotations alone:
-    /// the shortest of theirs, amplitude 0; the knob refuses a hang-off offset
-    /// from the reference point, about which the rotations turn the vessel,
-    /// so they do not move it); None: the hang-off held still.
+    /// The motion the accuracy knob chooses for: the translations (heave,
+    /// surge and sway, orthogonal), summarised by their shortest period and
+    /// their resultant amplitude, velocity, acceleration and jerk
+    /// ([`riser::sim::accuracy::Excitation::of_translations`]; of one period, a
+    /// single harmonic of their resultant amplitude √(Σ A²), the hang-off's
+    /// path in phase); a run with rotations alone: the shortest of theirs,
+    /// amplitude 0 (the knob refuses a hang-off offset from the reference
+    /// point, about which the rotations turn the vessel, so they do not move
+    /// it); None: the hang-off held still.
     fn excitation(&self) -> Option<riser::sim::accuracy::Excitation> {
-        let translations = [self.heave, self.surge, self.sway];
-        let shortest = |ms: &[Option<(f64, f64)>]| ms.iter().flatten().map(|m| m.1).reduce(f64::min);
-        let period = shortest(&translations).or_else(|| shortest(&self.all()))?;
-        // (a fold from +0: an empty sum of f64 is −0)
-        let amplitude = translations.into_iter().flatten().fold(0.0, |s, m| s + m.0 * m.0).sqrt();
-        Some(riser::sim::accuracy::Excitation { period, amplitude })
+        use riser::sim::accuracy::Excitation;
+        let translations: Vec<(f64, f64)> = [self.heave, self.surge, self.sway].into_iter().flatten().collect();
+        Excitation::of_translations(&translations).or_else(|| {
+            let shortest = self.all().into_iter().flatten().map(|m| m.1).reduce(f64::min)?;
+            Some(Excitation::harmonic(0.0, shortest))
+        })
     }
 
     fn all(&self) -> [Option<(f64, f64)>; 6] {
