@@ -1387,9 +1387,10 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     if excitation.period.is_nan() || excitation.period < MIN_PERIOD {
         return Err(AccuracyError::Motion {
             message: format!(
-                "a hang-off motion of period {} s{} is shorter than the {MIN_PERIOD} s the error model covers",
+                "a hang-off motion of period {} s{}{} is shorter than the {MIN_PERIOD} s the error model covers",
                 excitation.period,
-                given(an.accuracy_motion_period, "accuracy_motion_period")
+                given(an.accuracy_motion_period, "accuracy_motion_period"),
+                if excitation.is_combined() { " (the shortest of its translations')" } else { "" }
             ),
         }
         .into());
@@ -1397,9 +1398,10 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
     if excitation.amplitude.is_nan() || excitation.amplitude > MAX_AMPLITUDE {
         return Err(AccuracyError::Motion {
             message: format!(
-                "a hang-off motion of amplitude {} m{} is larger than the {MAX_AMPLITUDE} m the error model covers",
-                excitation.amplitude,
-                given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude")
+                "a hang-off motion of amplitude {} m{}{} is larger than the {MAX_AMPLITUDE} m the error model covers",
+                (excitation.amplitude * 1e3).round() / 1e3,
+                given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude"),
+                if excitation.is_combined() { " (its translations' resultant, sqrt(sum A_i^2))" } else { "" }
             ),
         }
         .into());
@@ -1447,7 +1449,7 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
             message: format!(
                 "a hang-off motion of amplitude {} m may take the line taut: its anchor is {:.2} m away, which leaves \
                  {:.1} % of its {} m length as slack, below the {} % the error model covers (a taut line snatches)",
-                excitation.amplitude,
+                (excitation.amplitude * 1e3).round() / 1e3,
                 chord - excitation.amplitude,
                 100.0 * slack,
                 scene.line.length,
