@@ -2,7 +2,7 @@
 //! Co-Simulation state machine (one table, checked in one place), the run,
 //! saved states. Nothing here is `unsafe`.
 
-use super::input_path::{Coupling, HISTORY_VALUES, InputHistory, VELOCITY_DESIGN, VesselInputs};
+use super::input_path::{Coupling, HISTORY_VALUES, InputHistory, VELOCITY_DESIGN, VesselInputs, shorter};
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
@@ -574,7 +574,7 @@ impl Instance {
     /// 0.5 s: +0.42 %; with the velocities set as well, the path fits both,
     /// docs/theory.md §7.4).
     fn hint_velocities(&mut self, coupling: Coupling, h: f64, inp: &VesselInputs) {
-        if self.hinted_velocities || h < VELOCITY_DESIGN {
+        if self.hinted_velocities || shorter(h, VELOCITY_DESIGN) {
             return;
         }
         let m = self.history.modes(coupling);

@@ -376,7 +376,9 @@ for case in cases:
     while t < case["duration"] - 1e-9:
         ramp = 0.5 * (1 - math.cos(math.pi * t / period)) if t < period else 1.0
         s.setReal([vr["heave"]], [2.5 * ramp * math.sin(w * t)])
-        s.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        # as fmpy's simulate_fmu steps: to the next multiple of h, a length that falls on either side of h
+        # in floating point from one step to the next
+        s.doStep(currentCommunicationPoint=t, communicationStepSize=(k + 1) * h - t)
         k += 1
         t = k * h
         series.append((t, s.getReal([vr["top_tension"]])[0]))
@@ -496,6 +498,31 @@ def test_long_communication_steps_split_into_internal_steps_follow_the_prescribe
         error = max(abs(a - b) for a, b in zip(got, want)) / want[2]
         print(f"steel catenary, communication step {h} s, internal 0.05 s: e = {error:.2e} against riser run")
         assert error <= bounds[h], (h, error)
+
+
+def test_a_communication_step_at_a_design_s_bound_answers_as_its_neighbours(fmu_path, unzipped):
+    """src/fmi/input_path.rs `shorter`: the input path's design changes with the communication step at
+    0.075 and 0.21 s (docs/theory.md §7.3). A master stepping as fmpy's simulate_fmu does, to the next
+    multiple of h, gives steps whose length falls on either side of h in floating point; at h = 0.075
+    and 0.21 s the path took one design and the other by turns, alternated its end state and rang the
+    line: the catenary's top tension peaked at 158.3 and 176.5 kN where the neighbouring steps give
+    156.3 kN (the minimum at 0.075 s: 118.3 kN against 119.8). The answer is continuous in h: the
+    steady window's extremes (40 to 60 s; the catenary, `accuracy` 1e-3, heaved 2.5 m / 10 s grown over
+    a period) at each bound within 1e-3 of the mean of its neighbours' 0.01 s either side: at most
+    3.3e-4 measured."""
+    heave = {"scene": "catenary", "period": 10.0, "duration": 60.0, "reals": {"accuracy": 1e-3}}
+    triples = [(0.065, 0.075, 0.085), (0.2, 0.21, 0.22)]
+    cases = [dict(heave, h=h) for triple in triples for h in triple]
+    extremes = []
+    for log, series in run_heave_child(fmu_path, unzipped, cases):
+        y = np.array([v for t, v in series if 40.0 - 1e-9 <= t <= 60.0 + 1e-9])
+        extremes.append((y.min(), y.max()))
+    for i, (lo, h, hi) in enumerate(triples):
+        below, at, above = extremes[3 * i:3 * i + 3]
+        for k in range(2):
+            mean = 0.5 * (below[k] + above[k])
+            print(f"h {h} s: {at[k]:.1f} N against {mean:.1f} N ({lo} and {hi} s)")
+            assert abs(at[k] - mean) <= 1e-3 * mean, (h, k, at[k], below[k], above[k])
 
 
 def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communication_step(fmu_path, unzipped):

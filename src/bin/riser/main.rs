@@ -187,7 +187,8 @@ fn print_scene(scene: Scene) {
 struct RunCli {
     /// Built-in scene (catenary, lazy_wave, steel_catenary) or path to a scene file (TOML).
     scene: String,
-    /// Override a parameter by name, e.g. --set time_step=0.1 (see `riser params`).
+    /// Override a parameter by name, e.g. --set time_step=0.1, or --set accuracy=1e-3 for riser to
+    /// choose the elements, time step and tolerance (see `riser params`).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
     /// Heave amplitude (m) and period (s) of the hang-off, e.g. --heave 2.5,20.
@@ -741,6 +742,17 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     // (a run without one: the hang-off held still, unless the scene's
     // accuracy_motion_* give a design motion)
     let excitation = motions.excitation().unwrap_or(riser::sim::accuracy::STILL);
+    // the paper's abrupt start, a velocity jump at t = 0, rings the line's
+    // axial modes in a way no mesh and step follow (docs/theory.md §16.10)
+    if ramp == Some(0.0) && scene.analysis.accuracy > 0.0 && motions.all().into_iter().flatten().any(|m| m.0 != 0.0) {
+        return Err("accuracy: the error model does not cover an abrupt start (--ramp 0, the paper's: a velocity \
+                    jump at t = 0): it rings the line's axial modes, which no mesh and step follow (the jumper heaved \
+                    2.5 m at 10 s, its top tension's maximum from 40 to 60 s: 66.3, 67.9, 98.1 and 194.4 kN on 10 \
+                    to 160 elements at 0.075 to 0.003125 s; docs/theory.md 16.10); give the motion a ramp (--ramp \
+                    > 0; by default one period of the slowest motion), or set n_elements, time_step and \
+                    newton_tolerance yourself (and leave accuracy at 0)"
+            .to_string());
+    }
     let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
