@@ -363,13 +363,19 @@ pub const UNSTEADY_WINDOW: f64 = 1e-2;
 pub fn unsteady_window_warning(drift: f64, limit: f64, window: (f64, f64), period: f64) -> Option<String> {
     (drift > limit).then(|| {
         let (t0, t1) = window;
+        // a window as long, two periods later (the run as much longer): the
+        // start's transients decay with time, not with the window's length
+        let later = |t: f64| crate::scene::ranges::number(t + 2.0 * period);
         format!(
             "the steady window is not steady at {limit:e}: the top tension's extremes over its first period \
              ({t0} to {} s) and its last ({} to {t1} s) differ by {:.3} % of its max: what is left of the start's \
-             transients; start the window later (--window) or run longer (docs/theory.md 12.3)",
+             transients; start the window later, e.g. --duration {} --window {},{} (docs/theory.md 12.3)",
             t0 + period,
             t1 - period,
-            100.0 * drift
+            100.0 * drift,
+            later(t1),
+            later(t0),
+            later(t1)
         )
     })
 }
@@ -678,6 +684,7 @@ mod tests {
         assert!(unsteady_window_warning(d, 1e-2, (20.0, 40.0), 10.0).is_none());
         let m = unsteady_window_warning(d, 1e-3, (20.0, 40.0), 10.0).unwrap();
         assert!(m.contains("20 to 30 s") && m.contains("30 to 40 s"), "{m}");
+        assert!(m.contains("--duration 60 --window 40,60"), "{m}");
     }
 
     /// The detector on synthetic histories, a steady flux of 1 kJ/s: a
