@@ -544,7 +544,12 @@ impl std::fmt::Display for SceneError {
             ),
             SceneError::Parse { source, message } => write!(f, "scene {source}: {message}"),
             SceneError::Invalid(errs) => {
-                write!(f, "invalid scene:")?;
+                // values given on the command line (`--set`) are named as such, not as the scene's
+                if !errs.is_empty() && errs.iter().all(|e| e.field.starts_with("--set ")) {
+                    write!(f, "invalid --set value:")?;
+                } else {
+                    write!(f, "invalid scene:")?;
+                }
                 for e in errs {
                     write!(f, "\n  {e}")?;
                 }
