@@ -1129,7 +1129,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
                 reason: format!(
                     "the static line is {clearance:.2} m above the seabed, within twice the motion's amplitude \
                      ({} m): the study's lines rest on their seabed or stay clear of it",
-                    excitation.amplitude
+                    (excitation.amplitude * 1e3).round() / 1e3
                 ),
             }
             .into());
