@@ -273,13 +273,16 @@ impl Motions {
     /// their resultant amplitude, velocity, acceleration and jerk
     /// ([`riser::sim::accuracy::Excitation::of_translations`]; of one period, a
     /// single harmonic of their resultant amplitude √(Σ A²), the hang-off's
-    /// path in phase); a run with rotations alone: the shortest of theirs,
+    /// path in phase; one of amplitude 0 left out); a run with rotations (or
+    /// translations of amplitude 0) alone: the shortest of their periods,
     /// amplitude 0 (the knob refuses a hang-off offset from the reference
     /// point, about which the rotations turn the vessel, so they do not move
     /// it); None: the hang-off held still.
     fn excitation(&self) -> Option<riser::sim::accuracy::Excitation> {
         use riser::sim::accuracy::Excitation;
-        let translations: Vec<(f64, f64)> = [self.heave, self.surge, self.sway].into_iter().flatten().collect();
+        // a translation of amplitude 0 moves nothing: its period does not count
+        let translations: Vec<(f64, f64)> =
+            [self.heave, self.surge, self.sway].into_iter().flatten().filter(|m| m.0 != 0.0).collect();
         Excitation::of_translations(&translations).or_else(|| {
             let shortest = self.all().into_iter().flatten().map(|m| m.1).reduce(f64::min)?;
             Some(Excitation::harmonic(0.0, shortest))
