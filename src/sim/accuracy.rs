@@ -1105,11 +1105,12 @@ pub fn wave_scales(scene: &Scene) -> Result<Option<WaveScales>, RiserError> {
 /// Whether a run is its statics (docs/theory.md §16.10, "Held still"): the
 /// run's own motion still ([`STILL`]: not a motion declared 0 over the run's,
 /// nor the FMU's, whose master may move it), no waves, and no current growing
-/// in it (none on the static line `rows`, or `static_current`).
-fn statics_only(scene: &Scene, excitation: &Excitation, rows: &[super::report::ShapeRow]) -> bool {
+/// in it (none on the static line, its `current_ratio` F_c 0, or
+/// `static_current`).
+fn statics_only(scene: &Scene, excitation: &Excitation, current_ratio: f64) -> bool {
     *excitation == STILL
         && scene.waves.as_ref().is_none_or(|w| w.kind == crate::scene::waves::WaveKind::None)
-        && (scene.analysis.static_current || current_load_ratio(scene, rows) == 0.0)
+        && (scene.analysis.static_current || current_ratio == 0.0)
 }
 
 /// The scales of `scene` for `excitation`: the static line's largest
@@ -1155,7 +1156,8 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     // of its class, and, hanging free, its motion's drag within the study's
     let class = LineClass::of(scene, &rep.shape, d.touchdown_s);
     // a run that is its statics: nothing grows in it (16.10, "Held still")
-    let statics = statics_only(scene, excitation, &rep.shape);
+    let current_ratio = current_load_ratio(scene, &rep.shape);
+    let statics = statics_only(scene, excitation, current_ratio);
     let weight = weight_in_water(scene);
     if let Some(class) = class {
         if weight <= 0.0 {
@@ -1217,17 +1219,16 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
     // (16.10): a current within the strongest probed on a line of its class
     // (a run that is its statics aside: nothing grows in it)
     if !statics {
-        let fc = current_load_ratio(scene, &rep.shape);
         // a line of a class, or one with modules (sections are refused before)
         let (most, kind) = match class {
             Some(c) => (c.max_current_ratio(), c.name()),
             None => (MAX_CURRENT_RATIO_MODULES, "with buoyancy modules"),
         };
-        if fc > most {
+        if current_ratio > most {
             return Err(AccuracyError::NotCovered {
                 feature: "a current stronger than the calibration's".to_string(),
                 reason: format!(
-                    "its drag over the static line is {fc:.3} of the static top tension (F_c), above the {most} \
+                    "its drag over the static line is {current_ratio:.3} of the static top tension (F_c), above the {most} \
                      the model covers of a line {kind}: the study's catenary in its 0.8 m/s has 0.044 and heaved \
                      2.5 m at 10 s kept its targets in 1.0 m/s (0.069), but missed 1e-4 by 1.6 times in 1.2 m/s \
                      (0.099); the steel catenary was probed up to 0.122, the jumper up to 0.457, the lazy wave up \
@@ -1286,29 +1287,30 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
             let v = excitation.velocity();
             // the period from which this amplitude is covered: F_m ∝ (A ω)²
             let t_from = excitation.period * (r / MAX_MOTION_DRAG).sqrt();
-            if excitation.is_combined() {
-                return Err(AccuracyError::NotCovered {
-                    feature: "a line hanging free to its anchor whose motion's drag outweighs the study's".to_string(),
-                    reason: format!(
-                        "the drag of the translations' resultant velocity amplitude, {v:.3} m/s, 1/2 rho C_d D v^2 \
-                         = {drag:.1} N/m, is {r:.3} of the line's weight in water, {weight:.1} N/m, beyond the \
-                         {MAX_MOTION_DRAG} of the study's such line (the catenary heaved 2.5 m at 10 s; \
-                         docs/theory.md 16.10): smaller amplitudes or longer periods are covered"
+            // the drag's velocity, and what is covered: for one harmonic, in closed form
+            let (velocity, covered) = if excitation.is_combined() {
+                (
+                    format!("the translations' resultant velocity amplitude, {v:.3} m/s"),
+                    "smaller amplitudes or longer periods are covered".to_string(),
+                )
+            } else {
+                (
+                    format!("the hang-off's velocity A omega = {v:.3} m/s"),
+                    format!(
+                        "at this period the model covers this line up to {:.3} m, at {} m from a period of {:.2} s \
+                         (in the FMU, accuracy_motion_amplitude and accuracy_motion_period)",
+                        (excitation.amplitude * (MAX_MOTION_DRAG / r).sqrt() * 1e3).floor() / 1e3,
+                        (excitation.amplitude * 1e3).round() / 1e3,
+                        (t_from * 100.0).ceil() / 100.0
                     ),
-                }
-                .into());
-            }
+                )
+            };
             return Err(AccuracyError::NotCovered {
                 feature: "a line hanging free to its anchor whose motion's drag outweighs the study's".to_string(),
                 reason: format!(
-                    "the drag of the hang-off's velocity A omega = {v:.3} m/s, 1/2 rho C_d D (A omega)^2 = \
-                     {drag:.1} N/m, is {r:.3} of the line's weight in water, {weight:.1} N/m, beyond the \
-                     {MAX_MOTION_DRAG} of the study's such line (the catenary heaved 2.5 m at 10 s; docs/theory.md \
-                     16.10); at this period the model covers this line up to {:.3} m, at {} m from a period of \
-                     {:.2} s (in the FMU, accuracy_motion_amplitude and accuracy_motion_period)",
-                    (excitation.amplitude * (MAX_MOTION_DRAG / r).sqrt() * 1e3).floor() / 1e3,
-                    (excitation.amplitude * 1e3).round() / 1e3,
-                    (t_from * 100.0).ceil() / 100.0
+                    "the drag of {velocity}, 1/2 rho C_d D v^2 = {drag:.1} N/m, is {r:.3} of the line's weight in \
+                     water, {weight:.1} N/m, beyond the {MAX_MOTION_DRAG} of the study's such line (the catenary \
+                     heaved 2.5 m at 10 s; docs/theory.md 16.10); {covered}"
                 ),
             }
             .into());
@@ -1332,7 +1334,7 @@ pub fn scales(scene: &Scene, excitation: &Excitation) -> Result<Scales, RiserErr
         omega,
         amplitude: excitation.step_amplitude,
         length: scene.line.length,
-        current_ratio: current_load_ratio(scene, &rep.shape),
+        current_ratio,
         touchdown_bending_length,
         acceleration_ratio,
         top_tension,
@@ -1407,35 +1409,39 @@ pub fn choose(scene: &Scene, motion: Option<Excitation>, pinned: Pinned) -> Resu
         .into());
     }
     let acceleration = excitation.acceleration_ratio(scene.environment.gravity);
-    if acceleration > MAX_ACCELERATION_RATIO && excitation.is_combined() {
-        return Err(AccuracyError::Motion {
-            message: format!(
-                "translations of different periods whose resultant acceleration amplitude, sqrt(sum (A_i \
-                 omega_i^2)^2), is {acceleration:.4} g accelerate the hang-off beyond the {MAX_ACCELERATION_RATIO} \
-                 g of the study's motions (2.5 m at 10 s, the design motion): smaller amplitudes or longer periods \
-                 are covered"
-            ),
-        }
-        .into());
-    }
     if acceleration > MAX_ACCELERATION_RATIO {
-        let omega = excitation.omega();
+        let g = scene.environment.gravity;
+        // the motion, and what is covered: for one harmonic, in closed form
+        let (motion, covered) = if excitation.is_combined() {
+            (
+                "translations of different periods accelerate the hang-off by their resultant sqrt(sum (A_i \
+                 omega_i^2)^2)/g"
+                    .to_string(),
+                "smaller amplitudes or longer periods are covered".to_string(),
+            )
+        } else {
+            let omega = excitation.omega();
+            (
+                format!(
+                    "a hang-off motion of amplitude {} m{} at period {} s{} accelerates the hang-off by A omega^2/g",
+                    (excitation.amplitude * 1e3).round() / 1e3,
+                    given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude"),
+                    excitation.period,
+                    given(an.accuracy_motion_period, "accuracy_motion_period"),
+                ),
+                format!(
+                    "at this period the model covers up to {:.3} m, this amplitude from a period of {:.2} s",
+                    (MAX_ACCELERATION_RATIO * g / (omega * omega) * 1e3).floor() / 1e3,
+                    (2.0 * std::f64::consts::PI * (excitation.amplitude / (MAX_ACCELERATION_RATIO * g)).sqrt() * 100.0)
+                        .ceil()
+                        / 100.0
+                ),
+            )
+        };
         return Err(AccuracyError::Motion {
             message: format!(
-                "a hang-off motion of amplitude {} m{} at period {} s{} accelerates the hang-off by A omega^2/g = \
-                 {acceleration:.4} g, beyond the {MAX_ACCELERATION_RATIO} g of the study's motions (2.5 m at 10 s, \
-                 the design motion): at this period the model covers up to {:.3} m, this amplitude from a period \
-                 of {:.2} s",
-                (excitation.amplitude * 1e3).round() / 1e3,
-                given(an.accuracy_motion_amplitude, "accuracy_motion_amplitude"),
-                excitation.period,
-                given(an.accuracy_motion_period, "accuracy_motion_period"),
-                (MAX_ACCELERATION_RATIO * scene.environment.gravity / (omega * omega) * 1e3).floor() / 1e3,
-                (2.0 * std::f64::consts::PI
-                    * (excitation.amplitude / (MAX_ACCELERATION_RATIO * scene.environment.gravity)).sqrt()
-                    * 100.0)
-                    .ceil()
-                    / 100.0
+                "{motion} = {acceleration:.4} g, beyond the {MAX_ACCELERATION_RATIO} g of the study's motions (2.5 m \
+                 at 10 s, the design motion): {covered}"
             ),
         }
         .into());
