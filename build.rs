@@ -20,8 +20,9 @@ struct Var {
 }
 
 /// (unit, [kg, m, s]) exponents of the SI base units.
-const UNITS: [(&str, [i32; 3]); 13] = [
+const UNITS: [(&str, [i32; 3]); 14] = [
     ("m", [0, 1, 0]),
+    ("Pa", [1, -1, -2]),
     ("m/s", [0, 1, -1]),
     ("m/s2", [0, 1, -2]),
     ("s", [0, 0, 1]),
@@ -275,14 +276,43 @@ fn main() {
     }
     w.write_event(Event::End(BytesEnd::new("ModelVariables"))).unwrap();
 
-    // outputs depend on every input; initial unknowns: the outputs (calculated)
+    // ModelStructure (FMI 2.0.5 §2.2.8; issue 52). <Outputs>: dependencies=""
+    // ("depends on none of the Knowns"; left out, it meant "on all Knowns":
+    // a direct feedthrough, an algebraic loop for any output fed back to an
+    // input). No output depends on an input at a communication point: it
+    // changes only in fmi2DoStep. <InitialUnknowns>: the knowns of
+    // Initialization Mode are the inputs and the variables with
+    // initial="exact" (the parameters), and the outputs depend on them all:
+    // the static state of the parameters, its hang-off moved (and started
+    // moving) by the inputs. fmi2GetDirectionalDerivative's stiffness of the
+    // loads against the pose (a slow move, the line in equilibrium,
+    // docs/theory.md §8.3) is in no mode FMI 2.0's ∂h/∂v_known, whose pattern
+    // the dependencies give (zero between steps; at initialisation the first
+    // element's stretch): the standard has no rule that the dependencies list
+    // the knowns a derivative is asked for, and listing the pose would declare
+    // the false feedthrough again. The stiffness is an extension, asked by name.
     let outputs: Vec<usize> =
         vars.iter().enumerate().filter(|(_, v)| v.causality == "output").map(|(i, _)| i).collect();
+    for &i in &outputs {
+        assert_eq!(
+            vars[i].initial, "calculated",
+            "{}: an output is an initial unknown (initial = calculated)",
+            vars[i].name
+        );
+    }
+    let init_knowns: Vec<String> = vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == "input" || v.initial == "exact")
+        .map(|(i, _)| (i + 1).to_string())
+        .collect();
+    let init_knowns = init_knowns.join(" ");
     w.write_event(Event::Start(BytesStart::new("ModelStructure"))).unwrap();
     w.write_event(Event::Start(BytesStart::new("Outputs"))).unwrap();
     for &i in &outputs {
         let mut u = BytesStart::new("Unknown");
         u.push_attribute(("index", (i + 1).to_string().as_str()));
+        u.push_attribute(("dependencies", ""));
         w.write_event(Event::Empty(u)).unwrap();
     }
     w.write_event(Event::End(BytesEnd::new("Outputs"))).unwrap();
@@ -290,6 +320,7 @@ fn main() {
     for &i in &outputs {
         let mut u = BytesStart::new("Unknown");
         u.push_attribute(("index", (i + 1).to_string().as_str()));
+        u.push_attribute(("dependencies", init_knowns.as_str()));
         w.write_event(Event::Empty(u)).unwrap();
     }
     w.write_event(Event::End(BytesEnd::new("InitialUnknowns"))).unwrap();

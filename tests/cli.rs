@@ -697,3 +697,73 @@ fn a_growing_high_frequency_oscillation_is_warned_of() {
         assert!(result.is_none(), "{extra:?}");
     }
 }
+
+/// The number that follows `key` in `text` (up to a space, a comma, a colon or a parenthesis).
+fn number_after(text: &str, key: &str) -> f64 {
+    let rest = &text[text.find(key).unwrap_or_else(|| panic!("'{key}' not in {text}")) + key.len()..];
+    let end = rest.find([' ', ',', ':', ')']).unwrap_or(rest.len());
+    rest[..end].parse().unwrap_or_else(|e| panic!("'{}' after '{key}': {e}", &rest[..end]))
+}
+
+/// Issue 52: the steel catenary with its anchor at 320 m (35 m of line on
+/// the seabed at rest, no warning) surged 15 m / 30 s, grown over 10 s, for
+/// 30 s: as the hang-off draws away the line leaves its seabed (its
+/// timeseries' `touchdown_s` = L from 16.25 to 26.2 s) and lifts its anchor.
+/// `riser run` warns once, in `steady.warnings` and on stderr: from t =
+/// 16.85 s, the largest uplift 5.63 deg at 21 s. Checked against the run's
+/// own timeseries.csv (no touchdown at both times; the bottom tension
+/// printed at the largest to 1 N, and its vertical part |F| sin(angle) to
+/// the angle's printed digit) and against the statics with the anchor at
+/// the farthest excursion, 335 m (5.48 deg: the motion adds 0.15 deg),
+/// within 0.5 deg. The scene as it is (292 m, 120 m on the seabed), surged
+/// alike, warns of no anchor.
+#[test]
+fn an_anchor_that_the_motion_lifts_off_its_seabed_warns_in_the_run() {
+    let dir = std::env::temp_dir().join(format!("riser-anchor-lift-{}", std::process::id()));
+    let run = |anchor_x: &str, out: Option<&str>| {
+        let mut args = vec!["run", "steel_catenary", "--set", anchor_x, "--surge", "15,30", "--ramp", "10"];
+        args.extend(["--duration", "30", "--json"]);
+        args.extend(out.map(|o| ["--out", o]).into_iter().flatten());
+        let out = riser(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        (json(&out), stderr)
+    };
+    let (v, stderr) = run("anchor_x=320", dir.to_str());
+    let warnings: Vec<String> =
+        v["steady"]["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap().to_string()).collect();
+    let lifts: Vec<&String> = warnings.iter().filter(|w| w.contains("the anchor lifts off the seabed")).collect();
+    assert_eq!(lifts.len(), 1, "{warnings:?}");
+    assert!(!warnings.iter().any(|w| w.contains("is lifted off")), "not in the statics: {warnings:?}");
+    let m = lifts[0];
+    assert!(stderr.contains(m.as_str()), "{stderr}");
+    assert!(m.contains("so that it touches down through the motion"), "{m}");
+    let (first, t_max) = (number_after(m, "from t = "), number_after(m, ": at t = "));
+    let (angle, vertical, tension) =
+        (number_after(m, "up at "), number_after(m, "vertical force of "), number_after(m, "(of "));
+    println!("first {first} s, largest {angle} deg at {t_max} s, {vertical} kN of {tension} kN");
+    // the run's own timeseries: no touchdown at either time, the bottom tension at the largest
+    let csv = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<f64>> = csv.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    let at = |t: f64| rows.iter().find(|r| (r[0] - t).abs() < 6e-3).unwrap_or_else(|| panic!("no row at {t}"));
+    let (td, bt) = (col("touchdown_s"), col("bottom_tension"));
+    let off: Vec<f64> = rows.iter().filter(|r| r[td] >= 400.0).map(|r| r[0]).collect();
+    println!("no touchdown from {} to {} s", off[0], off[off.len() - 1]);
+    assert!(first >= off[0] && first <= t_max && t_max <= off[off.len() - 1], "{first} {t_max} {off:?}");
+    assert!(at(first)[td] >= 400.0 && at(t_max)[td] >= 400.0);
+    let f = at(t_max)[bt];
+    assert!((tension * 1e3 - f).abs() <= 0.6, "{tension} kN against {f} N");
+    let slack = f * 0.005f64.to_radians() + 1.0;
+    assert!((vertical * 1e3 - f * angle.to_radians().sin()).abs() <= slack, "{vertical} kN at {angle} deg of {f} N");
+    // quasi-statically: the statics with the anchor 15 m farther out
+    let s = json(&riser(&["statics", "steel_catenary", "--set", "anchor_x=335", "--json"]));
+    let b: Vec<f64> = s["bottom_force"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let quasi = b[2].atan2(b[0].hypot(b[1])).to_degrees();
+    println!("quasi-static at 335 m: {quasi:.3} deg");
+    assert!((angle - quasi).abs() < 0.5, "{angle} deg against {quasi}");
+    std::fs::remove_dir_all(&dir).ok();
+    // the scene's own anchor keeps its touchdown through the same motion
+    let (v, stderr) = run("anchor_x=292", None);
+    assert!(!v["steady"]["warnings"].to_string().contains("anchor lifts") && !stderr.contains("anchor lifts"));
+}

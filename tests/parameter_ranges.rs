@@ -29,6 +29,8 @@ fn companions(parameter: &str, value: f64) -> Vec<String> {
         // an anchor 20 km away needs a line as long
         ("anchor_x" | "anchor_y" | "anchor_z", _) => vec![v("length=20000")],
         ("current_top" | "current_bottom", _) => vec![v("static_current=true")],
+        // contents need a bore: the catenary's flexible pipe given a wall
+        ("internal_fluid_density" | "internal_pressure", _) => vec![v("wall_thickness=0.02")],
         // a seabed at the hang-off's height: the line taut along it
         ("seabed_z", z) if z > -1.0 => vec![v("anchor_x=100.5"), v("anchor_z=0")],
         // the contact law's bounds on a line resting on the seabed

@@ -6,4 +6,5 @@
 pub mod exports;
 pub mod input_path;
 pub mod instance;
+pub mod plausibility;
 pub mod vars;

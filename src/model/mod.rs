@@ -307,6 +307,9 @@ pub enum DynamicsError {
     /// The converged step gave a state that is not finite (NaN or ±∞) even
     /// with the smallest sub-step.
     NonFinite { time: f64, step: f64 },
+    /// The caller's bound on Newton iterations ([`crate::solve::newton::Integrator::set_work_bound`])
+    /// was reached before the step converged (the FMU's bounded step, docs/theory.md §7.6).
+    WorkBound { time: f64, iterations: u64 },
 }
 
 impl std::fmt::Display for DynamicsError {
@@ -335,6 +338,11 @@ impl std::fmt::Display for DynamicsError {
                  t = {time:.6} s (try a smaller time_step or a gentler motion)"
             ),
             DynamicsError::BadInput(m) => write!(f, "bad input: {m}"),
+            DynamicsError::WorkBound { time, iterations } => write!(
+                f,
+                "given up at t = {time:.6} s after {iterations} Newton iterations, the step's bound, before it \
+                 converged; the state is kept at t = {time:.6} s"
+            ),
         }
     }
 }

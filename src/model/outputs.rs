@@ -23,6 +23,9 @@ pub struct LinePoint {
     /// frame), 1/m. The cable's turning curvature is in `[0]`: it carries no
     /// bending moment.
     pub curvature: [f64; 2],
+    /// Twist κ₃ about the tangent (the rod's torsional strain), 1/m; 0 for
+    /// the cable, which has no torsion.
+    pub twist: f64,
 }
 
 impl LinePoint {

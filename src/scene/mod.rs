@@ -54,6 +54,31 @@ pub struct Line {
     /// Rotary inertia per length ρI11 = ρI22, kg m; default m D²/8 (thin-walled tube).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotary_inertia: Option<f64>,
+    /// Outer diameter of the steel wall, m (default `outer_diameter`; less
+    /// with a coating, which `outer_diameter` includes), docs/theory.md §12.4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steel_outer_diameter: Option<f64>,
+    /// Thickness of the steel wall, m (unset or 0: no wall given; the
+    /// stresses then come from the homogeneous tube of EA, EI and D, §12.2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall_thickness: Option<f64>,
+    /// Young's modulus of the wall, Pa; default [`sections::DEFAULT_YOUNGS_MODULUS`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// Yield stress of the wall (SMYS), Pa: the code check's (unset or 0: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_stress: Option<f64>,
+    /// Density of the contents, kg/m³: their weight ρ_i A_i (added to the
+    /// mass per length, its inertia too) and their pressure head.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub internal_fluid_density: Option<f64>,
+    /// Gauge pressure of the contents at the hang-off, Pa.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub internal_pressure: Option<f64>,
+    /// API RP 2RD's design case factor C_f (1.0 operating, 1.2 extreme, 1.5
+    /// survival or test); default 1.0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design_case_factor: Option<f64>,
 }
 
 /// Anchor position, m (the hang-off is at the origin).
@@ -650,9 +675,18 @@ impl Scene {
     }
 
     /// The scene's value of a parameter (FMU / `--set` name) as text, `None`
-    /// for an unknown name or where the scene has no single value.
+    /// for an unknown name; where the scene holds several values, the
+    /// documented one ([`Scene::parameter_note`]).
     pub fn parameter(&self, name: &str) -> Option<String> {
         overrides::get(self, name)
+    }
+
+    /// Where the scene holds parameter `name` as more than one value (a
+    /// current table, several buoyancy sections, a flex joint's table,
+    /// axial and lateral friction apart): what [`Scene::parameter`] reads,
+    /// and what the scene holds, as a sentence for the log.
+    pub fn parameter_note(&self, name: &str) -> Option<String> {
+        overrides::multi_valued(self, name)
     }
 
     /// Anchor position, m.

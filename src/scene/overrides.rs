@@ -8,7 +8,7 @@ use super::{
 };
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 57] = [
+pub const PARAMETER_NAMES: [(&str, &str); 64] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -66,6 +66,13 @@ pub const PARAMETER_NAMES: [(&str, &str); 57] = [
     ("accuracy", "-"),
     ("accuracy_motion_amplitude", "m"),
     ("accuracy_motion_period", "s"),
+    ("steel_outer_diameter", "m"),
+    ("wall_thickness", "m"),
+    ("youngs_modulus", "Pa"),
+    ("yield_stress", "Pa"),
+    ("internal_fluid_density", "kg/m^3"),
+    ("internal_pressure", "Pa"),
+    ("design_case_factor", "-"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -229,6 +236,13 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "cd_tangential" => s.line.cd_tangential = num()?,
         "ca_normal" => s.line.ca_normal = num()?,
         "rotary_inertia" => s.line.rotary_inertia = Some(num()?),
+        "steel_outer_diameter" => s.line.steel_outer_diameter = Some(num()?),
+        "wall_thickness" => s.line.wall_thickness = Some(num()?),
+        "youngs_modulus" => s.line.youngs_modulus = Some(num()?),
+        "yield_stress" => s.line.yield_stress = Some(num()?),
+        "internal_fluid_density" => s.line.internal_fluid_density = Some(num()?),
+        "internal_pressure" => s.line.internal_pressure = Some(num()?),
+        "design_case_factor" => s.line.design_case_factor = Some(num()?),
         "water_density" => s.environment.water_density = num()?,
         "water_surface_z" => s.environment.water_surface_z = num()?,
         "gravity" => s.environment.gravity = num()?,
@@ -281,22 +295,21 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         ProfileKind::None => num(0.0),
         ProfileKind::Uniform => c.speed.and_then(num),
         ProfileKind::LinearS | ProfileKind::LinearDepth => (if top { c.top } else { c.bottom }).and_then(num),
-        ProfileKind::Table => None,
+        // several values: the table's shallowest and deepest rows (multi_valued)
+        ProfileKind::Table => table_ends(c.table.as_deref()).and_then(|(a, b)| num(if top { a[1] } else { b[1] })),
     };
-    let section = |f: fn(&Buoyancy) -> f64| match s.buoyancy.len() {
-        0 => num(0.0),
-        1 => num(f(&s.buoyancy[0])),
-        _ => None,
-    };
+    // several sections: the first's (multi_valued)
+    let section = |f: fn(&Buoyancy) -> f64| s.buoyancy.first().map_or(num(0.0), |b| num(f(b)));
     match name {
         "model" => Some(match s.analysis.model {
             Model::Rod => "rod".into(),
             Model::Cable => "cable".into(),
         }),
         "hang_off_end" => Some(s.hang_off.end.name().into()),
-        // 0 where no joint is given (the FMU's start value); none for a table
+        // 0 where no joint is given (the FMU's start value); a table's first
+        // segment's slope (multi_valued)
         "flex_joint_stiffness" => match (&s.hang_off.table, s.hang_off.stiffness) {
-            (Some(_), _) => None,
+            (Some(t), _) => t.get(1).and_then(|r| num(r[1] / r[0])),
             (None, k) => num(k.unwrap_or(0.0)),
         },
         "rotation_order" => Some(s.hang_off.rotation_order.name().into()),
@@ -323,6 +336,14 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "cd_tangential" => num(s.line.cd_tangential),
         "ca_normal" => num(s.line.ca_normal),
         "rotary_inertia" => num(s.rotary_inertia()),
+        // unset: the defaults (the FMU's start values; 0: none given)
+        "steel_outer_diameter" => num(s.line.steel_outer_diameter.unwrap_or(s.line.outer_diameter)),
+        "wall_thickness" => num(s.line.wall_thickness.unwrap_or(0.0)),
+        "youngs_modulus" => num(s.line.youngs_modulus.unwrap_or(super::sections::DEFAULT_YOUNGS_MODULUS)),
+        "yield_stress" => num(s.line.yield_stress.unwrap_or(0.0)),
+        "internal_fluid_density" => num(s.line.internal_fluid_density.unwrap_or(0.0)),
+        "internal_pressure" => num(s.line.internal_pressure.unwrap_or(0.0)),
+        "design_case_factor" => num(s.line.design_case_factor.unwrap_or(1.0)),
         "water_density" => num(s.environment.water_density),
         "water_surface_z" => num(s.environment.water_surface_z),
         "gravity" => num(s.environment.gravity),
@@ -342,10 +363,80 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "seabed_friction" => match &s.seabed {
             None => num(0.0),
             Some(b) => {
-                let [a, l] = b.friction_coefficients();
-                if a == l { num(a) } else { None }
+                // axial and lateral apart: the axial (multi_valued)
+                let [a, _] = b.friction_coefficients();
+                num(a)
             }
         },
+        _ => None,
+    }
+}
+
+/// A current table's shallowest and deepest rows [depth m, speed m/s].
+fn table_ends(rows: Option<&[[f64; 2]]>) -> Option<([f64; 2], [f64; 2])> {
+    let rows = rows?;
+    let top = rows.iter().copied().min_by(|a, b| a[0].total_cmp(&b[0]))?;
+    let bottom = rows.iter().copied().max_by(|a, b| a[0].total_cmp(&b[0]))?;
+    Some((top, bottom))
+}
+
+/// Where the scene holds a parameter as more than one value, what [`get`]
+/// reads and what else the scene holds (None: one value). The rules
+/// (docs/guide/fmu.md, "Parameters a scene holds as several values"): a
+/// current table's `current_top`/`current_bottom` are its shallowest and
+/// deepest rows' speeds; several buoyancy sections read as the first's
+/// `buoyancy_*`; a flex joint's table reads as its first segment's slope;
+/// axial and lateral seabed friction apart read as the axial coefficient.
+pub(super) fn multi_valued(s: &Scene, name: &str) -> Option<String> {
+    match name {
+        "current_top" | "current_bottom" if s.current.profile == ProfileKind::Table => {
+            let rows = s.current.table.as_deref().unwrap_or(&[]);
+            let (top, bottom) = table_ends(Some(rows))?;
+            let (which, row) = if name == "current_top" { ("shallowest", top) } else { ("deepest", bottom) };
+            Some(format!(
+                "{name} reads {} m/s: the scene's current is a table of {} rows (depth, speed); this is its {which} \
+                 row's speed (at {} m)",
+                row[1],
+                rows.len(),
+                row[0]
+            ))
+        }
+        "buoyancy_load" | "buoyancy_start" | "buoyancy_end" if s.buoyancy.len() > 1 => {
+            let b = &s.buoyancy[0];
+            let value = match name {
+                "buoyancy_load" => b.load,
+                "buoyancy_start" => b.start,
+                _ => b.end,
+            };
+            Some(format!(
+                "{name} reads {value}: the scene has {} buoyancy sections; this is the first's (S {} to {} m, {} \
+                 N/m)",
+                s.buoyancy.len(),
+                b.start,
+                b.end,
+                b.load
+            ))
+        }
+        "flex_joint_stiffness" => {
+            let t = s.hang_off.table.as_ref()?;
+            let r = t.get(1)?;
+            Some(format!(
+                "flex_joint_stiffness reads {} N m/rad: the scene's flex joint is a table of {} rows (angle, \
+                 moment); this is its first segment's slope, to {} rad",
+                r[1] / r[0],
+                t.len(),
+                r[0]
+            ))
+        }
+        "seabed_friction" => {
+            let [a, l] = s.seabed.as_ref()?.friction_coefficients();
+            (a != l).then(|| {
+                format!(
+                    "seabed_friction reads {a}: the scene's seabed has axial friction {a} and lateral {l}; this is \
+                     the axial coefficient (setting seabed_friction makes them one)"
+                )
+            })
+        }
         _ => None,
     }
 }

@@ -63,6 +63,19 @@ pub struct SectionSpec {
     /// Normal added-mass coefficient of a module C_a,m; default [`DEFAULT_MODULE_CA`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub module_ca_normal: Option<f64>,
+    /// The steel wall's outer diameter, m (default: `[line]`'s, else the
+    /// section's `outer_diameter`), docs/theory.md §12.4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steel_outer_diameter: Option<f64>,
+    /// The steel wall's thickness, m (default `[line]`'s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall_thickness: Option<f64>,
+    /// The wall's Young's modulus, Pa (default `[line]`'s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// The wall's yield stress, Pa (default `[line]`'s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_stress: Option<f64>,
 }
 
 /// Default normal drag coefficient of a buoyancy module: a short cylinder
@@ -71,6 +84,71 @@ pub const DEFAULT_MODULE_CD: f64 = 1.2;
 /// Default normal added-mass coefficient of a buoyancy module (a cylinder's
 /// potential-flow value).
 pub const DEFAULT_MODULE_CA: f64 = 1.0;
+
+/// The Young's modulus of a wall whose scene gives none, Pa: 207 GPa, the
+/// value DNV-OS-F201, DNV-RP-C203 and API RP 2RD's examples take for the
+/// carbon-manganese steels of risers (API 5L X52 to X80), and the one the
+/// built-in `steel_catenary`'s EA and EI were made with.
+pub const DEFAULT_YOUNGS_MODULUS: f64 = 2.07e11;
+
+/// The steel wall of a piece of line (docs/theory.md §12.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wall {
+    /// Outer diameter of the steel D_s, m.
+    pub outer_diameter: f64,
+    /// Thickness t, m.
+    pub thickness: f64,
+    /// Young's modulus E, Pa.
+    pub youngs_modulus: f64,
+}
+
+impl Wall {
+    /// The bore d_i = D_s − 2t, m.
+    pub fn inner_diameter(&self) -> f64 {
+        self.outer_diameter - 2.0 * self.thickness
+    }
+
+    /// The steel's area A_s = π (D_s² − d_i²)/4, m².
+    pub fn area(&self) -> f64 {
+        let (d, b) = (self.outer_diameter, self.inner_diameter());
+        std::f64::consts::PI * (d * d - b * b) / 4.0
+    }
+
+    /// The second moment of area I = π (D_s⁴ − d_i⁴)/64, m⁴.
+    pub fn inertia(&self) -> f64 {
+        let (d, b) = (self.outer_diameter, self.inner_diameter());
+        std::f64::consts::PI * (d.powi(4) - b.powi(4)) / 64.0
+    }
+}
+
+impl Line {
+    /// The steel wall, when `wall_thickness` is given (and above 0).
+    pub fn wall(&self) -> Option<Wall> {
+        let thickness = self.wall_thickness.filter(|t| *t > 0.0)?;
+        Some(Wall {
+            outer_diameter: self.steel_outer_diameter.unwrap_or(self.outer_diameter),
+            thickness,
+            youngs_modulus: self.youngs_modulus.unwrap_or(DEFAULT_YOUNGS_MODULUS),
+        })
+    }
+
+    /// The bore's diameter d_i, m: the wall's, else that of the homogeneous
+    /// tube of EA, EI and D, d² = 16 EI/EA − D² (12.1); None when neither
+    /// exists (a flexible pipe without a wall given).
+    pub fn bore_diameter(&self) -> Option<f64> {
+        if let Some(w) = self.wall() {
+            return Some(w.inner_diameter());
+        }
+        let d = self.outer_diameter;
+        let d_in2 = 16.0 * self.bending_stiffness / self.axial_stiffness - d * d;
+        (d_in2 >= 0.0 && d_in2 < d * d).then(|| d_in2.sqrt())
+    }
+
+    /// Whether the line has contents: a density or a pressure given (not 0).
+    pub fn has_contents(&self) -> bool {
+        self.internal_fluid_density.is_some_and(|r| r != 0.0) || self.internal_pressure.is_some_and(|p| p != 0.0)
+    }
+}
 
 /// Buoyancy modules of a section (all four sizes given).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,8 +191,13 @@ pub struct LineProperties {
     /// Rotary inertia per length, kg m.
     pub rotary_inertia: f64,
     /// Outer diameter of the pipe itself (not of its modules), m: the outer
-    /// fibre of the stresses (docs/theory.md §12).
+    /// fibre of the stresses of the homogeneous tube, and the diameter over
+    /// which the water's pressure acts on the pipe (docs/theory.md §12).
     pub pipe_diameter: f64,
+    /// The steel wall, when the scene gives one (§12.4).
+    pub wall: Option<Wall>,
+    /// The wall's yield stress, Pa, when the scene gives one.
+    pub yield_stress: Option<f64>,
 }
 
 /// A piece of line [start, end] (m of unstretched arc length from the hang-off).
@@ -152,16 +235,32 @@ impl SectionSpec {
             ca_normal: self.ca_normal.unwrap_or(line.ca_normal),
             // [line]'s if it sets one, else the default m D²/8 of the section's own m and D
             rotary_inertia: self.rotary_inertia.or(line.rotary_inertia),
+            // the wall: the section's keys, else [line]'s (the steel diameter,
+            // unset in both, is the section's own outer diameter)
+            steel_outer_diameter: self.steel_outer_diameter.or(line.steel_outer_diameter),
+            wall_thickness: self.wall_thickness.or(line.wall_thickness),
+            youngs_modulus: self.youngs_modulus.or(line.youngs_modulus),
+            yield_stress: self.yield_stress.or(line.yield_stress),
+            // the contents and the load case are the line's: one fluid column
+            internal_fluid_density: line.internal_fluid_density,
+            internal_pressure: line.internal_pressure,
+            design_case_factor: line.design_case_factor,
         }
     }
 }
 
-/// Properties of a bare line (no modules).
+/// Properties of a bare line (no modules): with contents, their mass
+/// ρ_i π d_i²/4 is the line's too (docs/theory.md §12.4).
 pub fn bare_properties(line: &Line) -> LineProperties {
     let d = line.outer_diameter;
     let area = std::f64::consts::PI * d * d / 4.0;
+    let contents = match (line.internal_fluid_density, line.bore_diameter()) {
+        (Some(rho), Some(bore)) => Some(rho * std::f64::consts::PI * bore * bore / 4.0),
+        _ => None,
+    };
     LineProperties {
-        mass_per_length: line.mass_per_length,
+        // (a line without contents keeps its mass exactly)
+        mass_per_length: contents.map_or(line.mass_per_length, |m| line.mass_per_length + m),
         displaced_area: area,
         added_mass_area: line.ca_normal * area,
         drag_normal: line.cd_normal * d,
@@ -172,6 +271,8 @@ pub fn bare_properties(line: &Line) -> LineProperties {
         torsional_stiffness: line.torsional_stiffness,
         rotary_inertia: line.rotary_inertia.unwrap_or(line.mass_per_length * d * d / 8.0),
         pipe_diameter: d,
+        wall: line.wall(),
+        yield_stress: line.yield_stress.filter(|y| *y > 0.0),
     }
 }
 
@@ -279,6 +380,8 @@ pub fn element_properties(pieces: &[Piece], a: f64, b: f64) -> LineProperties {
     let mean = |f: fn(&LineProperties) -> f64| inside.iter().map(|(w, p)| w * f(p)).sum::<f64>();
     let harmonic = |f: fn(&LineProperties) -> f64| 1.0 / inside.iter().map(|(w, p)| w / f(p)).sum::<f64>();
     let displaced_area = mean(|p| p.displaced_area);
+    // the wall of the piece that covers most of the element (the first of equals)
+    let dominant = inside.iter().fold(inside[0], |m, v| if v.0 > m.0 { *v } else { m }).1;
     LineProperties {
         mass_per_length: mean(|p| p.mass_per_length),
         displaced_area,
@@ -291,6 +394,8 @@ pub fn element_properties(pieces: &[Piece], a: f64, b: f64) -> LineProperties {
         torsional_stiffness: harmonic(|p| p.torsional_stiffness),
         rotary_inertia: mean(|p| p.rotary_inertia),
         pipe_diameter: mean(|p| p.pipe_diameter),
+        wall: dominant.wall,
+        yield_stress: dominant.yield_stress,
     }
 }
 

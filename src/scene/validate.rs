@@ -22,6 +22,24 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     if let Some(j) = l.rotary_inertia {
         c.range("line.rotary_inertia", j);
     }
+    let pipe_keys = [
+        ("steel_outer_diameter", l.steel_outer_diameter),
+        ("wall_thickness", l.wall_thickness),
+        ("youngs_modulus", l.youngs_modulus),
+        ("yield_stress", l.yield_stress),
+        ("internal_fluid_density", l.internal_fluid_density),
+        ("internal_pressure", l.internal_pressure),
+        ("design_case_factor", l.design_case_factor),
+    ];
+    let mut pipe_ok = true;
+    for (k, v) in pipe_keys {
+        if let Some(v) = v {
+            pipe_ok &= c.range(&format!("line.{k}"), v);
+        }
+    }
+    if pipe_ok && s.section.is_empty() {
+        check_wall(&mut c, l, "line");
+    }
     let env = &s.environment;
     c.range("environment.water_density", env.water_density);
     c.range("environment.gravity", env.gravity);
@@ -200,6 +218,44 @@ fn check_flex_joint(c: &mut Checker, s: &Scene) {
     }
 }
 
+/// The wall of a piece of line (`[line]` or a section's, `at` naming it):
+/// thinner than its radius, the steel inside the outer diameter, and a bore
+/// for the contents when the line has contents (docs/theory.md §12.4).
+fn check_wall(c: &mut Checker, l: &super::Line, at: &str) {
+    if let Some(w) = l.wall() {
+        if 2.0 * w.thickness > w.outer_diameter {
+            c.err(
+                &format!("{at}.wall_thickness"),
+                format!(
+                    "{} m is more than the radius of the steel ({} m, steel_outer_diameter / 2): the wall must leave \
+                     a bore (or be a solid bar, t = D_s / 2)",
+                    w.thickness,
+                    w.outer_diameter / 2.0
+                ),
+            );
+        }
+        if w.outer_diameter > l.outer_diameter * (1.0 + 1e-9) {
+            c.err(
+                &format!("{at}.steel_outer_diameter"),
+                format!(
+                    "{} m is larger than the outer diameter {} m: the steel is inside the outer diameter, which \
+                     includes any coating",
+                    w.outer_diameter, l.outer_diameter
+                ),
+            );
+        }
+    }
+    if l.has_contents() && l.bore_diameter().is_none() {
+        c.err(
+            &format!("{at}.wall_thickness"),
+            "the contents (internal_fluid_density, internal_pressure) need the pipe's bore: give the wall \
+             (wall_thickness, and steel_outer_diameter if the outer diameter includes a coating); EA, EI and the \
+             outer diameter are not those of a homogeneous tube whose bore riser could take"
+                .to_string(),
+        );
+    }
+}
+
 /// Line sections (docs/theory.md §11): each key in its `[line]` range, the
 /// modules complete and physical, and the lengths adding up to the line's.
 fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
@@ -219,8 +275,14 @@ fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
             ("cd_tangential", sec.cd_tangential),
             ("ca_normal", sec.ca_normal),
             ("rotary_inertia", sec.rotary_inertia),
+            ("steel_outer_diameter", sec.steel_outer_diameter),
+            ("wall_thickness", sec.wall_thickness),
+            ("youngs_modulus", sec.youngs_modulus),
+            ("yield_stress", sec.yield_stress),
         ];
-        c.optional(&keys, f, |k| format!("line.{k}"));
+        if c.optional(&keys, f, |k| format!("line.{k}")) {
+            check_wall(c, &sec.bare_line(&s.line), &format!("section[{i}]"));
+        }
         let sizes = [
             ("module_diameter", sec.module_diameter),
             ("module_length", sec.module_length),

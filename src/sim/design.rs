@@ -5,9 +5,9 @@
 
 use super::Engine;
 use crate::math::V3;
-use crate::model::State;
 use crate::model::outputs::LinePoint;
 use crate::model::sections::{self, PerElement};
+use crate::model::{Outputs, State};
 use crate::scene::sections::LineProperties;
 use crate::scene::{Model, Scene};
 
@@ -29,43 +29,213 @@ pub const ELEMENTS_PER_BENDING_LENGTH: f64 = 2.0;
 /// (every 45°, as fatigue post-processors do).
 pub const FIBRES: usize = 8;
 
-/// The homogeneous tube that has a line's EA, EI and pipe diameter D (12.1):
-/// EA = E π (D² − d²)/4 and EI = E π (D⁴ − d⁴)/64 give d² = 16 EI/EA − D²
-/// and E = EA / A.
+/// The wall of a piece of line, whose stresses riser reports (12.1, 12.6):
+/// the steel wall the scene gives (`wall_thickness`, docs/theory.md §12.4),
+/// or else the homogeneous tube that has the line's EA, EI and pipe
+/// diameter D: EA = E π (D² − d²)/4 and EI = E π (D⁴ − d⁴)/64 give
+/// d² = 16 EI/EA − D² and E = EA / A.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tube {
-    /// Wall area A, m².
+    /// Wall area A_s, m².
     pub area: f64,
     /// Young's modulus E, Pa.
     pub modulus: f64,
-    /// Outer radius D/2, m.
+    /// Outer radius of the steel r_o, m.
     pub outer_radius: f64,
+    /// Inner radius r_i (the bore's), m.
+    pub inner_radius: f64,
+    /// Shear modulus G = GJ / J, J = π (r_o⁴ − r_i⁴)/2 the wall's polar
+    /// moment, Pa (0 with GJ = 0).
+    pub shear_modulus: f64,
+    /// The area over which the water's pressure acts, A_e = π D²/4, D the
+    /// pipe's outer diameter (its coating's, not its modules'), m²: the
+    /// diameter of the buoyancy the model applies (12.6).
+    pub external_area: f64,
+    /// Yield stress σ_y, Pa, when the scene gives one.
+    pub yield_stress: Option<f64>,
 }
 
 impl Tube {
-    /// The tube of `p`, or None when no homogeneous tube has its EA, EI and
-    /// D (0 ≤ d² < D² fails): a flexible pipe or an umbilical, whose layers
+    /// The tube of `p`: its wall when the scene gives one, else the
+    /// homogeneous tube of its EA, EI and D, or None when there is none
+    /// (0 ≤ d² < D² fails): a flexible pipe or an umbilical, whose layers
     /// slide and whose stresses are per layer, beyond this model.
     pub fn of(p: &LineProperties) -> Option<Tube> {
+        let pi = std::f64::consts::PI;
         let d_out = p.pipe_diameter;
-        let d_in2 = 16.0 * p.bending_stiffness / p.axial_stiffness - d_out * d_out; // (12.1)
-        if !(d_in2 >= 0.0 && d_in2 < d_out * d_out) {
-            return None;
-        }
-        let area = std::f64::consts::PI * (d_out * d_out - d_in2) / 4.0;
-        Some(Tube { area, modulus: p.axial_stiffness / area, outer_radius: 0.5 * d_out })
+        let external_area = pi * d_out * d_out / 4.0;
+        let (area, modulus, r_o, r_i) = match p.wall {
+            Some(w) => (w.area(), w.youngs_modulus, 0.5 * w.outer_diameter, 0.5 * w.inner_diameter()),
+            None => {
+                let d_in2 = 16.0 * p.bending_stiffness / p.axial_stiffness - d_out * d_out; // (12.1)
+                if !(d_in2 >= 0.0 && d_in2 < d_out * d_out) {
+                    return None;
+                }
+                let area = pi * (d_out * d_out - d_in2) / 4.0;
+                (area, p.axial_stiffness / area, 0.5 * d_out, 0.5 * d_in2.sqrt())
+            }
+        };
+        let polar = pi * (r_o.powi(4) - r_i.powi(4)) / 2.0;
+        Some(Tube {
+            area,
+            modulus,
+            outer_radius: r_o,
+            inner_radius: r_i,
+            shear_modulus: p.torsional_stiffness / polar,
+            external_area,
+            yield_stress: p.yield_stress,
+        })
     }
 
-    /// Stress at the outer fibre at angle θ from the section's first axis:
-    /// σ = T/A + E (D/2)(κ₁ sin θ − κ₂ cos θ), Pa (12.2).
-    pub fn fibre_stress(&self, tension: f64, curvature: [f64; 2], theta: f64) -> f64 {
+    /// The bore's area A_i = π r_i², m².
+    pub fn bore_area(&self) -> f64 {
+        std::f64::consts::PI * self.inner_radius * self.inner_radius
+    }
+
+    /// The true wall tension T_w = T_eff + p_i A_i − p_e A_e, N, of the
+    /// effective tension `tension` (N) under the pressures `p` (12.6).
+    pub fn wall_tension(&self, tension: f64, p: Pressures) -> f64 {
+        tension + p.inside * self.bore_area() - p.outside * self.external_area
+    }
+
+    /// Axial stress at the outer fibre at angle θ from the section's first
+    /// axis: σ = T_w/A + E r_o (κ₁ sin θ − κ₂ cos θ), Pa (12.2), T_w the
+    /// true wall tension.
+    pub fn fibre_stress(&self, wall_tension: f64, curvature: [f64; 2], theta: f64) -> f64 {
         let bending = curvature[0] * theta.sin() - curvature[1] * theta.cos();
-        tension / self.area + self.modulus * self.outer_radius * bending
+        wall_tension / self.area + self.modulus * self.outer_radius * bending
     }
 
-    /// The largest stress around the outer fibre: T/A + E (D/2) |κ|, Pa (12.3).
-    pub fn max_stress(&self, tension: f64, curvature: f64) -> f64 {
-        tension / self.area + self.modulus * self.outer_radius * curvature.abs()
+    /// The largest axial stress around the outer fibre: T_w/A + E r_o |κ|, Pa (12.3).
+    pub fn max_stress(&self, wall_tension: f64, curvature: f64) -> f64 {
+        wall_tension / self.area + self.modulus * self.outer_radius * curvature.abs()
+    }
+
+    /// Lamé's thick-walled cylinder under p_i inside and p_e outside: the
+    /// hoop and radial stress at radius r, Pa (12.7),
+    /// σ_θ,r = (p_i r_i² − p_e r_o²)/(r_o² − r_i²) ± (p_i − p_e) r_i² r_o² / ((r_o² − r_i²) r²).
+    /// A solid bar (r_i = 0) has σ_θ = σ_r = −p_e.
+    pub fn lame(&self, p: Pressures, r: f64) -> (f64, f64) {
+        let (a2, b2) = (self.inner_radius * self.inner_radius, self.outer_radius * self.outer_radius);
+        let mean = (p.inside * a2 - p.outside * b2) / (b2 - a2);
+        if a2 == 0.0 {
+            return (-p.outside, -p.outside);
+        }
+        let varying = (p.inside - p.outside) * a2 * b2 / ((b2 - a2) * r * r);
+        (mean + varying, mean - varying)
+    }
+
+    /// The largest von Mises stress over the section (12.8): at the fibres
+    /// in and against the curvature (where the axial stress is largest and
+    /// smallest; σ_vm² is a convex quadratic in σ_a, so the largest around
+    /// a circle is at one of them) at the inner and the outer radius, with
+    /// the true wall tension `wall_tension` (N), curvature |κ| (1/m, 0 for
+    /// the cable), twist κ₃ (1/m) and the pressures `p`, Pa.
+    pub fn max_von_mises(&self, wall_tension: f64, curvature: f64, twist: f64, p: Pressures) -> f64 {
+        let mut largest = 0.0f64;
+        for r in [self.inner_radius, self.outer_radius] {
+            let (hoop, radial) = self.lame(p, r);
+            let shear = self.shear_modulus * twist * r;
+            let bending = self.modulus * r * curvature.abs();
+            for axial in [wall_tension / self.area + bending, wall_tension / self.area - bending] {
+                largest = largest.max(von_mises(axial, hoop, radial, shear));
+            }
+        }
+        largest
+    }
+}
+
+/// The von Mises stress of axial, hoop and radial normal stresses and the
+/// torsional shear in the section's plane, Pa (12.8):
+/// σ_vm = √(½[(σ_a − σ_θ)² + (σ_θ − σ_r)² + (σ_r − σ_a)²] + 3τ²).
+pub fn von_mises(axial: f64, hoop: f64, radial: f64, shear: f64) -> f64 {
+    let (a, h, r) = (axial - hoop, hoop - radial, radial - axial);
+    (0.5 * (a * a + h * h + r * r) + 3.0 * shear * shear).sqrt()
+}
+
+/// The pressures on the wall at one point, Pa (gauge).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pressures {
+    /// The contents' p_i.
+    pub inside: f64,
+    /// The water's p_e.
+    pub outside: f64,
+}
+
+/// The fluids inside and outside a line (12.5): the water's hydrostatic
+/// pressure outside, and the contents' pressure (at the hang-off) and
+/// density inside.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Fluids {
+    /// ρ_w, kg/m³ (0: no water).
+    pub water_density: f64,
+    /// g, m/s².
+    pub gravity: f64,
+    /// z of the still water surface, m.
+    pub water_surface_z: f64,
+    /// ρ_i, kg/m³.
+    pub internal_density: f64,
+    /// The contents' gauge pressure at the hang-off, Pa.
+    pub internal_pressure: f64,
+}
+
+impl Fluids {
+    /// The fluids of a scene.
+    pub fn of(scene: &Scene) -> Self {
+        let env = &scene.environment;
+        Fluids {
+            water_density: env.water_density,
+            gravity: env.gravity,
+            water_surface_z: env.water_surface_z,
+            internal_density: scene.line.internal_fluid_density.unwrap_or(0.0),
+            internal_pressure: scene.line.internal_pressure.unwrap_or(0.0),
+        }
+    }
+
+    /// The pressures at height z (m) with the hang-off at `hang_off_z` (12.5):
+    /// p_i = p_i,0 + ρ_i g (z_h − z); p_e = ρ_w g (z_s − z) below the still
+    /// water surface z_s, 0 above it.
+    pub fn pressures(&self, z: f64, hang_off_z: f64) -> Pressures {
+        let inside = self.internal_pressure + self.internal_density * self.gravity * (hang_off_z - z);
+        let depth = self.water_surface_z - z;
+        let outside = if depth > 0.0 { self.water_density * self.gravity * depth } else { 0.0 };
+        Pressures { inside, outside }
+    }
+}
+
+/// API RP 2RD's basic allowable stress over the yield stress, C_a = 2/3.
+pub const API_ALLOWABLE_FRACTION: f64 = 2.0 / 3.0;
+
+/// The name of the code check riser makes (docs/theory.md §12.4).
+pub const API_CHECK: &str = "API RP 2RD von Mises (sigma_vm <= C_f 2/3 sigma_y)";
+
+/// A code check's largest utilisation along the line: its value, the check
+/// ([`API_CHECK`]) and its arc length, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Utilisation {
+    pub value: f64,
+    pub check: &'static str,
+    pub s: f64,
+}
+
+/// The largest von Mises stress (Pa) and utilisation along a line in one
+/// state, each with its arc length (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StressPeaks {
+    pub von_mises: (f64, f64),
+    /// None when no element has a yield stress.
+    pub utilisation: Option<Utilisation>,
+}
+
+impl StressPeaks {
+    /// The larger of each of two peaks (over time).
+    pub fn max(self, other: StressPeaks) -> StressPeaks {
+        let von_mises = if other.von_mises.0 > self.von_mises.0 { other.von_mises } else { self.von_mises };
+        let utilisation = match (self.utilisation, other.utilisation) {
+            (Some(a), Some(b)) => Some(if b.value > a.value { b } else { a }),
+            (a, b) => a.or(b),
+        };
+        StressPeaks { von_mises, utilisation }
     }
 }
 
@@ -92,9 +262,16 @@ pub struct DesignNumbers {
     /// Smallest axial force, N (negative: compression), and its arc length, m.
     pub min_tension: f64,
     pub min_tension_s: f64,
-    /// Largest outer-fibre stress, axial plus bending, Pa, and its arc length,
-    /// m; None when the line is not a homogeneous tube ([`Tube::of`]).
+    /// Largest axial stress at the outer fibre, the true wall tension's
+    /// plus bending, T_w/A + E r_o |κ| (12.3, 12.6), Pa, and its arc length,
+    /// m; None when the line has no wall ([`Tube::of`]).
     pub max_stress: Option<(f64, f64)>,
+    /// Largest von Mises stress (12.8), Pa, and its arc length, m; None
+    /// when the line has no wall.
+    pub max_von_mises: Option<(f64, f64)>,
+    /// Largest utilisation of the code check ([`API_CHECK`]) and where;
+    /// None without a wall or a yield stress.
+    pub max_utilisation: Option<Utilisation>,
 }
 
 /// What the design numbers of a scene need: each element's properties and
@@ -107,6 +284,11 @@ pub struct Design {
     length: f64,
     n_el: usize,
     seabed: Option<crate::scene::SeabedSpec>,
+    /// The water and the contents (none: no pressure, the stresses of
+    /// [`Design::of_properties`]).
+    fluids: Fluids,
+    /// API RP 2RD's design case factor C_f.
+    case_factor: f64,
 }
 
 impl Design {
@@ -114,13 +296,24 @@ impl Design {
         let n_el = scene.analysis.n_elements;
         let d =
             Design::of_properties(sections::element_properties(scene), scene.analysis.model, scene.line.length, n_el);
-        Design { seabed: scene.seabed.clone(), ..d }
+        Design {
+            seabed: scene.seabed.clone(),
+            fluids: Fluids::of(scene),
+            case_factor: scene.line.design_case_factor.unwrap_or(1.0),
+            ..d
+        }
     }
 
     /// The design numbers of a line of `n_el` elements with these properties.
     pub fn of_properties(props: PerElement<LineProperties>, model: Model, length: f64, n_el: usize) -> Self {
         let tubes = props.map(Tube::of);
-        Design { props, tubes, model, length, n_el, seabed: None }
+        Design { props, tubes, model, length, n_el, seabed: None, fluids: Fluids::default(), case_factor: 1.0 }
+    }
+
+    /// The same design with the water and contents `fluids` and API RP
+    /// 2RD's design case factor C_f `case_factor` (12.5, 12.9).
+    pub fn with_fluids(self, fluids: Fluids, case_factor: f64) -> Self {
+        Design { fluids, case_factor, ..self }
     }
 
     /// The tube of element `e` (None: not a homogeneous tube, or the cable's
@@ -135,16 +328,60 @@ impl Design {
         (0..self.n_el).all(|e| self.tube(e).is_some())
     }
 
-    /// The outer-fibre stress of `p` at angle θ, Pa (the cable: axial only).
-    fn fibre_stress(&self, p: &LinePoint, theta: f64) -> Option<f64> {
+    /// The outer-fibre axial stress of `p` at angle θ with the hang-off at
+    /// `hang_off_z` (m), Pa (the cable: axial only).
+    fn fibre_stress(&self, p: &LinePoint, theta: f64, hang_off_z: f64) -> Option<f64> {
         let tube = self.tube(p.element)?;
         let k = if self.model == Model::Rod { p.curvature } else { [0.0; 2] };
-        Some(tube.fibre_stress(p.tension, k, theta))
+        let t_w = tube.wall_tension(p.tension, self.fluids.pressures(p.position.z, hang_off_z));
+        Some(tube.fibre_stress(t_w, k, theta))
+    }
+
+    /// The largest axial stress at `p`'s outer fibre, T_w/A + E r_o |κ|, Pa.
+    fn point_max_stress(&self, tube: &Tube, p: &LinePoint, hang_off_z: f64) -> f64 {
+        let k = if self.model == Model::Rod { p.curvature_magnitude() } else { 0.0 };
+        tube.max_stress(tube.wall_tension(p.tension, self.fluids.pressures(p.position.z, hang_off_z)), k)
+    }
+
+    /// The largest von Mises stress at `p` (12.8), Pa.
+    fn point_von_mises(&self, tube: &Tube, p: &LinePoint, hang_off_z: f64) -> f64 {
+        let pressures = self.fluids.pressures(p.position.z, hang_off_z);
+        let (k, twist) = match self.model {
+            Model::Rod => (p.curvature_magnitude(), p.twist),
+            Model::Cable => (0.0, 0.0),
+        };
+        tube.max_von_mises(tube.wall_tension(p.tension, pressures), k, twist, pressures)
+    }
+
+    /// The largest von Mises stress and utilisation of the line whose
+    /// points are `points`, its hang-off at `hang_off_z` (m); None when the
+    /// line has no wall (§12.4). The FMU's `max_von_mises` and
+    /// `max_utilisation`, `riser run`'s over the steady window.
+    pub fn stress_peaks(&self, points: &[LinePoint], hang_off_z: f64) -> Option<StressPeaks> {
+        if !self.has_stresses() {
+            return None;
+        }
+        let mut peaks = StressPeaks { von_mises: (f64::NEG_INFINITY, 0.0), utilisation: None };
+        for p in points {
+            let tube = self.tube(p.element).expect("every element is a tube");
+            let vm = self.point_von_mises(&tube, p, hang_off_z);
+            if vm > peaks.von_mises.0 {
+                peaks.von_mises = (vm, p.s);
+            }
+            if let Some(sy) = tube.yield_stress {
+                let value = vm / (self.case_factor * API_ALLOWABLE_FRACTION * sy);
+                if peaks.utilisation.is_none_or(|u| value > u.value) {
+                    peaks.utilisation = Some(Utilisation { value, check: API_CHECK, s: p.s });
+                }
+            }
+        }
+        peaks.von_mises.0.is_finite().then_some(peaks)
     }
 
     /// The design numbers of `state`, whose `touchdown_s` output is given (m;
     /// the line's length when it touches nowhere).
     pub fn numbers(&self, engine: &Engine, state: &State, touchdown_s: f64) -> DesignNumbers {
+        let hang_off_z = state.config.x[0].z;
         let touchdown = (touchdown_s < self.length).then(|| {
             let s = engine.node_arc_lengths();
             let x = &state.config.x;
@@ -152,17 +389,19 @@ impl Design {
             let w = (touchdown_s - s[a - 1]) / (s[a] - s[a - 1]);
             (touchdown_s, x[a - 1].x + w * (x[a].x - x[a - 1].x))
         });
-        self.of_points(&engine.line_points(state), engine.hang_off_tangent(state), touchdown)
+        self.of_points(&engine.line_points(state), engine.hang_off_tangent(state), touchdown, hang_off_z)
     }
 
     /// The design numbers of a line whose points are `points`, whose tangent
     /// at the hang-off is `hang_off_tangent` and whose touchdown (S, x) is
-    /// `touchdown` (m).
+    /// `touchdown` (m), with the hang-off at height `hang_off_z` (m; the
+    /// contents' pressure is given there).
     pub fn of_points(
         &self,
         points: &[LinePoint],
         hang_off_tangent: V3,
         touchdown: Option<(f64, f64)>,
+        hang_off_z: f64,
     ) -> DesignNumbers {
         let hang_off_angle = crate::model::outputs::hang_off_angle(hang_off_tangent);
         let argmax = |f: &dyn Fn(&LinePoint) -> f64| {
@@ -176,12 +415,9 @@ impl Design {
         let (max_strain, max_strain_s) = argmax(&|p| p.tension / self.props.at(p.element).axial_stiffness);
         let (neg_min, min_tension_s) = argmax(&|p| -p.tension);
         let max_stress = self.has_stresses().then(|| {
-            argmax(&|p| {
-                let tube = self.tube(p.element).expect("every element is a tube");
-                let k = if self.model == Model::Rod { p.curvature_magnitude() } else { 0.0 };
-                tube.max_stress(p.tension, k)
-            })
+            argmax(&|p| self.point_max_stress(&self.tube(p.element).expect("every element is a tube"), p, hang_off_z))
         });
+        let peaks = self.stress_peaks(points, hang_off_z);
         DesignNumbers {
             touchdown_s: touchdown.map(|t| t.0),
             touchdown_x: touchdown.map(|t| t.1),
@@ -196,6 +432,8 @@ impl Design {
             min_tension: -neg_min,
             min_tension_s,
             max_stress,
+            max_von_mises: peaks.map(|p| p.von_mises),
+            max_utilisation: peaks.and_then(|p| p.utilisation),
         }
     }
 
@@ -268,10 +506,12 @@ impl Design {
     /// The design numbers of `state` and every warning they give, the
     /// anchor's reach included.
     pub fn report(&self, scene: &Scene, engine: &Engine, state: &State) -> (DesignNumbers, Vec<String>) {
-        let touchdown_s = engine.outputs(state).touchdown_s;
-        let numbers = self.numbers(engine, state, touchdown_s);
+        let outputs = engine.outputs(state);
+        let numbers = self.numbers(engine, state, outputs.touchdown_s);
         let mut warnings: Vec<String> = reach_warning(scene).into_iter().collect();
+        warnings.extend(anchor_lift_static_warning(scene, &outputs));
         warnings.extend(self.buoyant_warning(scene));
+        warnings.extend(wall_stiffness_warnings(scene));
         warnings.extend(self.warnings(&numbers, &engine.line_points(state)));
         warnings.extend(crate::loads::waves::warnings(scene));
         if let Ok(Some((_, period))) = crate::loads::waves::ramp_and_period(scene) {
@@ -301,6 +541,60 @@ impl Design {
                 -net_up / 1e3
             )
         })
+    }
+}
+
+/// The relative difference between a line's EA or EI and its wall's above
+/// which riser warns (docs/theory.md §12.4).
+pub const WALL_STIFFNESS_MISMATCH: f64 = 0.01;
+
+/// Warnings for each piece of line (`[line]`, or each section) whose EA or
+/// EI differs from its wall's E A_s and E I by more than
+/// [`WALL_STIFFNESS_MISMATCH`]: the model bends and stretches with the
+/// scene's EA and EI, the stresses are the wall's (12.6–12.8). A coating's
+/// or a liner's stiffness, or a wall or modulus given wrong, shows here.
+pub fn wall_stiffness_warnings(scene: &Scene) -> Vec<String> {
+    let lines: Vec<(String, crate::scene::Line)> = if scene.section.is_empty() {
+        vec![("[line]".to_string(), scene.line.clone())]
+    } else {
+        scene.section.iter().enumerate().map(|(i, s)| (format!("section {i}"), s.bare_line(&scene.line))).collect()
+    };
+    let mut w = Vec::new();
+    for (at, l) in lines {
+        let Some(wall) = l.wall() else { continue };
+        let e = wall.youngs_modulus;
+        for (name, given, of_wall, unit) in [
+            ("EA", l.axial_stiffness, e * wall.area(), "N"),
+            ("EI", l.bending_stiffness, e * wall.inertia(), "N m^2"),
+        ] {
+            let off = given / of_wall - 1.0;
+            if off.abs() > WALL_STIFFNESS_MISMATCH {
+                w.push(format!(
+                    "{at}: {name} {given:.4e} {unit} is {:+.1} % off the wall's E x {} = {of_wall:.4e} {unit} \
+                     (E {e:.4e} Pa, steel outer diameter {} m, wall {} m): the line bends and stretches with the \
+                     given {name}, the stresses are the wall's; check the wall, youngs_modulus and {name} (a \
+                     coating's or a liner's stiffness is left out of the wall)",
+                    100.0 * off,
+                    if name == "EA" { "A_s" } else { "I" },
+                    wall.outer_diameter,
+                    wall.thickness
+                ));
+            }
+        }
+    }
+    w
+}
+
+/// The FMU's outputs `max_von_mises` (Pa) and `max_utilisation` (`name`):
+/// the largest along the line of `sim` now ([`Design::stress_peaks`]); 0
+/// without a wall (a flexible pipe), and the utilisation 0 without a yield
+/// stress. Computed when read: it builds the scene's [`Design`].
+pub fn line_stress_output(scene: &Scene, sim: &super::Simulation, name: &str) -> f64 {
+    let points = sim.integrator.line_points(&sim.state);
+    let peaks = Design::new(scene).stress_peaks(&points, sim.state.config.x[0].z);
+    match name {
+        "max_von_mises" => peaks.map_or(0.0, |p| p.von_mises.0),
+        _ => peaks.and_then(|p| p.utilisation).map_or(0.0, |u| u.value),
     }
 }
 
@@ -553,6 +847,135 @@ pub fn reach_warning(scene: &Scene) -> Option<String> {
     })
 }
 
+/// The height above its seabed, m, square to the plane, up to which an
+/// anchor sits on the seabed (an anchor higher up is a mid-water
+/// termination: an arch's or a buoy's base, a tower's top, built to take the
+/// line's pull in any direction, and is never warned of as lifted off). It
+/// covers a line whose centreline rests on the plane (the model's contact,
+/// docs/theory.md §9) against one whose bottom does, D/2 lower, and the hub
+/// of a PLET or the padeye of a pile, which stand about this high.
+pub const ANCHOR_ON_SEABED: f64 = 1.0;
+
+/// The angle, deg, of the line's force on its anchor (`bottom_force`, N, as
+/// [`Outputs::bottom_force`]) above the scene's seabed plane:
+/// atan2(F·n, |F − (F·n) n|), n the plane's upward normal (the slope
+/// turns it). Positive: the line pulls its anchor up, off the seabed;
+/// negative: it presses it down (a line lying on the seabed before its
+/// anchor pulls it along the plane, less the weight of the anchor's half
+/// element, which the end's reaction carries). None without a seabed or for
+/// an anchor more than [`ANCHOR_ON_SEABED`] above it.
+pub fn anchor_uplift(scene: &Scene, bottom_force: V3) -> Option<f64> {
+    let bed = scene.seabed.as_ref()?;
+    let a = bed.slope.to_radians();
+    let normal = V3::new(-a.sin(), 0.0, a.cos());
+    let anchor = scene.anchor();
+    let height = (anchor.z - bed.height_at(anchor.x, anchor.y)) * a.cos();
+    if height > ANCHOR_ON_SEABED {
+        return None;
+    }
+    let up = bottom_force.dot(&normal);
+    Some(up.atan2((bottom_force - up * normal).norm()).to_degrees())
+}
+
+/// The anchor's uplift angle, deg ([`anchor_uplift`]), when the line lifts
+/// its anchor off the seabed in the state whose outputs are `o`: the anchor
+/// sits on the seabed, the line touches it nowhere (`o.touchdown_s` is the
+/// line's length) and pulls the anchor up (an angle above 0). A line that
+/// still lies on the seabed before its anchor and pulls it up there is
+/// buckled on it by compression (the steel catenary's anchor 50 m from its
+/// hang-off: 5.9 deg at −66 kN), which the compression warning names, with
+/// the opposite cure (less line, not more).
+pub fn anchor_lifted(scene: &Scene, o: &Outputs) -> Option<f64> {
+    let touches = o.touchdown_s < scene.line.length;
+    anchor_uplift(scene, o.bottom_force).filter(|&a| a > 0.0 && !touches)
+}
+
+/// The horizontal distance from the hang-off, m, up to which a uniform line
+/// of the scene's length reaches the seabed at an anchor on it, and the
+/// length, m, with which it reaches it at the scene's anchor: the
+/// inextensible catenary whose lowest point is the anchor, depth h below
+/// the hang-off, a = H/w: L² = h² + 2 a h, X = a acosh(1 + h/a) (the weight
+/// drops out). None for a line of sections, a sloping seabed, or an anchor
+/// no deeper than the hang-off.
+fn touchdown_bounds(scene: &Scene) -> Option<(f64, f64)> {
+    let bed = scene.seabed.as_ref()?;
+    let (anchor, l) = (scene.anchor() - scene.hang_off(), scene.line.length);
+    let (h, span) = (-anchor.z, anchor.x.hypot(anchor.y));
+    if !scene.section.is_empty() || bed.slope != 0.0 || h <= 0.0 || l <= h {
+        return None;
+    }
+    let reach = |a: f64| a * (1.0 + h / a).acosh();
+    let a = (l * l - h * h) / (2.0 * h);
+    // X(a) grows from 0 (a → 0) without bound (√(2 a h)): bisect for the span
+    let (mut lo, mut hi) = (0.0, h.max(span));
+    while reach(hi) < span {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if reach(mid) < span { lo = mid } else { hi = mid }
+    }
+    let a_here = 0.5 * (lo + hi);
+    Some((reach(a), (h * h + 2.0 * a_here * h).sqrt()))
+}
+
+/// What to do about an anchor lifted off the seabed (the end of the static
+/// and the run's warnings): in the statics, with the length and the anchor's
+/// distance that would give the line its touchdown ([`touchdown_bounds`]); in
+/// a run (`in_run`), with the margin its motion needs.
+fn anchor_lift_cure(scene: &Scene, in_run: bool) -> String {
+    let fix = match touchdown_bounds(scene) {
+        _ if in_run => ", so that it touches down through the motion".to_string(),
+        Some((x, l)) => format!(
+            " (a uniform line of {} m reaches its seabed at an anchor within {x:.1} m of the hang-off \
+             horizontally, and one of {l:.1} m at this anchor: the inextensible catenary in still water)",
+            crate::scene::ranges::number(scene.line.length)
+        ),
+        None => String::new(),
+    };
+    format!(
+        "a drag or gravity anchor, or a PLET on its mudmat, does not hold this: give the line more length or move \
+         the anchor closer to the hang-off{fix}; if the anchor is meant to hold uplift (a suction or driven pile), \
+         check its capacity for this force"
+    )
+}
+
+/// The warning for an anchor the static state lifts off the seabed
+/// ([`anchor_lifted`] of its outputs `o`), with its uplift angle and the
+/// line's vertical force on it.
+pub fn anchor_lift_static_warning(scene: &Scene, o: &Outputs) -> Option<String> {
+    let angle = anchor_lifted(scene, o)?;
+    Some(format!(
+        "the anchor is lifted off the seabed: the line touches no seabed and pulls its anchor up at {angle:.2} deg \
+         above the seabed, with a vertical force of {:.3} kN (of {:.3} kN); {}",
+        o.bottom_force.z / 1e3,
+        o.bottom_tension / 1e3,
+        anchor_lift_cure(scene, false)
+    ))
+}
+
+/// The warning for an anchor lifted off the seabed in a run, first at
+/// `first` s, with the outputs `o` of the time of its largest uplift; None
+/// when `o`'s anchor is not lifted ([`anchor_lifted`]). `riser run` gives
+/// one over its run, the first time and the largest angle; the FMU calls it
+/// after each communication step with `first` = `o.time` until it speaks,
+/// and logs that once.
+pub fn anchor_lift_warning(scene: &Scene, first: f64, o: &Outputs) -> Option<String> {
+    let angle = anchor_lifted(scene, o)?;
+    let when = if first < o.time {
+        format!("from t = {first:.2} s: at t = {:.2} s, its largest uplift,", o.time)
+    } else {
+        format!("at t = {:.2} s:", o.time)
+    };
+    Some(format!(
+        "the anchor lifts off the seabed in the run {when} the line touches no seabed and pulls its anchor up at \
+         {angle:.2} deg above the seabed, with a vertical force of {:.3} kN (of {:.3} kN); {}",
+        o.bottom_force.z / 1e3,
+        o.bottom_tension / 1e3,
+        anchor_lift_cure(scene, true)
+    ))
+}
+
 /// The extremes along the line over a window: the largest and smallest axial
 /// force and the largest curvature, each with its arc length (m) and time (s).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -616,15 +1039,16 @@ pub struct StressRange {
 }
 
 impl StressRange {
-    /// Adds one state's `points` (the same points every time).
-    pub fn add(&mut self, design: &Design, points: &[LinePoint]) {
+    /// Adds one state's `points` (the same points every time), its hang-off
+    /// at height `hang_off_z`, m.
+    pub fn add(&mut self, design: &Design, points: &[LinePoint], hang_off_z: f64) {
         if self.points.is_empty() {
             self.points = points.iter().map(|p| (p.s, [(f64::INFINITY, f64::NEG_INFINITY); FIBRES])).collect();
         }
         for (acc, p) in self.points.iter_mut().zip(points) {
             for (f, (lo, hi)) in acc.1.iter_mut().enumerate() {
                 let theta = 2.0 * std::f64::consts::PI * f as f64 / FIBRES as f64;
-                if let Some(sigma) = design.fibre_stress(p, theta) {
+                if let Some(sigma) = design.fibre_stress(p, theta, hang_off_z) {
                     *lo = lo.min(sigma);
                     *hi = hi.max(sigma);
                 }
@@ -662,7 +1086,54 @@ impl StressRange {
 
 #[cfg(test)]
 mod tests {
-    use super::{GrowthWatch, growing_dissipation_warning, unsteady_window_warning, window_drift};
+    use super::{
+        ANCHOR_ON_SEABED, GrowthWatch, anchor_uplift, growing_dissipation_warning, unsteady_window_warning,
+        window_drift,
+    };
+    use crate::math::V3;
+    use crate::scene::Scene;
+
+    /// The uplift angle is measured from the seabed's plane, the slope
+    /// included: the steel catenary's seabed tilted 10 deg (rising towards
+    /// +x), its anchor on it: a force along the plane towards the hang-off
+    /// (down the slope) is at 0 deg, one turned 5 deg out of it at 5 deg (and
+    /// −5 deg into it), a vertical pull at 80 deg, a horizontal one towards
+    /// the hang-off at +10 deg (the plane falls away under it), across the
+    /// slope (y) at 0; to 1e-12 deg. An anchor up to [`ANCHOR_ON_SEABED`]
+    /// above the plane (square to it) sits on it; higher, or without a
+    /// seabed, there is no angle.
+    #[test]
+    fn the_anchor_s_uplift_is_its_force_s_angle_above_the_sloping_seabed() {
+        let mut scene = Scene::builtin("steel_catenary").unwrap();
+        let alpha = 10f64.to_radians();
+        let bed = scene.seabed.as_mut().unwrap();
+        bed.slope = 10.0;
+        let on_bed = bed.height_at(scene.anchor.x, scene.anchor.y);
+        scene.anchor.z = on_bed;
+        // down the slope (−x and down), then turned about y by ±5 deg
+        let along = V3::new(-alpha.cos(), 0.0, -alpha.sin());
+        let normal = V3::new(-alpha.sin(), 0.0, alpha.cos());
+        let turned = |deg: f64| 3e5 * (deg.to_radians().cos() * along + deg.to_radians().sin() * normal);
+        let angle = |f: V3| anchor_uplift(&scene, f).unwrap();
+        for (f, expected) in [
+            (turned(0.0), 0.0),
+            (turned(5.0), 5.0),
+            (turned(-5.0), -5.0),
+            (V3::new(0.0, 0.0, 2e5), 80.0),
+            (V3::new(-2e5, 0.0, 0.0), 10.0),
+            (V3::new(0.0, 2e5, 0.0), 0.0),
+        ] {
+            let a = angle(f);
+            assert!((a - expected).abs() < 1e-12, "{f:?}: {a} deg, expected {expected}");
+        }
+        // heights above the plane, square to it: the vertical gap times cos(slope)
+        for (up, on) in [(0.9, true), (1.1, false)] {
+            scene.anchor.z = on_bed + up * ANCHOR_ON_SEABED / alpha.cos();
+            assert_eq!(anchor_uplift(&scene, turned(5.0)).is_some(), on, "{up} m above");
+        }
+        scene.seabed = None;
+        assert!(anchor_uplift(&scene, turned(5.0)).is_none());
+    }
 
     /// (12.5) on synthetic series sampled 100 times a period of 10 s: a
     /// steady sine 100 + 10 sin(ωt) drifts 0; with 5 e^{−t/10} added, over

@@ -142,6 +142,16 @@ impl Engine {
         with_integrator!(self, i => i.factorizations)
     }
 
+    /// See [`Integrator::set_work_bound`].
+    pub fn set_work_bound(&mut self, bound: u64) {
+        with_integrator!(self, i => i.set_work_bound(bound))
+    }
+
+    /// See [`Integrator::work`].
+    pub fn work(&self) -> u64 {
+        with_integrator!(self, i => i.work())
+    }
+
     /// See [`Integrator::invalidate_tangent`].
     pub fn invalidate_tangent(&mut self) {
         with_integrator!(self, i => i.invalidate_tangent())

@@ -37,6 +37,12 @@ pub struct Integrator<M: StepEquations> {
     factor_age: u32,
     /// Tangents factorised since construction (for benchmarks).
     pub factorizations: u64,
+    /// Newton corrections since [`Integrator::set_work_bound`], converged
+    /// and failed attempts alike.
+    work: u64,
+    /// The most corrections allowed until the next [`Integrator::set_work_bound`]
+    /// (u64::MAX: no bound, the default).
+    work_bound: u64,
 }
 
 /// Outcome of one successful call to [`Integrator::step`].
@@ -64,6 +70,8 @@ impl<M: StepEquations> Integrator<M> {
             factor_h: f64::NAN,
             factor_age: 0,
             factorizations: 0,
+            work: 0,
+            work_bound: u64::MAX,
         })
     }
 
@@ -75,6 +83,21 @@ impl<M: StepEquations> Integrator<M> {
     /// The model's scratch workspace, mutable (for verification probes).
     pub fn workspace_mut(&mut self) -> &mut M::Workspace {
         &mut self.ws
+    }
+
+    /// Bounds the Newton corrections from now on to `bound` (u64::MAX: none):
+    /// a step that reaches it fails with [`DynamicsError::WorkBound`], not
+    /// split further, the state at its last converged sub-step. Resets the
+    /// count ([`Integrator::work`]).
+    pub fn set_work_bound(&mut self, bound: u64) {
+        self.work = 0;
+        self.work_bound = bound;
+    }
+
+    /// Newton corrections since the last [`Integrator::set_work_bound`],
+    /// those of failed attempts included.
+    pub fn work(&self) -> u64 {
+        self.work
     }
 
     /// Forgets the factorised tangent: the next step starts with a new one.
@@ -125,7 +148,8 @@ impl<M: StepEquations> Integrator<M> {
                     info.substeps += 1;
                 }
                 Err(e) => {
-                    if matches!(e, DynamicsError::BadInput(_)) || level >= self.options.max_halvings {
+                    let last = matches!(e, DynamicsError::BadInput(_) | DynamicsError::WorkBound { .. });
+                    if last || level >= self.options.max_halvings {
                         return Err(e);
                     }
                     level += 1;
@@ -222,6 +246,11 @@ impl<M: StepEquations> Integrator<M> {
             // at a rate that would need more than `MAX_LINEAR_ITERATIONS` more
             // corrections to reach the tolerance (a new tangent costs about
             // as much as ten residuals)
+            if self.work >= self.work_bound {
+                self.factor_h = f64::NAN;
+                return Err(DynamicsError::WorkBound { time: state.time, iterations: self.work });
+            }
+            self.work += 1;
             let rate = res / last_res;
             let slow = rate > 0.5 || (rate > 0.0 && (tol / res).ln() / rate.ln() > MAX_LINEAR_ITERATIONS);
             last_res = res;

@@ -279,6 +279,8 @@ def test_implausible_models_warn_in_the_log_at_initialisation(fmu_path, unzipped
         ({"scene": "steel_catenary"}, {}, {}, []),
         ({}, {"anchor_x": 75.0}, {}, ["beyond the line's unstretched length", "axial strain reaches"]),
         ({"scene": "steel_catenary"}, {}, {"n_elements": 10}, ["bending length"]),
+        # issue 52: the anchor too far out for the line to reach its seabed, lifted off it
+        ({"scene": "steel_catenary"}, {"anchor_x": 340.0}, {}, ["the anchor is lifted off the seabed", "11.97 deg"]),
     ]
     p = subprocess.run([sys.executable, "-c", WARNINGS_CHILD, fmu_path, unzipped,
                         json.dumps([c[:3] for c in cases])], capture_output=True, text=True, timeout=120)

@@ -50,6 +50,10 @@ COMPANIONS = {
     # a seabed at the hang-off's height: the line taut along it
     ("seabed_z", "max"): {"anchor_x": 100.5, "anchor_z": 0.0},
 }
+# contents need a bore: the catenary's flexible pipe given a wall
+for _p in ["internal_fluid_density", "internal_pressure"]:
+    for _b in ["min", "max"]:
+        COMPANIONS[(_p, _b)] = {"wall_thickness": 0.02}
 # the contact law's bounds on a line resting on the seabed
 for _p in ["seabed_stiffness", "seabed_damping", "seabed_friction"]:
     for _b in ["min", "max"]:

@@ -447,7 +447,18 @@ fn design_json(d: &riser::sim::design::DesignNumbers) -> serde_json::Value {
         "min_tension_s": d.min_tension_s,
         "max_stress": d.max_stress.map(|m| m.0),
         "max_stress_s": d.max_stress.map(|m| m.1),
+        "max_von_mises": d.max_von_mises.map(|m| m.0),
+        "max_von_mises_s": d.max_von_mises.map(|m| m.1),
+        "max_utilisation": utilisation_json(d.max_utilisation),
     })
+}
+
+/// A code check's utilisation as JSON: {value, check, s}, or null.
+fn utilisation_json(u: Option<riser::sim::design::Utilisation>) -> serde_json::Value {
+    match u {
+        Some(u) => serde_json::json!({"value": u.value, "check": u.check, "s": u.s}),
+        None => serde_json::Value::Null,
+    }
 }
 
 /// The design numbers as lines of the text summary.
@@ -466,8 +477,22 @@ fn design_text(d: &riser::sim::design::DesignNumbers) {
     outln!("  max bending moment {:7.3} kN m at S = {:.1} m", d.max_bending_moment / 1e3, d.max_bending_moment_s);
     outln!("  max axial strain {:9.4} % at S = {:.1} m", 100.0 * d.max_strain, d.max_strain_s);
     match d.max_stress {
-        Some((v, s)) => outln!("  max stress      {:10.3} MPa at S = {s:.1} m (outer fibre, axial + bending)", v / 1e6),
-        None => outln!("  max stress      n/a (EA, EI and D are not those of a homogeneous tube: a flexible pipe)"),
+        Some((v, s)) => outln!(
+            "  max stress      {:10.3} MPa at S = {s:.1} m (outer fibre, true wall tension + bending)",
+            v / 1e6
+        ),
+        None => outln!(
+            "  max stress      n/a (no wall given, and EA, EI and D are not those of a homogeneous tube: a flexible \
+             pipe, whose stresses are per layer)"
+        ),
+    }
+    if let Some((v, s)) = d.max_von_mises {
+        outln!("  max von Mises   {:10.3} MPa at S = {s:.1} m (with pressure, hoop and torsion)", v / 1e6);
+    }
+    match d.max_utilisation {
+        Some(u) => outln!("  max utilisation {:10.3} at S = {:.1} m ({})", u.value, u.s, u.check),
+        None if d.max_von_mises.is_some() => outln!("  max utilisation n/a (no yield_stress given)"),
+        None => {}
     }
 }
 
@@ -829,6 +854,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         warnings.extend(riser::sim::design::steps_per_period_warning("the hang-off's", p, scene.analysis.time_step));
     }
     let mut stress = riser::sim::design::StressRange::default();
+    let mut peaks: Option<riser::sim::design::StressPeaks> = None;
     let mut envelope = riser::sim::design::Envelope::default();
     let track_stress = design.has_stresses();
     let mut shape_times = shape_times;
@@ -862,7 +888,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         envelope.add(0.0, &points);
         ends(&mut envelope, &series[0]);
         if track_stress {
-            stress.add(&design, &points);
+            let top_z = sim.state.config.x[0].z;
+            stress.add(&design, &points, top_z);
+            peaks = design.stress_peaks(&points, top_z);
         }
     }
     let solve_start = std::time::Instant::now();
@@ -883,7 +911,11 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             envelope.add(o.time, &points);
             ends(&mut envelope, &o);
             if track_stress {
-                stress.add(&design, &points);
+                let top_z = sim.state.config.x[0].z;
+                stress.add(&design, &points, top_z);
+                if let Some(now) = design.stress_peaks(&points, top_z) {
+                    peaks = Some(peaks.map_or(now, |p| p.max(now)));
+                }
             }
         }
         while next_shape < shape_times.len() && shape_times[next_shape] <= sim.state.time + 0.5 * dt {
@@ -920,6 +952,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             whole_min_tension / 1e3
         ));
     }
+    // the anchor lifted off its seabed: the first time, and the largest uplift (the whole run)
+    let lifted = |o: &&Outputs| riser::sim::design::anchor_lifted(&scene, o);
+    if let Some(first) = series.iter().find(|o| lifted(o).is_some()) {
+        let largest = series.iter().filter_map(|o| lifted(&o).map(|a| (o, a))).max_by(|a, b| a.1.total_cmp(&b.1));
+        warnings.extend(largest.and_then(|(o, _)| riser::sim::design::anchor_lift_warning(&scene, first.time, o)));
+    }
     // the knob's choice: compression beyond its calibration (docs/theory.md 16.9)
     warnings.extend(choice.as_ref().and_then(|c| riser::sim::accuracy::compression_warning(c, steady_min_tension)));
     // the window's steadiness: a motion of one period in still water
@@ -939,7 +977,18 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         let limit = choice.as_ref().map_or(riser::sim::design::UNSTEADY_WINDOW, |c| c.target);
         warnings.extend(riser::sim::design::unsteady_window_warning(d, limit, (w0, w1), p));
     }
-    let exchanged = series.iter().map(|o| o.work_top.abs() + o.work_hydro.abs()).fold(0.0, f64::max);
+    // the energy exchanged with the line (hang-off, water, anchor, seabed) and
+    // the magnitude of what E sums: the relative balance's scale, which a
+    // line held still has too (docs/theory.md §5.5; riser-sweep's the same)
+    let exchanged = series
+        .iter()
+        .map(|o| o.work_top.abs() + o.work_hydro.abs() + o.work_anchor.abs() + o.work_seabed.abs())
+        .fold(0.0, f64::max);
+    let held = series
+        .iter()
+        .map(|o| o.kinetic_energy.abs() + o.strain_energy.abs() + o.potential_energy.abs())
+        .fold(0.0, f64::max);
+    let balance_scale = exchanged.max(riser::sim::report::ENERGY_RESOLUTION * held);
     // over the steady window: a motion still growing (the ramps) takes a
     // growing share where the line snatches as it grows
     let times: Vec<f64> = steady.iter().map(|o| o.time).collect();
@@ -993,6 +1042,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 "min_tension": finite(steady_min_tension),
                 "stress_range": stress_range.map(|r| r.0),
                 "stress_range_s": stress_range.map(|r| r.1),
+                "max_von_mises": peaks.map(|p| p.von_mises.0),
+                "max_von_mises_s": peaks.map(|p| p.von_mises.1),
+                "max_utilisation": utilisation_json(peaks.and_then(|p| p.utilisation)),
                 "min_tension_s": envelope.is_set().then_some(envelope.min_tension.1),
                 "max_tension": envelope.is_set().then_some(envelope.max_tension.0),
                 "max_tension_s": envelope.is_set().then_some(envelope.max_tension.1),
@@ -1010,7 +1062,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             "structural_damping": scene.analysis.structural_damping,
             "rho_infinity": scene.analysis.rho_infinity,
             "algorithmic_dissipation": series.last().map(|o| o.algorithmic_dissipation).unwrap_or(0.0),
-            "energy_balance_relative": if exchanged > 0.0 { balance / exchanged } else { 0.0 },
+            "energy_balance_relative": if balance_scale > 0.0 { balance / balance_scale } else { 0.0 },
             "steps": st.steps,
             "newton_iterations": st.newton_iterations,
             "iterations_per_step": st.newton_iterations as f64 / (st.steps.max(1)) as f64,
@@ -1090,7 +1142,13 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         }
         match stress_range {
             Some((r, s)) => outln!("    stress range             {:.3} MPa at S = {s:.1} m (outer fibre)", r / 1e6),
-            None => outln!("    stress range             n/a (not a homogeneous tube: a flexible pipe)"),
+            None => outln!("    stress range             n/a (no wall and not a homogeneous tube: a flexible pipe)"),
+        }
+        if let Some(p) = peaks {
+            outln!("    max von Mises            {:.3} MPa at S = {:.1} m", p.von_mises.0 / 1e6, p.von_mises.1);
+            if let Some(u) = p.utilisation {
+                outln!("    max utilisation          {:.3} at S = {:.1} m ({})", u.value, u.s, u.check);
+            }
         }
         outln!(
             "  whole run, with the start: top tension min/mean/max {:.3} / {:.3} / {:.3} kN, min axial force {:.3} kN",

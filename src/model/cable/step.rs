@@ -524,6 +524,7 @@ impl CableModel {
                 position: x[a],
                 tension,
                 curvature: [k, 0.0],
+                twist: 0.0,
             })
             .collect()
     }

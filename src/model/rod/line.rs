@@ -461,6 +461,7 @@ impl Rod {
                     position,
                     tension: axial.dot(&tangent.normalize()),
                     curvature: [eps[g][3], eps[g][4]],
+                    twist: eps[g][5],
                 });
             }
         }

@@ -28,6 +28,10 @@ The oracle, per sequence:
     fmi2ExitInitializationMode or fmi2SetFMUstate that returned OK (or a
     step that returned Discard): a non-finite state is refused where it
     arises, not at the next read;
+  * no fmi2DoStep beyond its bound: after a step that returned OK, Warning or
+    Discard, its Newton iterations (`step_newton_iterations`) are at most its
+    bound (`step_newton_bound`, 10 n w + 75: docs/theory.md §7.6); the longest
+    doStep's wall time and the largest iterations/bound ratio are reported;
   * afterwards every live instance comes back with fmi2Reset to a normal run
     (n_elements = 10, setup 0, init, 3 steps of 0.1 s with a small heave, all
     fmi2OK and finite); a freed instance is replaced by a fresh one that must
@@ -352,6 +356,8 @@ class Executor:
         self.failures = []
         self.trace = []
         self.stats = {}                  # "op:status" -> count (what the sequences reached)
+        self.longest_step = 0.0          # s, the longest fmi2DoStep of the sequence
+        self.work_ratio = 0.0            # the largest step_newton_iterations / step_newton_bound
         self.last_change = ["-", "-"]    # per instance, the last call that changed the state (for signatures)
         self.slot = 0
         lib.echo = verbose
@@ -593,11 +599,24 @@ class Executor:
     def op_do_step(self, inst, slot, t=0.0, h=0.1, no_prior=1):
         if not self.live(inst):
             return None, None
+        t0 = time.monotonic()
         s = self.lib.call("fmi2DoStep", self.comp(inst), t, h, no_prior)
+        self.longest_step = max(self.longest_step, time.monotonic() - t0)
         if s in (OK, WARNING):
             inst.time = t + h
         self.after(inst, s, "step", "failed")
-        return f"fmi2DoStep(t={fmt(t)}, h={fmt(h)})", s
+        text = f"fmi2DoStep(t={fmt(t)}, h={fmt(h)})"
+        if s in (OK, WARNING, DISCARD) and "step_newton_bound" in self.lib.by_name:
+            # the bounded step: the step's own work against its bound
+            vrs = [self.lib.by_name[n].vr for n in ("step_newton_iterations", "step_newton_bound")]
+            vals = (c_double * 2)(NAN, NAN)
+            if self.lib.call("fmi2GetReal", self.comp(inst), self._vrs(vrs), 2, vals) in (OK, WARNING):
+                work, bound = vals[0], vals[1]
+                if bound > 0:
+                    self.work_ratio = max(self.work_ratio, work / bound)
+                if not work <= bound:
+                    self.fail("unbounded", text, s, f"{work:.0f} Newton iterations, beyond the step's bound {bound:.0f}")
+        return text, s
 
     def op_cancel_step(self, inst, slot):
         return self._instance_call(inst, "fmi2CancelStep")
@@ -1107,7 +1126,8 @@ def run_sequence(lib, seed, workdir, verbose=False, calls=None, recover=True):
         ex.recovery()
     ex.cleanup()
     return {"seed": seed, "calls": [c.to_json() for c in done], "trace": ex.trace, "failures": ex.failures,
-            "stats": ex.stats, "seconds": time.monotonic() - t0}
+            "stats": ex.stats, "seconds": time.monotonic() - t0, "longest_step": ex.longest_step,
+            "work_ratio": ex.work_ratio}
 
 
 # --------------------------------------------------------------------------- child processes
@@ -1122,6 +1142,8 @@ class Outcome:
     trace: list = field(default_factory=list)
     calls: list = field(default_factory=list)
     stats: dict = field(default_factory=dict)
+    longest_step: float = 0.0    # s, the sequence's longest fmi2DoStep
+    work_ratio: float = 0.0      # its largest step_newton_iterations / step_newton_bound
 
     def summary(self):
         if self.kind == "fail":
@@ -1242,7 +1264,8 @@ def run_many(lib, jobs_list, jobs=2, timeout=60.0, max_failures=None, progress=N
                     kind = "fail" if res["failures"] else "ok"
                     o = Outcome(seed, kind, res["seconds"], failures=res["failures"],
                                 trace=tail if kind == "fail" else [],
-                                calls=res["calls"] if (keep_calls or kind == "fail") else [], stats=res["stats"])
+                                calls=res["calls"] if (keep_calls or kind == "fail") else [], stats=res["stats"],
+                                longest_step=res.get("longest_step", 0.0), work_ratio=res.get("work_ratio", 0.0))
                 if o.kind != "ok":
                     n_bad += 1
                 outcomes.append(o)

@@ -118,6 +118,11 @@ def run(args):
             else:
                 print(f"    e.g. seed {first.seed}: {first.detail[:300]}")
         print(f"\nreplay one: {sys.argv[0]} --replay SEED; shrink it: {sys.argv[0]} --minimize SEED")
+    longest = max(outcomes, key=lambda o: o.longest_step)
+    busiest = max(outcomes, key=lambda o: o.work_ratio)
+    print(f"\nThe bounded step: the longest fmi2DoStep took {longest.longest_step:.2f} s (seed {longest.seed}); "
+          f"the largest Newton iterations / bound of a step was {busiest.work_ratio:.3f} (seed {busiest.seed}); "
+          f"steps beyond their bound: {sum(any(f['kind'] == 'unbounded' for f in o.failures) for o in outcomes)}")
     print("\nWhat the sequences reached (calls by function and status):\n")
     print(cov)
     if args.json:
