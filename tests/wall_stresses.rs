@@ -186,15 +186,11 @@ fn a_straight_pipe_with_pressure_inside_and_out_and_a_twist_has_lame_s_stresses(
 /// The built-in steel catenary made of its wall: steel 128.3 kg/m (the
 /// scene's 162.1 less its oil) with oil inside, 800 kg/m³ at `pressure`.
 fn steel_catenary_with_oil(pressure: f64, extra: &[&str]) -> Scene {
-    let mut sets: Vec<String> = [
-        "mass_per_length=128.3",
-        "wall_thickness=0.0206",
-        "internal_fluid_density=800",
-        "yield_stress=448e6",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    let mut sets: Vec<String> =
+        ["mass_per_length=128.3", "wall_thickness=0.0206", "internal_fluid_density=800", "yield_stress=448e6"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
     sets.push(format!("internal_pressure={pressure}"));
     sets.extend(extra.iter().map(|s| s.to_string()));
     Scene::builtin("steel_catenary").unwrap().with_overrides(&sets).unwrap()
@@ -486,4 +482,34 @@ fn a_scene_without_the_new_keys_is_unchanged() {
         .fold((f64::NEG_INFINITY, 0.0), |m, v| if v.0 > m.0 { v } else { m });
     println!("in air: max stress {:?}, old formula {old:?}", d.max_stress);
     assert_eq!(d.max_stress, Some(old));
+}
+
+/// The wall's checks: thicker than its radius, a steel diameter beyond the
+/// outer diameter, and contents without a bore (the catenary's flexible
+/// pipe, no wall) are refused naming the key; a wall whose E A_s is 2 % off
+/// the scene's EA is warned of in the statics with the percentage, and one
+/// within 1 % is not.
+#[test]
+fn implausible_walls_are_refused_and_a_stiffness_off_the_wall_is_warned_of() {
+    let refused = |sets: &[&str], field: &str, part: &str| {
+        let e = Scene::builtin("catenary").unwrap().with_overrides(sets).unwrap_err().to_string();
+        println!("{sets:?}: {e}");
+        assert!(e.contains(field) && e.contains(part), "{e}");
+    };
+    refused(&["wall_thickness=0.09", "steel_outer_diameter=0.15"], "line.wall_thickness", "more than the radius");
+    refused(&["wall_thickness=0.02", "steel_outer_diameter=0.4"], "line.steel_outer_diameter", "larger than");
+    refused(&["internal_fluid_density=800"], "line.wall_thickness", "need the pipe's bore");
+    refused(&["internal_pressure=1e6"], "line.wall_thickness", "need the pipe's bore");
+    // the steel catenary's own EA, EI are its wall's (3.38e9 N, 2.71e7 N m^2, within 0.1 %)
+    let (a_s, _, _, i, _, _, _) = sections(D_STEEL, WALL, D_STEEL);
+    let warned = |ea: f64| {
+        let sc = steel_catenary_with_oil(0.0, &[&format!("axial_stiffness={ea}")]);
+        let sim = Simulation::from_scene(&sc).unwrap();
+        let (_, w) = Design::new(&sc).report(&sc, &sim.integrator, &sim.state);
+        w.into_iter().filter(|m| m.contains("off the wall's")).collect::<Vec<_>>()
+    };
+    assert!(warned(E * a_s * 1.005).is_empty());
+    let w = warned(E * a_s * 1.02);
+    println!("{w:?}; EI {:.4e} (scene 2.71e7)", E * i);
+    assert!(w.len() == 1 && w[0].contains("EA") && w[0].contains("+2.0 %"), "{w:?}");
 }

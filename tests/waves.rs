@@ -528,3 +528,65 @@ fn implausible_waves_warn() {
     let w = s.wave_warnings();
     assert!(w.len() == 1 && w[0].contains("waves.hs, waves.seed ignored") && w[0].contains("'airy'"), "{w:?}");
 }
+
+/// A sea of n components in equal bins repeats its envelope after
+/// n / (f_max − f_min) = 1/Δf (issue 50: a JONSWAP sea of 100 components
+/// repeats after 286 s, and a run longer than that said nothing): the
+/// envelope |Σ a e^{i(2π f t + φ)}| at t and t + 1/Δf agrees to round-off;
+/// a run longer than the period is warned of with the components it would
+/// need, one shorter is not.
+#[test]
+fn a_sea_that_repeats_within_the_run_is_warned_of() {
+    use riser::loads::waves::{repeat_period, repeat_warning};
+    let s = sea("catenary", "kind = \"jonswap\"\nhs = 2.0\ntp = 10.0\ncomponents = 10");
+    let c = s.components();
+    let (lo, hi) =
+        (c.iter().map(|c| c.frequency).fold(f64::MAX, f64::min), c.iter().map(|c| c.frequency).fold(0.0, f64::max));
+    // bin centres: f_max − f_min = (n − 1) Δf
+    let period = repeat_period(c).unwrap();
+    assert!((period - 9.0 / (hi - lo)).abs() < 1e-9 * period, "{period}");
+    let envelope = |t: f64| {
+        let (re, im) = c.iter().fold((0.0, 0.0), |(re, im), c| {
+            let th = 2.0 * PI * c.frequency * t + c.phase;
+            (re + c.amplitude * th.cos(), im + c.amplitude * th.sin())
+        });
+        (re * re + im * im).sqrt()
+    };
+    for t in [0.0, 3.7, 11.2, 40.0] {
+        assert!((envelope(t) - envelope(t + period)).abs() < 1e-9, "{t}");
+    }
+    assert!(repeat_warning(c, 0.99 * period).is_none());
+    let w = repeat_warning(c, 30.0).unwrap();
+    assert!(w.contains(&format!("repeat every {period:.1} s")) && w.contains("at least 11"), "{w}");
+    // through `riser run`: the steady window's warnings
+    let run = |duration: &str| {
+        let o = riser(&[
+            "run",
+            "catenary",
+            "--set",
+            "wave_kind=jonswap",
+            "--set",
+            "wave_hs=2",
+            "--set",
+            "wave_tp=10",
+            "--set",
+            "wave_components=10",
+            "--set",
+            "n_elements=8",
+            "--set",
+            "time_step=0.1",
+            "--duration",
+            duration,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        j["steady"]["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|w| w.as_str().unwrap().contains("repeat every"))
+            .count()
+    };
+    assert_eq!((run("20"), run("30")), (0, 1));
+}

@@ -500,11 +500,14 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(c: Component, _kind: c_int, _value
 pub unsafe extern "C" fn fmi2GetBooleanStatus(c: Component, kind: c_int, value: *mut c_int) -> c_int {
     unsafe {
         with(c, Some(Op::GetStatus), "fmi2GetBooleanStatus", |i| {
-            // fmi2Terminated = 3: the slave never asks to terminate
+            // fmi2Terminated = 3: true after a discarded step (the instance
+            // cannot step on from fmi2LastSuccessfulTime without a restored
+            // state), so that a master stops there with its results (fmpy's
+            // simulate_fmu does)
             if value.is_null() || kind != 3 {
                 return i.fail("fmi2GetBooleanStatus: only fmi2Terminated is provided");
             }
-            *value = 0;
+            *value = i.wants_to_terminate() as c_int;
             Status::Ok
         })
     }

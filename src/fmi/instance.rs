@@ -759,7 +759,8 @@ impl Instance {
     /// communication point `t` ([`super::plausibility`]); the inputs are used as given.
     fn look_at_inputs(&mut self, t: f64, inp: &VesselInputs, vessel: &crate::sim::vessel::Vessel) {
         let mut watch = self.watch;
-        watch.look(t, inp, vessel, |m| self.log_once(Status::Warning, Category::Warning, &m));
+        let both = self.history.modes(self.coupling()).map(|m| m == Coupling::Both);
+        watch.look(t, inp, vessel, both, |m| self.log_once(Status::Warning, Category::Warning, &m));
         self.watch = watch;
     }
 
@@ -1334,6 +1335,13 @@ impl Instance {
     /// fmi2GetRealStatus(fmi2LastSuccessfulTime).
     pub fn last_successful_time(&self) -> f64 {
         self.last_successful_time
+    }
+
+    /// fmi2GetBooleanStatus(fmi2Terminated): the instance asks to
+    /// terminate after a discarded step, at fmi2LastSuccessfulTime (FMI 2.0
+    /// §4.2.3): from StepFailed it cannot step on unless a state is restored.
+    pub fn wants_to_terminate(&self) -> bool {
+        self.mode == StepFailed
     }
 
     /// fmi2GetStatus(fmi2DoStepStatus).

@@ -23,6 +23,10 @@ pub const MAX_ACCELERATION: f64 = 20.0;
 /// has capsized or the angles are in degrees where radians are meant).
 pub const MAX_TILT_DEG: f64 = 30.0;
 
+/// Speed of an axis's displacement above which a velocity input held at 0
+/// on that axis is said, m/s.
+pub const HELD_VELOCITY_SPEED: f64 = 0.05;
+
 /// Largest hang-off displacement in one communication step, m.
 pub const MAX_JUMP: f64 = 10.0;
 
@@ -37,8 +41,9 @@ pub const ABSOLUTE_ANGLE_DEG: f64 = 5.0;
 /// What has been said, and the last communication points' hang-off.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Watch {
-    /// Said: absolute, roll, pitch, jump, speed, acceleration.
-    said: [bool; 6],
+    /// Said: absolute, roll, pitch, jump, speed, acceleration, a velocity
+    /// input held at 0.
+    said: [bool; 7],
     /// Whether the first communication point has been looked at.
     started: bool,
     /// The last three communication points: time (s), hang-off displacement
@@ -60,8 +65,10 @@ impl Watch {
     }
 
     /// Looks at the inputs `inp` set for the communication point `t` (s),
-    /// against the vessel `vessel`; `say` receives each new warning.
-    pub fn look(&mut self, t: f64, inp: &VesselInputs, vessel: &Vessel, mut say: impl FnMut(String)) {
+    /// against the vessel `vessel`; `both[a]` whether axis a (heave, surge,
+    /// sway) is driven by its displacement and velocity inputs together;
+    /// `say` receives each new warning.
+    pub fn look(&mut self, t: f64, inp: &VesselInputs, vessel: &Vessel, both: [bool; 3], mut say: impl FnMut(String)) {
         if !self.started {
             self.started = true;
             self.first(t, inp, &mut say);
@@ -95,6 +102,7 @@ impl Watch {
             return;
         };
         let dt = t2 - t1;
+        self.held_velocity(both, inp, (t1, p1, v1), (t2, p2, v2), &mut say);
         let jump = (p2 - p1).norm();
         if !self.said[3] && jump > MAX_JUMP {
             self.said[3] = true;
@@ -121,6 +129,40 @@ impl Watch {
                  {MAX_ACCELERATION} m/s², about 2 g): implausible for a vessel; check the units and the inputs' \
                  continuity"
             ));
+        }
+    }
+
+    /// A velocity input the master sets but holds at 0 while its axis's
+    /// displacement moves (a signal that leaves it out, or a port connected
+    /// to nothing): the path fits the velocity as the hang-off's (theory
+    /// §7.4), and at long steps a velocity of 0 the displacement contradicts
+    /// moves the line far off (the catenary heaved 2.5 m / 10 s at 0.5 s:
+    /// 325 kN).
+    fn held_velocity(
+        &mut self,
+        both: [bool; 3],
+        inp: &VesselInputs,
+        (t1, p1, v1): (f64, V3, V3),
+        (t2, p2, v2): (f64, V3, V3),
+        say: &mut impl FnMut(String),
+    ) {
+        if self.said[6] {
+            return;
+        }
+        // global x, y, z of heave, surge, sway
+        for (a, c) in [(0usize, 2usize), (1, 0), (2, 1)] {
+            let moving = (p2[c] - p1[c]).abs() / (t2 - t1);
+            if both[a] && inp.v[a] == 0.0 && v1[c] == 0.0 && v2[c] == 0.0 && moving > HELD_VELOCITY_SPEED {
+                self.said[6] = true;
+                say(format!(
+                    "{0}_velocity is set but held at 0 while {0} moves ({moving:.3} m/s between t = {t1} s and {t2} \
+                     s): riser takes the velocity inputs as the hang-off's, and at communication steps of 0.21 s \
+                     and longer a velocity the displacement contradicts moves the line far off; feed {0}_velocity \
+                     the vessel's velocity, or set coupling_inputs = displacement",
+                    NAMES[a]
+                ));
+                return;
+            }
         }
     }
 
@@ -174,7 +216,7 @@ mod tests {
         let n = (duration / h).round() as usize;
         for k in 0..=n {
             let t = k as f64 * h;
-            watch.look(t, &inputs(t), &vessel, |m| out.push(m));
+            watch.look(t, &inputs(t), &vessel, [false; 3], |m| out.push(m));
         }
         out
     }
@@ -245,6 +287,35 @@ mod tests {
         assert!(s.len() == 1 && s[0].contains("speed of 1.200e1 m/s at t = 0 s"), "{s:?}");
     }
 
+    /// A velocity input set along with its displacement but held at 0
+    /// while the displacement moves is said once, naming it; fed the
+    /// motion's velocity, or not set (the displacement alone), it is not.
+    #[test]
+    fn a_velocity_input_held_at_zero_is_said() {
+        let vessel = Vessel { offset: V3::zeros(), order: RotationOrder::Zyx };
+        let w = std::f64::consts::TAU / 10.0;
+        for (both, fed, expected) in [(true, false, 1), (true, true, 0), (false, false, 0)] {
+            let mut watch = Watch::default();
+            let mut out = Vec::new();
+            for k in 0..20 {
+                let t = 0.5 * k as f64;
+                let inp = VesselInputs {
+                    u: [2.5 * (w * t).sin(), 0.0, 0.0],
+                    v: [if fed { 2.5 * w * (w * t).cos() } else { 0.0 }, 0.0, 0.0],
+                    ..Default::default()
+                };
+                watch.look(t, &inp, &vessel, [both, false, false], |m| out.push(m));
+            }
+            assert_eq!(out.len(), expected, "{both} {fed}: {out:?}");
+            if expected == 1 {
+                assert!(
+                    out[0].starts_with("heave_velocity is set but held at 0 while heave moves (1.545 m/s"),
+                    "{out:?}"
+                );
+            }
+        }
+    }
+
     /// A communication point repeated (a step retried after a discard)
     /// replaces the sample: no spurious speed from a zero interval.
     #[test]
@@ -253,7 +324,7 @@ mod tests {
         let mut watch = Watch::default();
         let mut out = Vec::new();
         for (t, z) in [(0.0, 0.0), (0.1, 0.1), (0.1, 0.1), (0.2, 0.2)] {
-            watch.look(t, &heave(z), &vessel, |m| out.push(m));
+            watch.look(t, &heave(z), &vessel, [false; 3], |m| out.push(m));
         }
         assert!(out.is_empty(), "{out:?}");
     }

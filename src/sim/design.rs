@@ -563,10 +563,9 @@ pub fn wall_stiffness_warnings(scene: &Scene) -> Vec<String> {
     for (at, l) in lines {
         let Some(wall) = l.wall() else { continue };
         let e = wall.youngs_modulus;
-        for (name, given, of_wall, unit) in [
-            ("EA", l.axial_stiffness, e * wall.area(), "N"),
-            ("EI", l.bending_stiffness, e * wall.inertia(), "N m^2"),
-        ] {
+        for (name, given, of_wall, unit) in
+            [("EA", l.axial_stiffness, e * wall.area(), "N"), ("EI", l.bending_stiffness, e * wall.inertia(), "N m^2")]
+        {
             let off = given / of_wall - 1.0;
             if off.abs() > WALL_STIFFNESS_MISMATCH {
                 w.push(format!(

@@ -78,14 +78,18 @@ def run_one(work: Path, env: dict, name: str, lang: str, body: str) -> tuple[int
     return p.returncode, p.stdout
 
 
-def run_page(page: Path, tmp: Path, fmu_path: str, riser_bin: str) -> tuple[dict, dict]:
-    """Runs every guide-test block of the page concurrently: ({name: (returncode, output)}, blocks)."""
+def run_page(page: Path, tmp: Path, fmu_path: str, riser_bin: str, pool: ThreadPoolExecutor | None = None):
+    """Runs every guide-test block of the page concurrently (in `pool`, or a pool of its own):
+    ({name: (returncode, output)}, blocks)."""
     blocks = parse(page)
     work, env = workdir(tmp, blocks, fmu_path, riser_bin)
-    with ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2)) as pool:
-        futures = {name: pool.submit(run_one, work, env, name, lang, body)
-                   for name, (lang, body) in blocks["test"].items()}
-        return {name: f.result() for name, f in futures.items()}, blocks
+    own = pool is None
+    pool = pool or ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2))
+    futures = {name: pool.submit(run_one, work, env, name, lang, body) for name, (lang, body) in blocks["test"].items()}
+    runs = {name: f.result() for name, f in futures.items()}
+    if own:
+        pool.shutdown()
+    return runs, blocks
 
 
 def _tokens(line: str) -> tuple[str, list[str]]:
@@ -142,7 +146,13 @@ def first_difference(expected: str, actual: str, rtol: float) -> str:
 
 @pytest.fixture(scope="module")
 def guide_runs(fmu_path, riser_bin, tmp_path_factory):
-    return {page.name: run_page(page, tmp_path_factory.mktemp(page.stem), fmu_path, riser_bin) for page in PAGES}
+    """Both pages' blocks, all at once."""
+    assert Path(riser_bin).exists(), f"the guide runs the riser CLI: build it first ({riser_bin})"
+    with ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2)) as pool, \
+            ThreadPoolExecutor(max_workers=len(PAGES)) as pages:
+        jobs = {page.name: pages.submit(run_page, page, tmp_path_factory.mktemp(page.stem), fmu_path, riser_bin, pool)
+                for page in PAGES}
+        return {name: job.result() for name, job in jobs.items()}
 
 
 @pytest.mark.parametrize("page", [p.name for p in PAGES])
@@ -170,6 +180,22 @@ def test_the_headings_the_code_points_to_exist():
     assert "Inputs riser calls implausible" in {h.split(". ", 1)[-1] for h in headings["coupling.md"]}
     assert "Inputs riser calls implausible" in headings["fmu.md"]
     assert "Parameters a scene holds as several values" in headings["fmu.md"]
+
+
+def test_the_guide_s_links_between_its_pages_land_on_headings():
+    """[text](page.md#anchor) and [text](#anchor) within docs/guide/, anchors as GitHub makes them."""
+    def slug(heading):
+        return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+
+    anchors = {p.name: {slug(line.lstrip("#")) for line in p.read_text().splitlines() if line.startswith("#")}
+               for p in PAGES}
+    for p in PAGES:
+        for target, anchor in re.findall(r"\]\(([\w.]*\.md|)#([^)]+)\)", p.read_text()):
+            page = target or p.name
+            if page in anchors:
+                assert anchor in anchors[page], f"{p.name}: a link to {page}#{anchor}, which is no heading"
+        for target in re.findall(r"\]\(([^)#:]+\.md)[)#]", p.read_text()):
+            assert (p.parent / target).exists(), f"{p.name}: a link to {target}, which does not exist"
 
 
 def test_the_comparison_tolerates_what_it_should_and_nothing_else():

@@ -280,3 +280,21 @@ def test_a_step_that_cannot_converge_is_discarded_within_its_bound_in_fmpy_and_l
     assert [x[2] for x in steps] == ["True", "True", "False"], p.stdout
     assert float(steps[2][4]) <= float(steps[2][5]), steps[2]
     assert any(st == "discard" and "the step's bound" in m for st, m in riser_messages(p.stdout))
+
+
+def test_fmpy_s_simulate_fmu_stops_at_the_last_good_time_of_a_discarded_step(fmu_path):
+    """After fmi2Discard riser answers fmi2Terminated = true (it cannot step
+    on from fmi2LastSuccessfulTime without a restored state): fmpy's
+    simulate_fmu then ends the run there and returns its results, where it
+    carried on before and raised with fmi2Error on its next fmi2SetReal."""
+    from fmpy import simulate_fmu
+
+    t = np.arange(0.0, 5.0 + 1e-9, 1.0)
+    z = np.where(t >= 2.0, 1.0, 0.0)
+    signal = np.array(list(zip(t, -60.0 * z, 50.0 * z, 20.0 * z)),
+                      dtype=[("time", np.float64), ("heave", np.float64), ("surge", np.float64), ("sway", np.float64)])
+    res = simulate_fmu(fmu_path, stop_time=5.0, output_interval=1.0, input=signal, output=["top_tension"],
+                       start_values={"n_elements": 10})
+    assert list(res["time"][:3]) == [0.0, 1.0, 2.0]
+    assert 2.0 < res["time"][-1] < 3.0 and len(res) == 4, res["time"]
+    assert np.all(np.isfinite(res["top_tension"]))

@@ -477,10 +477,9 @@ fn design_text(d: &riser::sim::design::DesignNumbers) {
     outln!("  max bending moment {:7.3} kN m at S = {:.1} m", d.max_bending_moment / 1e3, d.max_bending_moment_s);
     outln!("  max axial strain {:9.4} % at S = {:.1} m", 100.0 * d.max_strain, d.max_strain_s);
     match d.max_stress {
-        Some((v, s)) => outln!(
-            "  max stress      {:10.3} MPa at S = {s:.1} m (outer fibre, true wall tension + bending)",
-            v / 1e6
-        ),
+        Some((v, s)) => {
+            outln!("  max stress      {:10.3} MPa at S = {s:.1} m (outer fibre, true wall tension + bending)", v / 1e6)
+        }
         None => outln!(
             "  max stress      n/a (no wall given, and EA, EI and D are not those of a homogeneous tube: a flexible \
              pipe, whose stresses are per layer)"
@@ -848,6 +847,10 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let current_grown = riser::loads::current_ramp(&scene).duration;
     let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
     warnings.extend(short);
+    // a sea that repeats within the run (docs/theory.md §13)
+    if let Some(sea) = sim.sea.as_ref() {
+        warnings.extend(riser::loads::waves::repeat_warning(sea.components(), duration));
+    }
     // a step too long for the shortest motion (the sea's: Design::report)
     let shortest = motions.all().into_iter().flatten().map(|m| m.1).filter(|p| *p > 0.0).reduce(f64::min);
     if let Some(p) = shortest {

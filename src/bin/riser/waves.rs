@@ -161,14 +161,19 @@ pub fn waves(args: WavesArgs) -> Result<(), String> {
         ));
     };
     let sea = sea_of(&scene, 0.0).map_err(|e| e.to_string())?.expect("a kind other than none makes a sea");
-    let warnings = riser::loads::waves::warnings(&scene);
-    for m in &warnings {
-        eprintln!("riser: warning: {m}");
-    }
+    let mut warnings = riser::loads::waves::warnings(&scene);
+    // a record asked for (--duration, --out) longer than the sea's repeat period
+    let asked = duration.is_some() || out.is_some();
     let duration = duration.unwrap_or(match w.kind {
         WaveKind::Airy => 20.0 * w.period.unwrap_or(10.0),
         _ => 10_800.0,
     });
+    if asked {
+        warnings.extend(riser::loads::waves::repeat_warning(sea.components(), duration));
+    }
+    for m in &warnings {
+        eprintln!("riser: warning: {m}");
+    }
     let longest = MAX_SAMPLES * sample_step(&sea);
     if !(duration.is_finite() && duration > 0.0 && duration <= longest) {
         return Err(format!(
@@ -198,11 +203,10 @@ fn depth_text(scene: &Scene, w: &WavesSpec) -> String {
 }
 
 /// The period after which equal bins repeat the record, s (spectra only).
-fn repeat_period(w: &WavesSpec) -> Option<f64> {
-    matches!(w.kind, WaveKind::Jonswap | WaveKind::PiersonMoskowitz).then(|| {
-        let (a, b) = w.frequency_range();
-        w.components_or_default() as f64 / (b - a)
-    })
+fn repeat_period(w: &WavesSpec, sea: &Sea) -> Option<f64> {
+    matches!(w.kind, WaveKind::Jonswap | WaveKind::PiersonMoskowitz)
+        .then(|| riser::loads::waves::repeat_period(sea.components()))
+        .flatten()
 }
 
 fn print_text(scene: &Scene, w: &WavesSpec, sea: &Sea, written: &[PathBuf]) {
@@ -274,7 +278,7 @@ fn print_text(scene: &Scene, w: &WavesSpec, sea: &Sea, written: &[PathBuf]) {
         sea.zero_crossing_period(),
         sea.m0()
     );
-    if let Some(t) = repeat_period(w) {
+    if let Some(t) = repeat_period(w, sea) {
         outln!("  equal bins: the record repeats itself after {t:.1} s (components / (f_max - f_min))");
     }
     for p in written {
@@ -310,7 +314,7 @@ fn to_json(scene: &Scene, w: &WavesSpec, sea: &Sea, warnings: &[String], written
         "tp": sea.peak_period(),
         "tz": sea.zero_crossing_period(),
         "m0": sea.m0(),
-        "repeat_period": repeat_period(w),
+        "repeat_period": repeat_period(w, sea),
         "warnings": warnings,
         "files": written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
     })

@@ -438,6 +438,43 @@ fn settings_of(scene: &Scene, w: &WavesSpec, ramp: Ramp) -> SeaSettings {
 /// Warnings about a scene's sea that the scene's own checks cannot give
 /// (they need the wave numbers): a regular wave steeper than Miche's
 /// breaking limit H/L = 0.142 tanh(kd).
+/// The period after which a sea of components equally spaced in frequency,
+/// Δf apart, repeats its envelope: 1/Δf, s (every component then turns by
+/// the same phase, 2π f_i/Δf, f_i = f_min + (i + ½)Δf; docs/theory.md §13).
+/// None for fewer than two components or frequencies not equally spaced
+/// (a table's).
+pub fn repeat_period(components: &[Component]) -> Option<f64> {
+    let mut f: Vec<f64> = components.iter().map(|c| c.frequency).collect();
+    f.sort_by(f64::total_cmp);
+    f.dedup();
+    if f.len() < 2 {
+        return None;
+    }
+    let df = (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64;
+    let uniform = f.windows(2).all(|w| ((w[1] - w[0]) - df).abs() <= 1e-6 * df);
+    (uniform && df > 0.0).then_some(1.0 / df)
+}
+
+/// A warning when a run of `duration` s is longer than its sea's repeat
+/// period ([`repeat_period`]): it sees the same waves again, and statistics
+/// over it (extremes, fatigue) are those of one period; with the
+/// components that would not repeat within it, the band kept.
+pub fn repeat_warning(components: &[Component], duration: f64) -> Option<String> {
+    let period = repeat_period(components)?;
+    if duration <= period {
+        return None;
+    }
+    let n = components.len();
+    let needed = (duration / period * n as f64).ceil() as u64;
+    Some(format!(
+        "the sea's {n} components, equally spaced in frequency, repeat every {period:.1} s (1/Δf): a run or record of \
+         {duration} s sees the same waves {:.2} times, and its statistics (extremes, fatigue) are those of a \
+         {period:.1} s record; set wave_components to at least {needed} for a sea that does not repeat within \
+         the run (the same band, Δf = 1/duration)",
+        duration / period
+    ))
+}
+
 pub fn warnings(scene: &Scene) -> Vec<String> {
     let mut out = scene.wave_warnings();
     let Some(w) = scene.waves.as_ref().filter(|w| w.kind == WaveKind::Airy) else { return out };
