@@ -157,8 +157,9 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
         timeout = job.get("timeout")
 
         def step_finished(t: float, _recorder: Any) -> bool:
-            # fmpy retries a discarded step forever (the FMU never sets fmi2Terminated):
-            # a step that did not advance the time is a discard, stop there
+            # an FMU that answers fmi2Terminated false after a discard (riser's before
+            # issue 52) has fmpy retry the step forever: a step that did not advance the
+            # time is a discard, stop there
             if t <= state["time"]:
                 state["stopped"] = f"fmi2DoStep returned fmi2Discard at t = {t!r} s"
                 return False
@@ -184,6 +185,11 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
                     print(line)
         if state["stopped"]:
             return fail(state["stopped"])
+        # riser answers fmi2Terminated after a discard: fmpy ends the run at the last good time
+        last = float(res["time"][-1]) if len(res) else 0.0
+        if last < duration - 1e-9 * max(1.0, duration):
+            return fail(f"fmi2DoStep returned fmi2Discard: the run ended at t = {last!r} s "
+                        f"(fmi2LastSuccessfulTime) of {duration!r} s")
         for name in job["record"]:
             bad = ~np.isfinite(res[name])
             if bad.any():
