@@ -102,7 +102,13 @@ impl Tube {
     /// axis: σ = T_w/A + E r_o (κ₁ sin θ − κ₂ cos θ), Pa (12.2), T_w the
     /// true wall tension.
     pub fn fibre_stress(&self, wall_tension: f64, curvature: [f64; 2], theta: f64) -> f64 {
-        let bending = curvature[0] * theta.sin() - curvature[1] * theta.cos();
+        self.fibre_stress_at(wall_tension, curvature, theta.cos(), theta.sin())
+    }
+
+    /// [`Tube::fibre_stress`] at the fibre whose angle has cosine `cos` and
+    /// sine `sin` (12.2).
+    pub fn fibre_stress_at(&self, wall_tension: f64, curvature: [f64; 2], cos: f64, sin: f64) -> f64 {
+        let bending = curvature[0] * sin - curvature[1] * cos;
         wall_tension / self.area + self.modulus * self.outer_radius * bending
     }
 
@@ -142,6 +148,26 @@ impl Tube {
             }
         }
         largest
+    }
+}
+
+/// A point's outer-fibre axial stress around its section (12.2):
+/// σ(θ) = T_w/A + E r_o (κ₁ sin θ − κ₂ cos θ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FibreStress {
+    /// T_w/A, Pa.
+    pub axial: f64,
+    /// E r_o, Pa m.
+    pub stiffness: f64,
+    /// (κ₁, κ₂), 1/m (0 for the cable).
+    pub curvature: [f64; 2],
+}
+
+impl FibreStress {
+    /// σ at the fibre whose angle has cosine `cos` and sine `sin`, Pa: the
+    /// operations of [`Tube::fibre_stress_at`], bit for bit.
+    pub fn at(&self, cos: f64, sin: f64) -> f64 {
+        self.axial + self.stiffness * (self.curvature[0] * sin - self.curvature[1] * cos)
     }
 }
 
@@ -331,10 +357,26 @@ impl Design {
     /// The outer-fibre axial stress of `p` at angle θ with the hang-off at
     /// `hang_off_z` (m), Pa (the cable: axial only).
     fn fibre_stress(&self, p: &LinePoint, theta: f64, hang_off_z: f64) -> Option<f64> {
+        self.fibre_stress_cs(p, theta.cos(), theta.sin(), hang_off_z)
+    }
+
+    /// The outer-fibre axial stress of `p` at the fibre whose angle θ has
+    /// cosine `cos` and sine `sin`, with the hang-off at `hang_off_z` (m),
+    /// Pa: T_w/A + E r_o (κ₁ sin θ − κ₂ cos θ) (12.2, 12.6; the cable: axial
+    /// only); None when `p`'s element is not a tube. The stress of the
+    /// stress range and of the fatigue (§12.5).
+    pub fn fibre_stress_cs(&self, p: &LinePoint, cos: f64, sin: f64, hang_off_z: f64) -> Option<f64> {
+        self.fibre_stress_parts(p, hang_off_z).map(|s| s.at(cos, sin))
+    }
+
+    /// The parts of `p`'s outer-fibre axial stress that do not depend on the
+    /// fibre (12.2): T_w/A, E r_o and the curvature; None when `p`'s element
+    /// is not a tube.
+    pub fn fibre_stress_parts(&self, p: &LinePoint, hang_off_z: f64) -> Option<FibreStress> {
         let tube = self.tube(p.element)?;
-        let k = if self.model == Model::Rod { p.curvature } else { [0.0; 2] };
+        let curvature = if self.model == Model::Rod { p.curvature } else { [0.0; 2] };
         let t_w = tube.wall_tension(p.tension, self.fluids.pressures(p.position.z, hang_off_z));
-        Some(tube.fibre_stress(t_w, k, theta))
+        Some(FibreStress { axial: t_w / tube.area, stiffness: tube.modulus * tube.outer_radius, curvature })
     }
 
     /// The largest axial stress at `p`'s outer fibre, T_w/A + E r_o |κ|, Pa.

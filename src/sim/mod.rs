@@ -6,6 +6,7 @@
 pub mod accuracy;
 pub mod design;
 pub mod error;
+pub mod fatigue;
 pub mod modes;
 pub mod report;
 pub mod vessel;
@@ -289,6 +290,19 @@ impl Simulation {
         let static_loads = scene_static_loads(scene);
         let vessel = Vessel::of_scene(scene);
         Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea, vessel })
+    }
+
+    /// Solves the statics again with the hang-off displaced by `d` (m,
+    /// global; the FMU's inputs not zero at the start): the run then starts
+    /// at rest in that equilibrium, not from the scene's with its hang-off
+    /// node alone moved (docs/theory.md §7.7). A flex joint keeps the
+    /// scene's static frame.
+    pub fn move_statics(&mut self, scene: &Scene, d: V3) -> Result<(), RiserError> {
+        let statics = crate::sim::report::solve_scene_moved(scene, &self.statics, d)?;
+        self.state = State::at_rest(statics.solution.config.clone(), self.state.time);
+        self.statics = statics;
+        self.initial_energy = self.integrator.outputs(&self.state).total_energy;
+        Ok(())
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.

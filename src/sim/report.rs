@@ -144,6 +144,34 @@ pub fn solve_scene(scene: &Scene) -> Result<StaticReport, RiserError> {
     Ok(StaticReport::new(&rod, sol))
 }
 
+/// The static equilibrium of a scene with its hang-off displaced by `d`
+/// (m, global) from the scene's, the anchor held (the FMU's vessel inputs
+/// not zero at the start, docs/theory.md §7.7): relaxed (pseudo-transient
+/// continuation, then Newton) from `base`, the scene's own equilibrium,
+/// shifted by d (1 − S/L) so that the start is smooth.
+pub fn solve_scene_moved(scene: &Scene, base: &StaticReport, d: V3) -> Result<StaticReport, RiserError> {
+    let loads = scene_static_loads(scene);
+    let tolerance = scene.analysis.newton_tolerance.min(1e-10);
+    let length = scene.line.length;
+    let mut cfg = base.solution.config.clone();
+    let fractions: Vec<f64> = base.shape.iter().map(|r| 1.0 - r.s / length).collect();
+    for (x, f) in cfg.x.iter_mut().zip(&fractions) {
+        *x += d * *f;
+    }
+    if scene.analysis.model == Model::Cable {
+        let model = CableModel::from_scene(scene);
+        let sol = relax(&CableStatics::new(&model, loads.drag.is_some()), cfg.x, tolerance)?;
+        return Ok(StaticReport::of_cable(&model.cable, sol));
+    }
+    // the slope of the shift, d/dS of d (1 − S/L)
+    for xp in cfg.xp.iter_mut() {
+        *xp -= d / length;
+    }
+    let rod = rod::of_scene(scene);
+    let sol = relax(&StaticProblem::new(&rod, &loads), cfg, tolerance)?;
+    Ok(StaticReport::new(&rod, sol))
+}
+
 /// The relative resolution of the line's energy in the balance: a line held
 /// still closes it to the round-off of summing |U| + |V| + K (a few 1e-16
 /// of it, up to 1e-14 over long runs), so its residual counts against

@@ -97,6 +97,10 @@ enum Command {
     },
     /// Print the FMU's modelDescription.xml (generated from modelDescription/variables.csv).
     ModelDescription,
+    /// The rainflow cycles (ASTM E1049-85) of a history, one number a line in FILE, as a JSON
+    /// array of [range, count] in the order the procedure finds them (the tests' hook).
+    #[command(hide = true)]
+    Rainflow { file: PathBuf },
     /// Print a scene file (built-in or path, after --set overrides) as TOML.
     Scene {
         scene: String,
@@ -236,9 +240,27 @@ struct RunCli {
     #[arg(long)]
     json: bool,
     /// Write timeseries.csv and shapes.csv into this directory (with stress_range.csv for a
-    /// steel tube, touchdown.svg on a seabed).
+    /// steel tube, touchdown.svg on a seabed, fatigue.csv with --fatigue).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Fatigue over the steady window: rainflow (ASTM E1049-85) of the axial stress at every
+    /// point of the line and 8 fibres of the steel's outer surface, Miner's damage on this
+    /// DNV-RP-C203 S-N curve (e.g. D-seawater-cp, F1-free-corrosion, C-air), the damage per
+    /// year and the life (docs/theory.md 12.5).
+    #[arg(long, value_name = "CURVE")]
+    fatigue: Option<String>,
+    /// Stress concentration factor on the fatigue's stress ranges (DNV-RP-F204's misalignment
+    /// of girth welds), at least 1.
+    #[arg(long, value_name = "X", requires = "fatigue", default_value_t = 1.0)]
+    scf: f64,
+    /// Design fatigue factor: the life is 1 / (damage per year x DFF), the allowable damage
+    /// 1/DFF (at least 1).
+    #[arg(long, value_name = "Y", requires = "fatigue", default_value_t = 1.0)]
+    dff: f64,
+    /// With --fatigue and --out: write fatigue_series.csv, the axial stress at the 8 fibres of
+    /// the point of the line nearest arc length S (m) at every output time of the steady window.
+    #[arg(long, value_name = "S", requires = "fatigue")]
+    fatigue_series: Option<f64>,
 }
 
 /// The vessel's harmonic motions asked for: (amplitude m or rad, period s) each.
@@ -634,6 +656,65 @@ struct RunArgs {
     max_tangent_age: u32,
     json: bool,
     out: Option<PathBuf>,
+    /// The fatigue asked for (--fatigue, --scf, --dff).
+    fatigue: Option<riser::sim::fatigue::FatigueSpec>,
+    /// --fatigue-series: the arc length of the point whose stresses are written, m.
+    fatigue_series: Option<f64>,
+}
+
+/// The fatigue asked for on the command line: the curve by name, the SCF
+/// and the DFF, each checked.
+fn fatigue_spec(curve: Option<String>, scf: f64, dff: f64) -> Result<Option<riser::sim::fatigue::FatigueSpec>, String> {
+    let Some(name) = curve else { return Ok(None) };
+    let curve = riser::sim::fatigue::SnCurve::by_name(&name).map_err(|m| format!("--fatigue: {m}"))?;
+    if !(scf.is_finite() && scf >= 1.0) {
+        return Err(format!("--scf must be a stress concentration factor of at least 1, got {scf}"));
+    }
+    if !(dff.is_finite() && dff >= 1.0) {
+        return Err(format!("--dff must be a design fatigue factor of at least 1 (1: none), got {dff}"));
+    }
+    Ok(Some(riser::sim::fatigue::FatigueSpec { curve, scf, dff }))
+}
+
+/// `riser rainflow FILE`: the cycles of the history in FILE (one number a line).
+fn rainflow_command(file: &Path) -> Result<(), String> {
+    let text = std::fs::read_to_string(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    let history = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(|l| l.parse::<f64>().map_err(|_| format!("{}: '{l}' is not a number", file.display())))
+        .collect::<Result<Vec<f64>, String>>()?;
+    let cycles: Vec<[f64; 2]> = riser::sim::fatigue::rainflow(&history).into_iter().map(|(r, n)| [r, n]).collect();
+    outln!("{}", serde_json::json!(cycles));
+    Ok(())
+}
+
+/// The stresses of one point's fibres over the steady window
+/// (--fatigue-series): the point's index and (t, σ per fibre) rows, Pa.
+struct FatigueRecord {
+    point: usize,
+    rows: Vec<(f64, [f64; riser::sim::design::FIBRES])>,
+}
+
+/// Adds the state at time `t` whose points are `points` to the fatigue and
+/// its record, the hang-off at `top_z`.
+fn fatigue_add(
+    fatigue: &mut Option<riser::sim::fatigue::FatigueTracker>,
+    record: &mut Option<FatigueRecord>,
+    design: &riser::sim::design::Design,
+    points: &[riser::model::outputs::LinePoint],
+    top_z: f64,
+    t: f64,
+) {
+    if let Some(f) = fatigue.as_mut() {
+        f.add(design, points, top_z);
+    }
+    if let Some(r) = record.as_mut() {
+        let dirs = riser::sim::fatigue::fibre_directions();
+        let p = &points[r.point];
+        r.rows.push((t, dirs.map(|(c, s)| design.fibre_stress_cs(p, c, s, top_z).unwrap_or(0.0))));
+    }
 }
 
 /// The steady window [t0, t1] of a run (s) and, when the run is too short
@@ -740,7 +821,19 @@ fn window_min_mean_max(v: &[(f64, f64)], t0: f64, t1: f64) -> [f64; 3] {
 fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     use riser::model::Outputs;
     use riser::sim::{Heave, Simulation};
-    let RunArgs { motions, heave_until, ramp, duration, window, shape_times, max_tangent_age, json, out } = args;
+    let RunArgs {
+        motions,
+        heave_until,
+        ramp,
+        duration,
+        window,
+        shape_times,
+        max_tangent_age,
+        json,
+        out,
+        fatigue: fatigue_asked,
+        fatigue_series,
+    } = args;
     if !(duration.is_finite() && duration > 0.0) {
         return Err(format!("--duration must be a positive number of seconds, got {duration}"));
     }
@@ -796,6 +889,15 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
+    if fatigue_asked.is_some() && !riser::sim::design::Design::new(&scene).has_stresses() {
+        return Err(
+            "--fatigue: this line has no stresses: it has no wall (wall_thickness) and is not the homogeneous \
+                    tube of its EA, EI and outer diameter (a flexible pipe, whose stresses are per layer: armour \
+                    wires, pressure sheath), so there is no axial stress to count; give a steel pipe its wall \
+                    (--set wall_thickness=...)"
+                .to_string(),
+        );
+    }
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
@@ -881,6 +983,21 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         next_shape += 1;
     }
     let in_window = |t: f64| t >= w0 - 1e-9 && t <= w1 + 1e-9;
+    // the fatigue's counters and the record of one point, allocated here, not in the steps
+    let dt = sim.integrator.options().time_step;
+    let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
+    let (mut fatigue, mut fatigue_record) = match fatigue_asked {
+        Some(spec) => {
+            let points = sim.integrator.line_points(&sim.state);
+            let record = fatigue_series.map(|s| {
+                let nearest =
+                    (0..points.len()).min_by(|&a, &b| (points[a].s - s).abs().total_cmp(&(points[b].s - s).abs()));
+                FatigueRecord { point: nearest.unwrap_or(0), rows: Vec::with_capacity(n_steps as usize + 1) }
+            });
+            (riser::sim::fatigue::FatigueTracker::new(spec, &design, &points), record)
+        }
+        None => (None, None),
+    };
     let length = scene.line.length;
     let ends = |e: &mut riser::sim::design::Envelope, o: &Outputs| {
         e.add_end(o.time, o.top_tension, 0.0);
@@ -894,13 +1011,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             let top_z = sim.state.config.x[0].z;
             stress.add(&design, &points, top_z);
             peaks = design.stress_peaks(&points, top_z);
+            fatigue_add(&mut fatigue, &mut fatigue_record, &design, &points, top_z, 0.0);
         }
     }
     let solve_start = std::time::Instant::now();
     let mut progress = Progress::new(!json);
     let mut failure = None;
-    let dt = sim.integrator.options().time_step;
-    let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
     for k in 1..=n_steps {
         let target = riser::sim::internal_step_end(0.0, duration, dt, k, n_steps);
         if let Err(e) = sim.advance_to(target, &motion_fn) {
@@ -919,6 +1035,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 if let Some(now) = design.stress_peaks(&points, top_z) {
                     peaks = Some(peaks.map_or(now, |p| p.max(now)));
                 }
+                fatigue_add(&mut fatigue, &mut fatigue_record, &design, &points, top_z, o.time);
             }
         }
         while next_shape < shape_times.len() && shape_times[next_shape] <= sim.state.time + 0.5 * dt {
@@ -929,6 +1046,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     }
     progress.finish();
     let solve_wall = solve_start.elapsed().as_secs_f64();
+    // the fatigue: the residues counted, the worst point and fibre, per year over the window read
+    if let Some(f) = fatigue.as_mut() {
+        f.finish();
+    }
+    let window_read = w1.min(sim.state.time) - w0;
+    let fatigue_worst = fatigue.as_ref().and_then(|f| f.worst());
     let wall = wall0.elapsed().as_secs_f64();
     let [t_min, t_mean, t_max] = min_mean_max(series.iter().map(|o| (o.time, o.top_tension)));
     let steady: Vec<&Outputs> = series.iter().filter(|o| in_window(o.time)).collect();
@@ -1011,6 +1134,18 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             // not last run's table of another scene
             None => _ = std::fs::remove_file(&stress_csv),
         }
+        let fatigue_csv = dir.join("fatigue.csv");
+        match &fatigue {
+            Some(f) => write_fatigue_csv(&fatigue_csv, f, window_read)
+                .map_err(|e| format!("cannot write {}: {e}", fatigue_csv.display()))?,
+            None => _ = std::fs::remove_file(&fatigue_csv),
+        }
+        let series_csv = dir.join("fatigue_series.csv");
+        match &fatigue_record {
+            Some(r) => write_fatigue_series(&series_csv, r)
+                .map_err(|e| format!("cannot write {}: {e}", series_csv.display()))?,
+            None => _ = std::fs::remove_file(&series_csv),
+        }
         let td: Vec<f64> = series.iter().map(|o| o.touchdown_s).collect();
         let bed = scene.seabed.as_ref().map(|b| b.height_at(scene.anchor.x, scene.anchor.y));
         let path = dir.join("touchdown.svg");
@@ -1048,6 +1183,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 "max_von_mises": peaks.map(|p| p.von_mises.0),
                 "max_von_mises_s": peaks.map(|p| p.von_mises.1),
                 "max_utilisation": utilisation_json(peaks.and_then(|p| p.utilisation)),
+                "fatigue": fatigue.as_ref().map(|f| fatigue_json(f, fatigue_worst, window_read)),
                 "min_tension_s": envelope.is_set().then_some(envelope.min_tension.1),
                 "max_tension": envelope.is_set().then_some(envelope.max_tension.0),
                 "max_tension_s": envelope.is_set().then_some(envelope.max_tension.1),
@@ -1153,6 +1289,24 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 outln!("    max utilisation          {:.3} at S = {:.1} m ({})", u.value, u.s, u.check);
             }
         }
+        if let (Some(f), Some(w)) = (&fatigue, fatigue_worst) {
+            let spec = f.spec();
+            let per_year = riser::sim::fatigue::damage_per_year(w.damage, window_read);
+            outln!(
+                "    fatigue ({}, SCF {}, DFF {}) damage {:.3e} over the window, {} a year, life {} years at S = \
+                 {:.1} m, fibre {} ({} deg); its largest range {:.3} MPa",
+                spec.curve.name,
+                spec.scf,
+                spec.dff,
+                w.damage,
+                readable(per_year),
+                readable(riser::sim::fatigue::life_years(per_year, spec.dff)),
+                w.s,
+                w.fibre,
+                w.fibre * 360 / riser::sim::design::FIBRES,
+                w.range / 1e6
+            );
+        }
         outln!(
             "  whole run, with the start: top tension min/mean/max {:.3} / {:.3} / {:.3} kN, min axial force {:.3} kN",
             kn(t_min),
@@ -1173,7 +1327,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             outln!("  {} warning(s) (on stderr)", warnings.len());
         }
         if let Some(dir) = &out {
-            let stress = if stress_range.is_some() { ", stress_range.csv" } else { "" };
+            let stress = match (stress_range.is_some(), fatigue.is_some(), fatigue_record.is_some()) {
+                (true, true, true) => ", stress_range.csv, fatigue.csv, fatigue_series.csv",
+                (true, true, false) => ", stress_range.csv, fatigue.csv",
+                (true, false, _) => ", stress_range.csv",
+                _ => "",
+            };
             let plot = if dir.join("touchdown.svg").exists() { " and touchdown.svg" } else { "" };
             outln!("  wrote {}/timeseries.csv, shapes.csv{stress}{plot}", dir.display());
         }
@@ -1182,6 +1341,76 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         Some(msg) => Err(format!("run stopped at t = {simulated:.6} s: {msg}")),
         None => Ok(()),
     }
+}
+
+/// A number to four significant digits, in exponent form outside 1e-3 to 1e5.
+fn readable(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-3..1e5).contains(&v.abs()) {
+        riser::scene::ranges::number(format!("{v:.4e}").parse().unwrap_or(v))
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// `steady.fatigue` of `riser run --json` (docs/theory.md §12.5).
+fn fatigue_json(
+    f: &riser::sim::fatigue::FatigueTracker,
+    worst: Option<riser::sim::fatigue::FatigueWorst>,
+    window: f64,
+) -> serde_json::Value {
+    use riser::sim::fatigue::{REFERENCE_THICKNESS, damage_per_year, life_years};
+    let spec = f.spec();
+    let c = &spec.curve;
+    let per_year = worst.map(|w| damage_per_year(w.damage, window));
+    serde_json::json!({
+        "curve": {
+            "name": c.name, "m1": c.m1, "log_a1": c.log_a1, "m2": c.m2, "log_a2": c.log_a2,
+            "n_switch": c.n_switch, "k": c.k, "t_ref": REFERENCE_THICKNESS,
+        },
+        "scf": spec.scf,
+        "dff": spec.dff,
+        "window_length": window,
+        "worst_s": worst.map(|w| w.s),
+        "worst_fibre": worst.map(|w| w.fibre),
+        "worst_fibre_angle": worst.map(|w| 360.0 * w.fibre as f64 / riser::sim::design::FIBRES as f64),
+        "worst_range": worst.map(|w| w.range),
+        "damage": worst.map(|w| w.damage),
+        "damage_per_year": per_year,
+        "life_years": per_year.map(|d| life_years(d, spec.dff)).filter(|l| l.is_finite()),
+    })
+}
+
+/// fatigue.csv: per point of the line and fibre, the damage over the
+/// steady window, the life in years (with the DFF; `inf` without damage),
+/// the damage per year and the largest rainflow range, Pa.
+fn write_fatigue_csv(path: &Path, f: &riser::sim::fatigue::FatigueTracker, window: f64) -> std::io::Result<()> {
+    use riser::sim::fatigue::{damage_per_year, life_years};
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "S,fibre,damage,life,damage_per_year,max_range")?;
+    for (s, fibre, damage, range) in f.rows() {
+        let per_year = damage_per_year(damage, window);
+        let life = life_years(per_year, f.spec().dff);
+        writeln!(out, "{s},{fibre},{damage:e},{life:e},{per_year:e},{range}")?;
+    }
+    out.flush()
+}
+
+/// fatigue_series.csv: t and the axial stress at the 8 fibres of one point, Pa.
+fn write_fatigue_series(path: &Path, r: &FatigueRecord) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    write!(out, "t")?;
+    for f in 0..riser::sim::design::FIBRES {
+        write!(out, ",fibre{f}")?;
+    }
+    writeln!(out)?;
+    for (t, sigma) in &r.rows {
+        write!(out, "{t}")?;
+        for v in sigma {
+            write!(out, ",{v}")?;
+        }
+        writeln!(out)?;
+    }
+    out.flush()
 }
 
 /// stress_range.csv: per point of the line, the outer-fibre stress's extremes
@@ -1243,12 +1472,34 @@ fn main() -> ExitCode {
                 max_tangent_age,
                 json,
                 out,
+                fatigue,
+                scf,
+                dff,
+                fatigue_series,
             } = *r;
             let motions = Motions { heave, surge, sway, roll, pitch, yaw };
-            let args =
-                RunArgs { motions, heave_until, ramp, duration, window, shape_times, max_tangent_age, json, out };
-            run(&scene, &set, args)
+            match fatigue_spec(fatigue, scf, dff) {
+                Ok(fatigue) => run(
+                    &scene,
+                    &set,
+                    RunArgs {
+                        motions,
+                        heave_until,
+                        ramp,
+                        duration,
+                        window,
+                        shape_times,
+                        max_tangent_age,
+                        json,
+                        out,
+                        fatigue,
+                        fatigue_series,
+                    },
+                ),
+                Err(m) => Err(m),
+            }
         }
+        Command::Rainflow { file } => rainflow_command(&file),
         Command::Modes(args) => modes::modes(args),
         Command::Waves(args) => waves::waves(args),
         Command::ModelDescription => {

@@ -23,6 +23,7 @@ COMMANDS = {
     "demo": ("riser_tools.studies.demo", "the paper's catenary case through the FMU, then on the 6-DOF vessel "
                                         "FMU in libcosim (make demo)"),
     "plot-statics": ("riser_tools.plots", "plot shape.csv of `riser statics --out` (make demo)"),
+    "plot-fatigue": ("riser_tools.fatigue_plot", "plot fatigue.csv of `riser run --fatigue CURVE --out` (damage along the line)"),
     "paper": ("riser_tools.studies.paper", "the seed paper's runs (make paper)"),
     "study": ("riser_tools.studies.speed_accuracy", "speed against accuracy (make study)"),
     "noise": ("riser_tools.studies.noise", "tension noise and numerical dissipation (make noise)"),

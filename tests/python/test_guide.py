@@ -1,5 +1,4 @@
-"""The coupling guide as a new user follows it (issue 52): docs/guide/coupling.md and
-docs/guide/fmu.md.
+"""The user's guide as a new user follows it (issues 52, 55): every page of docs/guide/.
 
 Every fenced block of a page marked ``guide-test: NAME`` (```python guide-test: x.py, ```sh
 guide-test: x.sh) runs from scratch: in an empty directory holding only the FMU as ``riser.fmu``,
@@ -27,7 +26,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGES = [ROOT / "docs" / "guide" / "coupling.md", ROOT / "docs" / "guide" / "fmu.md"]
+# every page of the guide; those with runnable blocks are run
+PAGES = sorted((ROOT / "docs" / "guide").glob("*.md"))
+RUN = [p for p in PAGES if re.search(r"^```\w+ guide-test:", p.read_text(), re.M)]
 RTOL = 1e-3
 
 FENCE = re.compile(r"^```(\w+)[ \t]+guide-(test|output|file):[ \t]*(\S+)([^\n]*)\n(.*?)^```[ \t]*$", re.M | re.S)
@@ -149,13 +150,13 @@ def guide_runs(fmu_path, riser_bin, tmp_path_factory):
     """Both pages' blocks, all at once."""
     assert Path(riser_bin).exists(), f"the guide runs the riser CLI: build it first ({riser_bin})"
     with ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2)) as pool, \
-            ThreadPoolExecutor(max_workers=len(PAGES)) as pages:
+            ThreadPoolExecutor(max_workers=len(RUN)) as pages:
         jobs = {page.name: pages.submit(run_page, page, tmp_path_factory.mktemp(page.stem), fmu_path, riser_bin, pool)
-                for page in PAGES}
+                for page in RUN}
         return {name: job.result() for name, job in jobs.items()}
 
 
-@pytest.mark.parametrize("page", [p.name for p in PAGES])
+@pytest.mark.parametrize("page", [p.name for p in RUN])
 def test_every_block_of_the_guide_runs_from_scratch_and_prints_what_the_page_shows(guide_runs, page):
     runs, blocks = guide_runs[page]
     assert blocks["test"], f"{page}: no guide-test blocks"
