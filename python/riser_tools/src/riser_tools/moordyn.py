@@ -29,7 +29,7 @@ import os
 import statistics
 import sys
 import time
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -65,6 +65,36 @@ def quiet(log_path: str | Path) -> Iterator[None]:
             os.dup2(saved[1], 2)
             os.close(saved[0])
             os.close(saved[1])
+
+
+def external_wave_run(input_path: str | Path, point: int, line: int,
+                      kinematics: Callable[[float, list[float]], tuple[list[float], list[float]]],
+                      duration: float, dt: float, log: str | Path) -> list[tuple[float, float]] | None:
+    """A MoorDyn system with its point `point` held where the input file puts it and the water's
+    kinematics given from outside (`kinematics(t, position) -> (velocity, acceleration)` at the
+    middle of each step, MoorDyn's ExternalWaveKin): (t, the force at line `line`'s last node, kN)
+    after every step of `dt` up to `duration`; None if `moordyn` does not import."""
+    try:
+        md = _moordyn()
+    except ImportError:
+        return None
+    rows = []
+    with quiet(log):
+        system = md.Create(str(input_path))
+        p, ln = md.GetPoint(system, point), md.GetLine(system, line)
+        r, u = list(md.GetPointPos(p)), [0.0, 0.0, 0.0]
+        md.Init(system, r, u)
+        md.ExternalWaveKinInit(system)
+        n = md.GetLineN(ln)
+        t = 0.0
+        for _ in range(int(round(duration / dt))):
+            kin = [kinematics(t + 0.5 * dt, q) for q in md.ExternalWaveKinGetCoordinates(system)]
+            md.ExternalWaveKinSet(system, [k[0] for k in kin], [k[1] for k in kin], t + 0.5 * dt)
+            md.Step(system, r, u, t, dt)
+            t += dt
+            rows.append((t, 1e-3 * math.sqrt(sum(c * c for c in md.GetLineNodeForce(ln, n)))))
+        md.Close(system)
+    return rows
 
 
 def fairlead(line: Line) -> tuple[float, float, float]:

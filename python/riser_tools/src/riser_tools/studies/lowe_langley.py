@@ -212,36 +212,18 @@ def md_wave(phi, d, t, r):
 
 
 def moordyn_case456(case, phase, out):
-    """MoorDyn's `case456` (tests/lowe_and_langley_2006.cpp) through the Python package:
-    (t, top tension kN) at every 0.005 s step up to t = 50 s; None if `moordyn` does not import."""
-    try:
-        import moordyn as md
-    except ImportError:
-        return None
-    from ..moordyn import quiet
+    """MoorDyn's `case456` (tests/lowe_and_langley_2006.cpp) through the project's MoorDyn driver
+    (riser_tools.moordyn): (t, top tension kN) at every 0.005 s step up to t = 50 s; None if
+    `moordyn` does not import."""
+    from ..moordyn import external_wave_run
     d = os.path.join(out, "moordyn")
     os.makedirs(d, exist_ok=True)
     path = os.path.join(d, "line.txt")
     with open(path, "w") as f:
         f.write(LINE_TXT)
     dt, phi, direction = 0.005, math.radians(phase), (case - 4) * 0.25 * math.pi
-    rows = []
-    with quiet(os.path.join(d, f"case{case}.log")):
-        system = md.Create(path)
-        point, line = md.GetPoint(system, 2), md.GetLine(system, 1)
-        r, u = list(md.GetPointPos(point)), [0.0, 0.0, 0.0]
-        md.Init(system, r, u)
-        md.ExternalWaveKinInit(system)
-        n = md.GetLineN(line)
-        t = 0.0
-        for _ in range(int(round((T_START_W + T_WINDOW_W) / dt))):
-            kin = [md_wave(phi, direction, t + 0.5 * dt, p) for p in md.ExternalWaveKinGetCoordinates(system)]
-            md.ExternalWaveKinSet(system, [k[0] for k in kin], [k[1] for k in kin], t + 0.5 * dt)
-            md.Step(system, r, u, t, dt)
-            t += dt
-            rows.append((t, 1e-3 * math.sqrt(sum(c * c for c in md.GetLineNodeForce(line, n)))))
-        md.Close(system)
-    return rows
+    return external_wave_run(path, point=2, line=1, kinematics=lambda t, p: md_wave(phi, direction, t, p),
+                             duration=T_START_W + T_WINDOW_W, dt=dt, log=os.path.join(d, f"case{case}.log"))
 
 
 def reduce_moordyn(md_rows, ref, series):
