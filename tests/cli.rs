@@ -89,7 +89,8 @@ fn run_json_summary_and_csv_columns() {
         "t,top_tension,top_force_x,top_force_y,top_force_z,bottom_tension,min_tension,total_energy,\
          kinetic_energy,strain_energy,potential_energy,work_top,work_hydro,dissipated_energy,algorithmic_dissipation,\
          touchdown_s,work_seabed,hang_off_angle,wave_elevation,hang_off_moment,top_moment_x,top_moment_y,top_moment_z,\
-         vessel_force_x,vessel_force_y,vessel_force_z,vessel_moment_x,vessel_moment_y,vessel_moment_z,flex_joint_angle"
+         vessel_force_x,vessel_force_y,vessel_force_z,vessel_moment_x,vessel_moment_y,vessel_moment_z,flex_joint_angle,\
+         hang_off_x,hang_off_y,hang_off_z,surge,sway,heave,roll,pitch,yaw"
     );
     assert_eq!(ts.lines().count(), 42); // header + t = 0 + 40 steps
     let last_t: f64 = ts.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();

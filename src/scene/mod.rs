@@ -6,7 +6,9 @@
 mod checker;
 mod overrides;
 pub mod ranges;
+pub mod raos;
 pub mod sections;
+pub mod system;
 mod validate;
 pub mod waves;
 
@@ -410,6 +412,10 @@ pub struct Scene {
     /// The hang-off's end condition (`[hang_off]`; default pinned).
     #[serde(default, skip_serializing_if = "HangOffSpec::is_default")]
     pub hang_off: HangOffSpec,
+    /// The vessel (`[vessel]`: its RAOs, docs/theory.md §14.5; none: the
+    /// vessel moves only as the CLI's options or the FMU's inputs say).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vessel: Option<raos::VesselSpec>,
 }
 
 /// How the line's end is held at the hang-off (docs/theory.md §15).
@@ -614,10 +620,14 @@ impl Scene {
     /// [`Scene::from_toml`] of the file at `path`: a relative `waves.file`
     /// is taken from the file's folder.
     fn from_toml_at(text: &str, source: &str, path: Option<&std::path::Path>) -> Result<Scene, SceneError> {
+        if system::is_system_text(text) {
+            return Err(SceneError::Parse { source: source.to_string(), message: system::NOT_YET.to_string() });
+        }
         let mut scene: Scene = toml::from_str(text)
             .map_err(|e| SceneError::Parse { source: source.to_string(), message: in_users_terms(&e.to_string()) })?;
         if let Some(p) = path {
             scene.resolve_wave_file(p);
+            scene.resolve_raos_file(p);
         }
         scene.validate()?;
         Ok(scene)

@@ -186,6 +186,7 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
     }
     check_flex_joint(&mut c, s);
     c.0.extend(super::waves::check(s));
+    c.0.extend(super::raos::check(s));
     c.0
 }
 

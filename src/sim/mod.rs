@@ -9,6 +9,7 @@ pub mod error;
 pub mod fatigue;
 pub mod modes;
 pub mod report;
+pub mod system;
 pub mod vessel;
 
 use crate::loads::waves::{Sea, sea_of};

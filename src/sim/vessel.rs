@@ -8,6 +8,7 @@ use crate::math::rigid::RotationOrder;
 use crate::math::{M3, V3};
 use crate::model::HangOff;
 use crate::scene::Scene;
+use crate::scene::raos::RaoTable;
 
 /// Where the hang-off sits on the vessel and how the vessel's angles compose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,6 +76,109 @@ impl Vessel {
             force_vessel: rotation.transpose() * force,
             moment_vessel: rotation.transpose() * moment,
         }
+    }
+}
+
+/// One term of the vessel's motion on its RAOs: a degree of freedom moved
+/// by A cos(ψ − ω t) (A = aᵢ |RAO|, ψ = the component's phase argument at
+/// the reference point at t = 0 plus the RAO's phase).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct RaoTerm {
+    dof: usize,
+    amplitude: f64,
+    omega: f64,
+    psi: f64,
+}
+
+/// The vessel moved by the sea's own components through its RAOs
+/// (docs/theory.md §14.5): degree of freedom d (surge, sway, heave of the
+/// reference point, m; roll, pitch, yaw, rad) at t is
+///
+///   u_d(t) = r(t) Σᵢ aᵢ |RAO_d(fᵢ, βᵢ)| cos(θᵢ(t) + phase_d(fᵢ, βᵢ))     (14.6)
+///
+/// with θᵢ(t) = kᵢ((x_r − x₀) cos βᵢ + (y_r − y₀) sin βᵢ) − ωᵢ t + φᵢ the
+/// component's phase argument of (13.1) at the reference point's mean
+/// position (x_r, y_r) = −(ρ_x, ρ_y), and r(t) the waves' ramp.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RaoMotion {
+    terms: Vec<RaoTerm>,
+    ramp: crate::loads::waves::Ramp,
+    order: RotationOrder,
+    /// The degrees of freedom the table moves.
+    pub dofs: Vec<&'static str>,
+}
+
+impl RaoMotion {
+    /// The motion of `vessel` in `sea` on the RAOs of `table`; an error
+    /// names the component outside the table's span.
+    pub fn new(vessel: &Vessel, sea: &crate::loads::waves::Sea, table: &RaoTable) -> Result<Self, String> {
+        let [x0, y0] = sea.settings().origin;
+        let (xr, yr) = (-vessel.offset.x, -vessel.offset.y);
+        let mut terms = Vec::new();
+        for (c, k) in sea.components().iter().zip(sea.wave_numbers()) {
+            let omega = 2.0 * std::f64::consts::PI * c.frequency;
+            let (sb, cb) = c.direction.sin_cos();
+            let theta0 = k * ((xr - x0) * cb + (yr - y0) * sb) + c.phase;
+            for dof in 0..6 {
+                let (a, p) = table.at(dof, c.frequency, c.direction.to_degrees()).map_err(|m| {
+                    format!(
+                        "vessel.raos: the sea's component at {} Hz, {} deg: {m}; give RAOs over the sea's band and \
+                         directions (riser waves lists them), or narrow the sea (waves.f_min, waves.f_max)",
+                        c.frequency,
+                        c.direction.to_degrees()
+                    )
+                })?;
+                if a != 0.0 && c.amplitude != 0.0 {
+                    terms.push(RaoTerm { dof, amplitude: c.amplitude * a, omega, psi: theta0 + p.to_radians() });
+                }
+            }
+        }
+        Ok(RaoMotion { terms, ramp: sea.settings().ramp, order: vessel.order, dofs: table.dofs() })
+    }
+
+    /// The six degrees of freedom (surge, sway, heave, m; roll, pitch, yaw,
+    /// rad) and their rates at `t`, the ramp included.
+    pub fn dofs_at(&self, t: f64) -> ([f64; 6], [f64; 6]) {
+        let (r, dr) = self.ramp.at(t);
+        let (mut u, mut v) = ([0.0; 6], [0.0; 6]);
+        if r == 0.0 && dr == 0.0 {
+            return (u, v);
+        }
+        for term in &self.terms {
+            let (s, c) = (term.psi - term.omega * t).sin_cos();
+            u[term.dof] += term.amplitude * c;
+            v[term.dof] += term.amplitude * term.omega * s;
+        }
+        for d in 0..6 {
+            v[d] = r * v[d] + dr * u[d];
+            u[d] *= r;
+        }
+        (u, v)
+    }
+
+    /// The vessel's motion at `t` (the angles' rates as body rates).
+    pub fn at(&self, t: f64) -> VesselMotion {
+        let (u, v) = self.dofs_at(t);
+        let angles = [u[3], u[4], u[5]];
+        VesselMotion {
+            displacement: V3::new(u[0], u[1], u[2]),
+            velocity: V3::new(v[0], v[1], v[2]),
+            angles,
+            body_rates: self.order.body_rates(angles, [v[3], v[4], v[5]]),
+        }
+    }
+}
+
+/// The motion on its RAOs of the vessel of `scene` (`[vessel] raos`) in
+/// `sea`: None without a table, or in still water (the vessel then does not
+/// move: no waves, no wave-frequency motion); an error for a table that
+/// cannot be read or a component outside its span.
+pub fn rao_motion(scene: &Scene, sea: Option<&crate::loads::waves::Sea>) -> Result<Option<RaoMotion>, String> {
+    let Some(path) = scene.vessel.as_ref().and_then(|v| v.raos.as_deref()) else { return Ok(None) };
+    let table = crate::scene::raos::read_raos(path).map_err(|e| e.to_string())?;
+    match sea {
+        Some(sea) => RaoMotion::new(&Vessel::of_scene(scene), sea, &table).map(Some),
+        None => Ok(None),
     }
 }
 

@@ -32,7 +32,37 @@ def unzipped(fmu_path, tmp_path_factory):
 os.environ.setdefault("PYTHONHASHSEED", "0")
 
 
+# Each test file's time budget, s, on a quiet 2-core machine (`make test`'s whole Python part is
+# about 4 min of its 8): the run prints every file's time against it at the end, and the files over
+# it; never an assertion (speed is a benchmark's, not a test's). Tests marked `long` run in `make
+# check-long`, not in `make test`.
+BUDGETS = {
+    "test_accuracy.py": 20, "test_cosim_inputs.py": 30, "test_coupling.py": 45, "test_coupling6.py": 30,
+    "test_coupling_buoy.py": 30, "test_directional_derivative.py": 10, "test_fatigue.py": 10, "test_fmu.py": 45,
+    "test_fuzz.py": 35, "test_guide.py": 15, "test_interface_doc.py": 5, "test_masters.py": 15,
+    "test_model_structure.py": 5, "test_parameter_ranges.py": 10, "test_sweep.py": 60, "test_tools.py": 20,
+    "test_vessel.py": 30, "test_vessel6.py": 15, "test_waves.py": 15,
+}
+_SPENT: dict[str, float] = {}
+
+
+def pytest_runtest_logreport(report):
+    name = report.nodeid.split("::")[0].rsplit("/", 1)[-1]
+    _SPENT[name] = _SPENT.get(name, 0.0) + report.duration
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not _SPENT:
+        return
+    over = [f for f, s in _SPENT.items() if s > BUDGETS.get(f, 10)]
+    terminalreporter.write_sep("-", f"time per test file against its budget ({len(over)} over)")
+    for f, s in sorted(_SPENT.items(), key=lambda x: -x[1]):
+        b = BUDGETS.get(f, 10)
+        terminalreporter.write_line(f"{f:32} {s:7.1f} s of {b:4d} s{'  OVER' if s > b else ''}")
+
+
 def pytest_configure(config):
+    config.addinivalue_line("markers", "long: a long comparison, run by `make check-long`, not `make test`")
     # matplotlib's mathtext and font-config parsers call pyparsing names that the pinned pyparsing
     # deprecates ("'setName' deprecated - use 'set_name'"): third-party, harmless, and hundreds a run
     config.addinivalue_line("filterwarnings", "ignore::DeprecationWarning:matplotlib._mathtext")

@@ -30,6 +30,7 @@ macro_rules! out {
 
 mod modes;
 mod svg;
+mod system;
 mod touchdown;
 mod waves;
 
@@ -78,6 +79,10 @@ enum Command {
         /// Write shape.csv (S, x, y, z, tension) into this directory.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// The vessel's pose, surge,sway,heave (m),roll,pitch,yaw (rad), z-y-x: a system scene's lines re-solved
+        /// there (docs/guide/systems.md; systems only in this version).
+        #[arg(long, value_name = "SURGE,SWAY,HEAVE,ROLL,PITCH,YAW", allow_hyphen_values = true)]
+        pose: Option<String>,
     },
     /// Dynamic run from the static state with the vessel moving A sin(2πt/T) (heave, surge, sway, roll, pitch, yaw).
     Run(Box<RunCli>),
@@ -214,6 +219,11 @@ struct RunCli {
     /// Yaw amplitude (rad) and period (s) of the vessel; adds to the other motions.
     #[arg(long, value_name = "AMPLITUDE,PERIOD", value_parser = parse_pair, allow_hyphen_values = true)]
     yaw: Option<(f64, f64)>,
+    /// The vessel's RAO table (CSV: dof,frequency,direction,amplitude,phase; overrides the
+    /// scene's [vessel] raos): the vessel moves by the sea's own components through it, in
+    /// phase with the waves on the line (docs/guide/waves.md); adds to the other motions.
+    #[arg(long, value_name = "FILE")]
+    raos: Option<String>,
     /// Hold the hang-off still after this time (s).
     #[arg(long, value_name = "T")]
     heave_until: Option<f64>,
@@ -647,6 +657,8 @@ impl Progress {
 /// What `riser run` is asked for, beyond the scene.
 struct RunArgs {
     motions: Motions,
+    /// --raos: the RAO table, over the scene's [vessel] raos.
+    raos: Option<String>,
     heave_until: Option<f64>,
     /// None: one period of the slowest motion.
     ramp: Option<f64>,
@@ -823,6 +835,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     use riser::sim::{Heave, Simulation};
     let RunArgs {
         motions,
+        raos,
         heave_until,
         ramp,
         duration,
@@ -853,6 +866,10 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         return Err(format!("--window {t0},{t1} must lie within the run, 0 to {duration} s (--duration)"));
     }
     let mut scene = load(scene, set).map_err(|e| e.to_string())?;
+    if let Some(path) = raos {
+        scene.vessel = Some(riser::scene::raos::VesselSpec { raos: Some(path) });
+        scene.validate().map_err(|e| e.to_string())?;
+    }
     // `--ramp 0` is the paper's abrupt start: the current too, unless the
     // scene or --set give its ramp (theory §5.11)
     if ramp == Some(0.0) && scene.current.ramp.is_none() {
@@ -921,7 +938,23 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         .filter_map(|(i, m)| m.map(|(amplitude, period)| (i, Heave { amplitude, period, until: heave_until, ramp })))
         .collect();
     let vessel = sim.vessel;
-    let motion_fn = move |t: f64| {
+    // the vessel on its RAOs in the sea's own components (theory §14.5)
+    let rao = riser::sim::vessel::rao_motion(&scene, sim.sea.as_ref())?;
+    let mut rao_warnings = Vec::new();
+    if scene.vessel.as_ref().is_some_and(|v| v.raos.is_some()) && sim.sea.is_none() {
+        rao_warnings.push(
+            "vessel.raos given, but the scene has no waves: the vessel does not move on its RAOs in still water"
+                .to_string(),
+        );
+    }
+    if rao.is_some() && scene.analysis.accuracy > 0.0 {
+        rao_warnings.push(
+            "accuracy: the mesh and step were chosen for the waves on the line and the motions given by \
+             --heave etc., not for the vessel's motion on its RAOs; check with a finer time_step"
+                .to_string(),
+        );
+    }
+    let vessel_motion = |t: f64| {
         let mut m = riser::sim::vessel::VesselMotion::default();
         let mut rates = [0.0; 3];
         for (i, h) in &axes {
@@ -934,13 +967,30 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 k => (m.angles[k - 3], rates[k - 3]) = (u, v),
             }
         }
+        if let Some(r) = &rao {
+            let (u, v) = r.dofs_at(t);
+            m.displacement += riser::math::V3::new(u[0], u[1], u[2]);
+            m.velocity += riser::math::V3::new(v[0], v[1], v[2]);
+            for k in 0..3 {
+                m.angles[k] += u[3 + k];
+                rates[k] += v[3 + k];
+            }
+        }
         m.body_rates = vessel.order.body_rates(m.angles, rates);
-        vessel.hang_off(&m)
+        m
+    };
+    let motion_fn = |t: f64| vessel.hang_off(&vessel_motion(t));
+    // what timeseries.csv adds: the hang-off's displacement and the vessel's six degrees of freedom
+    let motion_row = |t: f64, h: &riser::model::HangOff| {
+        let m = vessel_motion(t);
+        let d = m.displacement;
+        [h.displacement.x, h.displacement.y, h.displacement.z, d.x, d.y, d.z, m.angles[0], m.angles[1], m.angles[2]]
     };
     sim.start(motion_fn(0.0));
     let e0 = sim.initial_energy;
     let design = riser::sim::design::Design::new(&scene);
     let (static_design, mut warnings) = design.report(&scene, &sim.integrator, &sim.state);
+    warnings.extend(rao_warnings);
     // the steady window waits for the slower of the motion and the sea
     let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
     let settled =
@@ -970,6 +1020,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     }
     shape_times.sort_by(f64::total_cmp);
     let mut series: Vec<Outputs> = vec![sim.outputs()];
+    let mut motion_rows = vec![motion_row(sim.state.time, &sim.state.hang_off)];
     let mut shapes: Vec<(f64, Vec<[f64; 6]>)> = Vec::new();
     let mut next_shape = 0;
     let arc = sim.integrator.node_arc_lengths();
@@ -1025,6 +1076,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         }
         let o = sim.outputs();
         series.push(o);
+        motion_rows.push(motion_row(sim.state.time, &sim.state.hang_off));
         if in_window(o.time) {
             let points = sim.integrator.line_points(&sim.state);
             envelope.add(o.time, &points);
@@ -1126,7 +1178,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let st = &sim.state;
     let simulated = st.time;
     if let Some(dir) = &out {
-        write_run_csv(dir, &series, &shapes).map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+        write_run_csv(dir, &series, &motion_rows, &shapes)
+            .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
         let stress_csv = dir.join("stress_range.csv");
         match stress_range {
             Some(_) => write_stress_csv(&stress_csv, &stress.rows())
@@ -1222,11 +1275,21 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             scene.name,
             scene.analysis.n_elements,
             dt,
-            motions.describe(),
+            match (&rao, motions.all().iter().any(Option::is_some)) {
+                (Some(_), false) => "the vessel on its RAOs".to_string(),
+                _ => motions.describe(),
+            },
             heave_until.map(|u| format!(" until {u} s")).unwrap_or_default(),
             if period > 0.0 { start } else { String::new() }
         );
         choice_text(&choice);
+        if let Some(r) = &rao {
+            outln!(
+                "  the vessel moves on its RAOs ({}) in the sea's own components, the waves' ramp included{}",
+                r.dofs.join(", "),
+                if motions.all().iter().any(Option::is_some) { ", plus the motions above" } else { "" }
+            );
+        }
         if !riser::loads::current(&scene).is_none() && !scene.analysis.static_current {
             let grows = match riser::loads::current_ramp(&scene).duration {
                 0.0 => "acts in full from t = 0 (current_ramp = 0, the paper's)".to_string(),
@@ -1424,17 +1487,28 @@ fn write_stress_csv(path: &Path, rows: &[[f64; 4]]) -> std::io::Result<()> {
     f.flush()
 }
 
-fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, Vec<[f64; 6]>)]) -> std::io::Result<()> {
+/// The columns timeseries.csv adds after the outputs: the hang-off's
+/// displacement from its mean position (m) and the vessel's motion that
+/// moves it (the reference point's surge, sway, heave, m; roll, pitch, yaw, rad).
+const MOTION_COLUMNS: [&str; 9] =
+    ["hang_off_x", "hang_off_y", "hang_off_z", "surge", "sway", "heave", "roll", "pitch", "yaw"];
+
+fn write_run_csv(
+    dir: &Path,
+    series: &[riser::model::Outputs],
+    motion: &[[f64; 9]],
+    shapes: &[(f64, Vec<[f64; 6]>)],
+) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("timeseries.csv"))?);
     write!(f, "t")?;
-    for n in riser::model::Outputs::NAMES {
+    for n in riser::model::Outputs::NAMES.iter().chain(&MOTION_COLUMNS) {
         write!(f, ",{n}")?;
     }
     writeln!(f)?;
-    for o in series {
+    for (o, m) in series.iter().zip(motion) {
         write!(f, "{}", o.time)?;
-        for v in o.values() {
+        for v in o.values().iter().chain(m) {
             write!(f, ",{v}")?;
         }
         writeln!(f)?;
@@ -1453,7 +1527,15 @@ fn write_run_csv(dir: &Path, series: &[riser::model::Outputs], shapes: &[(f64, V
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Statics { scene, set, json, out } => statics(&scene, &set, json, out),
+        Command::Statics { scene, set, json, out, pose } => {
+            if riser::scene::system::is_system_source(&scene) {
+                system::statics(&scene, &set, json, out.is_some(), pose.as_deref())
+            } else if pose.is_some() {
+                Err("--pose: only for a system scene in this version (docs/guide/systems.md)".to_string())
+            } else {
+                statics(&scene, &set, json, out)
+            }
+        }
         Command::Run(r) => {
             let RunCli {
                 scene,
@@ -1464,6 +1546,7 @@ fn main() -> ExitCode {
                 roll,
                 pitch,
                 yaw,
+                raos,
                 heave_until,
                 ramp,
                 duration,
@@ -1484,6 +1567,7 @@ fn main() -> ExitCode {
                     &set,
                     RunArgs {
                         motions,
+                        raos,
                         heave_until,
                         ramp,
                         duration,

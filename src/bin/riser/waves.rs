@@ -28,9 +28,18 @@ pub struct WavesArgs {
     /// Print one JSON object instead of the text summary.
     #[arg(long)]
     json: bool,
-    /// Write elevation.csv, spectrum.csv, components.csv and waves.svg into this directory.
+    /// Write elevation.csv, spectrum.csv, components.csv and waves.svg into this directory (and
+    /// vessel_motion.csv with the vessel's RAOs).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// The vessel's RAO table (overrides the scene's [vessel] raos): --out writes
+    /// vessel_motion.csv, the vessel's motion in this sea as `riser run` drives it.
+    #[arg(long, value_name = "FILE")]
+    raos: Option<String>,
+    /// The sampling step of the records of --out, s (default a tenth of the shortest
+    /// component's period, within 0.01 to 0.5 s).
+    #[arg(long, value_name = "DT")]
+    step: Option<f64>,
 }
 
 /// A number for the CSV files and the JSON: exact (shortest round trip).
@@ -95,8 +104,7 @@ fn sample_step(sea: &Sea) -> f64 {
     (0.1 / f_max).clamp(0.01, 0.5)
 }
 
-fn record(sea: &Sea, duration: f64) -> Record {
-    let dt = sample_step(sea);
+fn record(sea: &Sea, duration: f64, dt: f64) -> Record {
     let n = (duration / dt).round() as usize;
     let [x0, y0] = sea.settings().origin;
     let t: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
@@ -151,8 +159,12 @@ fn record_spectrum(r: &Record, bands: &[(f64, f64)]) -> Vec<f64> {
 }
 
 pub fn waves(args: WavesArgs) -> Result<(), String> {
-    let WavesArgs { scene, set, duration, json, out } = args;
-    let scene = super::load(&scene, &set).map_err(|e| e.to_string())?;
+    let WavesArgs { scene, set, duration, json, out, raos, step } = args;
+    let mut scene = super::load(&scene, &set).map_err(|e| e.to_string())?;
+    if let Some(path) = raos {
+        scene.vessel = Some(riser::scene::raos::VesselSpec { raos: Some(path) });
+        scene.validate().map_err(|e| e.to_string())?;
+    }
     let Some(w) = scene.waves.clone().filter(|w| w.kind != WaveKind::None) else {
         return Err(format!(
             "scene '{}' has no waves (no [waves] block, or kind none): give one, or --set wave_kind=airy \
@@ -174,15 +186,21 @@ pub fn waves(args: WavesArgs) -> Result<(), String> {
     for m in &warnings {
         eprintln!("riser: warning: {m}");
     }
-    let longest = MAX_SAMPLES * sample_step(&sea);
+    if let Some(dt) = step
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(format!("--step must be a positive number of seconds, got {dt}"));
+    }
+    let dt = step.unwrap_or_else(|| sample_step(&sea));
+    let longest = MAX_SAMPLES * dt;
     if !(duration.is_finite() && duration > 0.0 && duration <= longest) {
         return Err(format!(
-            "--duration must be positive and at most {longest} s ({MAX_SAMPLES:e} samples of {} s), got {duration}",
-            sample_step(&sea)
+            "--duration must be positive and at most {longest} s ({MAX_SAMPLES:e} samples of {dt} s), got {duration}"
         ));
     }
+    let rao = riser::sim::vessel::rao_motion(&scene, Some(&sea))?;
     let written = match &out {
-        Some(dir) => write_outputs(dir, &scene, &w, &sea, duration)
+        Some(dir) => write_outputs(dir, &scene, &w, &sea, rao.as_ref(), duration, dt)
             .map_err(|e| format!("cannot write {}: {e}", dir.display()))?,
         None => Vec::new(),
     };
@@ -320,9 +338,17 @@ fn to_json(scene: &Scene, w: &WavesSpec, sea: &Sea, warnings: &[String], written
     })
 }
 
-fn write_outputs(dir: &Path, scene: &Scene, w: &WavesSpec, sea: &Sea, duration: f64) -> std::io::Result<Vec<PathBuf>> {
+fn write_outputs(
+    dir: &Path,
+    scene: &Scene,
+    w: &WavesSpec,
+    sea: &Sea,
+    rao: Option<&riser::sim::vessel::RaoMotion>,
+    duration: f64,
+    dt: f64,
+) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
-    let rec = record(sea, duration);
+    let rec = record(sea, duration, dt);
     let elevation = dir.join("elevation.csv");
     let mut f = std::io::BufWriter::new(std::fs::File::create(&elevation)?);
     writeln!(f, "t,elevation,ramped")?;
@@ -357,7 +383,86 @@ fn write_outputs(dir: &Path, scene: &Scene, w: &WavesSpec, sea: &Sea, duration: 
     f.flush()?;
     let table = dir.join("components.csv");
     let mut f = std::io::BufWriter::new(std::fs::File::create(&table)?);
-    writeln!(f, "# the sea of scene '{}' as riser realises it: kind = \"table\" reads it back", scene.name)?;
+    write_components(&mut f, scene, sea)?;
+    f.flush()?;
+    let mut written = vec![elevation, spectrum, table];
+    if let Some(r) = rao {
+        let path = dir.join("vessel_motion.csv");
+        let mut f = std::io::BufWriter::new(std::fs::File::create(&path)?);
+        writeln!(
+            f,
+            "# the vessel's motion on its RAOs ({}) in this sea, the waves' ramp included, as riser run drives it: the \
+             reference point's displacement (m, m/s) and angles (rad), the angular velocity in the vessel frame \
+             (rad/s): the FMU's inputs",
+            r.dofs.join(", ")
+        )?;
+        writeln!(
+            f,
+            "t,surge,sway,heave,roll,pitch,yaw,surge_velocity,sway_velocity,heave_velocity,angular_velocity_x,\
+             angular_velocity_y,angular_velocity_z"
+        )?;
+        for &t in &rec.t {
+            let m = r.at(t);
+            let (d, v, a, b) = (m.displacement, m.velocity, m.angles, m.body_rates);
+            let row = [d.x, d.y, d.z, a[0], a[1], a[2], v.x, v.y, v.z, b.x, b.y, b.z];
+            write!(f, "{}", num(t))?;
+            for x in row {
+                write!(f, ",{}", num(x))?;
+            }
+            writeln!(f)?;
+        }
+        f.flush()?;
+        written.push(path);
+    }
+    let plot = dir.join("waves.svg");
+    std::fs::write(&plot, svg(scene, w, sea, &rec, &rows, target))?;
+    written.push(plot);
+    Ok(written)
+}
+
+/// components.csv: the realised components as `kind = "table"` reads them
+/// (Hz, m, deg, deg), after comment lines that state the formula, the
+/// phase origin, the time origin, the water the wave numbers are of, and
+/// the rules for moving the origins (docs/guide/waves.md "One sea").
+fn write_components(f: &mut impl std::io::Write, scene: &Scene, sea: &Sea) -> std::io::Result<()> {
+    let s = sea.settings();
+    let [x0, y0] = s.origin;
+    let depth = match s.depth {
+        Some(d) => format!("depth {} m", num(d)),
+        None => "deep water".to_string(),
+    };
+    writeln!(f, "# the sea of scene '{}' as riser realises it: [waves] kind = \"table\" reads it back", scene.name)?;
+    writeln!(
+        f,
+        "# eta(x, y, t) = sum amplitude cos(k ((x - x0) cos(direction) + (y - y0) sin(direction)) - 2 pi frequency t \
+         + phase); frequency Hz, amplitude m, phase deg, direction deg (of travel, from +x towards +y)"
+    )?;
+    writeln!(
+        f,
+        "# phase origin (x0, y0) = ({}, {}) m in the scene frame (the hang-off's mean position is (0, 0)): a scene \
+         reading this table gives [waves] origin = [{}, {}]",
+        num(x0),
+        num(y0),
+        num(x0),
+        num(y0)
+    )?;
+    writeln!(
+        f,
+        "# t = 0 is the start of the run (riser run; the FMU's simulation time); the table holds the sea without its \
+         ramp ({} s from the run's start)",
+        num(s.ramp.duration)
+    )?;
+    writeln!(
+        f,
+        "# k from omega^2 = g k tanh(k d): {depth}, g = {} m/s^2 (the same water gives the same sea everywhere; \
+         other water only at the phase origin)",
+        num(s.gravity)
+    )?;
+    writeln!(
+        f,
+        "# another phase origin (x0', y0'): phase' = phase + k ((x0' - x0) cos(direction) + (y0' - y0) sin(direction)) \
+         (rad); another time origin t' = t - t0: phase' = phase - 2 pi frequency t0 (rad)"
+    )?;
     writeln!(f, "frequency,amplitude,phase,direction")?;
     for c in sea.components() {
         writeln!(
@@ -369,10 +474,7 @@ fn write_outputs(dir: &Path, scene: &Scene, w: &WavesSpec, sea: &Sea, duration: 
             num(c.direction.to_degrees())
         )?;
     }
-    f.flush()?;
-    let plot = dir.join("waves.svg");
-    std::fs::write(&plot, svg(scene, w, sea, &rec, &rows, target))?;
-    Ok(vec![elevation, spectrum, table, plot])
+    Ok(())
 }
 
 /// Two panels: the elevation at the phase origin over the first stretch of

@@ -35,9 +35,12 @@ INPUTS = ("heave", "surge", "sway", "heave_velocity", "surge_velocity", "sway_ve
 LOG_CATEGORIES = ["logStatusWarning", "logStatusDiscard", "logStatusError"]
 
 
-def motion_signal(motion: dict[str, float], duration: float, h: float) -> np.ndarray:
+def motion_signal(motion: dict[str, float], duration: float, h: float,
+                  vessel: np.ndarray | None = None) -> np.ndarray:
     """The FMU's six inputs at t_k = k h, k = 0 .. duration/h, as fmpy's input
-    table (see the formula in riser_sweep.spec's docstring)."""
+    table (see the formula in riser_sweep.spec's docstring); with `vessel` (the
+    vessel's motion on its RAOs at the same times, riser_sweep.raos) its twelve,
+    the harmonic motion added to it."""
     n = int(round(duration / h))
     t = np.arange(n + 1) * h
     ramp = motion["ramp"]
@@ -59,7 +62,15 @@ def motion_signal(motion: dict[str, float], duration: float, h: float) -> np.nda
         c = np.cos(w * t + p)
         sig[d] = a * r * s
         sig[f"{d}_velocity"] = a * (dr * s + r * w * c)
-    return sig
+    if vessel is None:
+        return sig
+    from riser_sweep.raos import VESSEL_INPUTS
+
+    both = np.zeros(n + 1, dtype=[("time", np.float64)] + [(k, np.float64) for k in VESSEL_INPUTS])
+    both["time"] = t
+    for k in VESSEL_INPUTS:
+        both[k] = vessel[k] + (sig[k] if k in INPUTS else 0.0)
+    return both
 
 
 # The relative resolution of the line's energy in the balance: a still line closed to round-off
@@ -150,7 +161,9 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
             start_values["scene"] = _scene_path(workdir or tempfile.gettempdir(), name, text)
         h = job["communication_step"]
         duration = job["duration"]
-        signal = motion_signal(job["motion"], duration, h)
+        if job.get("vessel_error"):
+            return fail(job["vessel_error"])
+        signal = motion_signal(job["motion"], duration, h, job.get("vessel"))
         fmu = instantiate_fmu(unzipdir, md, "CoSimulation", debug_logging=True, logger=logger)
         fmu.setDebugLogging(True, LOG_CATEGORIES)
         state: dict[str, Any] = {"time": 0.0, "stopped": ""}

@@ -19,6 +19,9 @@ Format (every section but ``[run]`` optional; unknown keys are errors)::
     heave_period = 20.0           # s     amplitude 0, the default, leaves that input at 0)
     heave_phase = 0.0             # deg
     ramp = 20.0                   # s: the amplitude grows over this time (0: abrupt start)
+    raos = "vessel_raos.csv"      # the vessel's RAO table, relative to this file: each case's
+                                  # vessel moves on it in the case's own sea (riser_sweep.raos),
+                                  # plus the harmonic motion above
 
     [run]
     duration = 100.0              # s (required)
@@ -79,7 +82,14 @@ and S is |total_energy|.
 Without ``outputs.window`` each case's statistics are over its steady window,
 as ``riser run``'s: from ``ramp`` plus the longest period of the directions
 that move to the end of the run (the whole run if that leaves nothing, or
-nothing moves).
+nothing moves); with ``raos``, no earlier than the waves' ramp plus their
+peak period.
+
+With ``motion.raos`` the FMU's twelve inputs (the reference point's
+displacement and velocity, the angles and the angular velocity) carry the
+vessel's motion on its RAOs in the case's sea, computed on the client by
+``riser waves`` (riser_sweep.raos; the riser binary from $RISER_BIN, the
+PATH or target/release/riser); the harmonic heave, surge and sway add to it.
 """
 
 from __future__ import annotations
@@ -176,6 +186,7 @@ class Spec:
     reduce: dict[str, list[str]]
     timeseries: bool
     description: str = ""
+    raos: str | None = None               # the RAO table's absolute path ([motion] raos)
     scene_files: dict[str, tuple[str, str]] = field(default_factory=dict)  # value -> (file name, text)
     cases: list[Case] = field(default_factory=list)
 
@@ -204,6 +215,7 @@ class Spec:
             "fixed": {k: _canonical(v) for k, v in sorted(self.fixed.items())},
             "scene_files": {k: hashlib.sha256(t.encode()).hexdigest() for k, (_, t) in self.scene_files.items()},
             "motion": {k: repr(v) for k, v in sorted(self.motion.items()) if k not in self.columns},
+            **({"raos": hashlib.sha256(Path(self.raos).read_bytes()).hexdigest()} if self.raos else {}),
             "duration": repr(self.duration),
             "communication_step": repr(self.communication_step),
             "window": [repr(self.window[0]), repr(self.window[1])] if self.window else "steady",
@@ -219,25 +231,43 @@ class Spec:
         for k, v in case.params:
             (motion if k in MOTION_KEYS else start_values)[k] = v
         scene = start_values.get("scene")
+        window = self.window or steady_window(motion, self.duration)
+        vessel, vessel_error = None, ""
+        if self.raos:
+            from riser_sweep.raos import RaoError, vessel_motion
+
+            where = str(scene)
+            if scene in self.scene_files and not Path(where).is_absolute():
+                where = str(self.path.resolve().parent / where)
+            params = {k: v for k, v in start_values.items() if k != "scene"}
+            try:
+                vessel, info = vessel_motion(where, params, self.raos, self.duration, self.communication_step)
+                if not self.window:
+                    window = steady_window(motion, self.duration, info["ramp"] + info["tp"])
+            except RaoError as e:
+                vessel_error = f"motion.raos: {e}"
         return {
             "start_values": start_values,
             "scene_file": self.scene_files.get(scene) if isinstance(scene, str) else None,
             "motion": motion,
+            "vessel": vessel,
+            "vessel_error": vessel_error,
             "duration": self.duration,
             "communication_step": self.communication_step,
             "timeout": self.timeout,
-            "window": self.window or steady_window(motion, self.duration),
+            "window": window,
             "record": self.recorded,
             "reduce": self.reduce,
             "timeseries": self.timeseries,
         }
 
 
-def steady_window(motion: dict[str, float], duration: float) -> tuple[float, float]:
+def steady_window(motion: dict[str, float], duration: float, sea_settled: float = 0.0) -> tuple[float, float]:
     """The steady window of a case (s), as `riser run`'s: from the ramp plus the longest
-    period of the directions that move to the end; the whole run if that leaves nothing."""
+    period of the directions that move to the end, and no earlier than `sea_settled` (the
+    waves' ramp plus their peak period, with RAOs); the whole run if that leaves nothing."""
     periods = [motion[f"{d}_period"] for d in DIRECTIONS if motion.get(f"{d}_amplitude", 0.0) != 0.0]
-    t0 = motion.get("ramp", 0.0) + max(periods, default=0.0)
+    t0 = max(motion.get("ramp", 0.0) + max(periods, default=0.0), sea_settled)
     return (t0, duration) if t0 < duration else (0.0, duration)
 
 
@@ -374,8 +404,17 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
     section = raw.get("motion", {})
     if not isinstance(section, dict):
         raise SpecError("motion: expected a table")
-    _unknown("motion", section, MOTION_KEYS)
+    _unknown("motion", section, MOTION_KEYS + ("raos",))
+    raos = None
     for k, v in section.items():
+        if k == "raos":
+            if not isinstance(v, str):
+                raise SpecError(f"motion.raos = {v!r}: expected the path of an RAO table (CSV)")
+            p = Path(v) if Path(v).is_absolute() else base / v
+            if not p.is_file():
+                raise SpecError(f"motion.raos = {v!r}: {p} is not a file")
+            raos = str(p.resolve())
+            continue
         motion[k] = coerce(f"motion.{k}", "Real", v)
 
     # run
@@ -416,7 +455,7 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
             raise SpecError(f"{where}: {name} is swept twice (also {seen[name]})")
         if name in fixed:
             raise SpecError(f"{where}: {name} is also fixed in [parameters]")
-        if name in section_motion:
+        if name in section_motion or name == "raos":
             raise SpecError(f"{where}: {name} is also fixed in [motion]")
         if name == "scene" and "scene" in raw:
             raise SpecError(f"{where}: scene is also the top-level `scene`")
@@ -493,7 +532,7 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
 
     spec = Spec(path=path, fmu=fmu_path, variables=variables, fixed=fixed, motion=motion, duration=duration,
                 communication_step=h, timeout=timeout, mode=mode, axes=axes, window=window, reduce=reduce,
-                timeseries=timeseries, description=description)
+                timeseries=timeseries, description=description, raos=raos)
     _resolve_scenes(spec, base, "scene" in raw)
     spec.cases = _expand(spec)
     return spec

@@ -1,0 +1,126 @@
+//! `riser statics SYSTEM [--pose surge,sway,heave,roll,pitch,yaw]`: the
+//! statics of a system of lines on one vessel (issue 49,
+//! docs/guide/systems.md), its JSON and text summary.
+
+use riser::scene::system::SystemScene;
+use riser::sim::system::{SystemStatics, solve_system};
+
+/// `--pose`'s six numbers (m, rad); none: the neutral pose.
+pub fn parse_pose(pose: Option<&str>) -> Result<[f64; 6], String> {
+    let Some(text) = pose else { return Ok([0.0; 6]) };
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|t| t.trim().parse::<f64>().map_err(|_| format!("--pose: '{}' is not a number", t.trim())))
+        .collect::<Result<_, _>>()?;
+    let Ok(p) = <[f64; 6]>::try_from(v.as_slice()) else {
+        return Err(format!(
+            "--pose: {} number(s); it takes six: surge,sway,heave (m),roll,pitch,yaw (rad)",
+            v.len()
+        ));
+    };
+    if let Some(x) = p.iter().find(|x| !x.is_finite()) {
+        return Err(format!("--pose: {x} is not finite"));
+    }
+    if let Some(a) = p[3..].iter().find(|a| a.abs() >= std::f64::consts::FRAC_PI_2) {
+        return Err(format!("--pose: an angle of {a} rad: the angles are radians, below pi/2"));
+    }
+    Ok(p)
+}
+
+fn v3(v: &riser::math::V3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// The JSON of `riser statics SYSTEM --json` (docs/guide/systems.md).
+pub fn system_json(sys: &SystemScene, st: &SystemStatics, wall: f64) -> serde_json::Value {
+    let lines: Vec<serde_json::Value> = st
+        .lines
+        .iter()
+        .map(|l| {
+            let mut row = serde_json::json!({
+                "name": l.name,
+                "tension_from": l.tension_from,
+                "tension_to": l.tension_to,
+                "min_tension": l.min_tension,
+                "touchdown_s": l.touchdown_s,
+                "anchor_force": v3(&l.anchor_force),
+                "anchor_uplift_angle": l.anchor_uplift_angle,
+                "fairlead": v3(&l.fairlead),
+                "iterations": l.report.iterations,
+                "residual": l.report.residual,
+            });
+            if let Some(o) = row.as_object_mut() {
+                o.insert("vessel_end".into(), if l.vessel_end == riser::scene::system::VesselEnd::From { "from" } else { "to" }.into());
+            }
+            row
+        })
+        .collect();
+    let k: Vec<Vec<f64>> = (0..6).map(|i| (0..6).map(|j| st.stiffness[(i, j)]).collect()).collect();
+    serde_json::json!({
+        "scene": sys.name,
+        "system": true,
+        "pose": st.pose,
+        "top_force": v3(&st.force),
+        "top_moment": v3(&st.moment),
+        "lines": lines,
+        "points": Vec::<serde_json::Value>::new(),
+        "stiffness": k,
+        "wall_time": wall,
+    })
+}
+
+/// `riser statics` of a system file.
+pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&str>) -> Result<(), String> {
+    if !set.is_empty() {
+        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
+    }
+    if out {
+        return Err("--out: not yet for a system scene; --json has every line's numbers".to_string());
+    }
+    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let pose = parse_pose(pose)?;
+    let t0 = std::time::Instant::now();
+    let st = solve_system(&sys, &pose, true)?;
+    let wall = t0.elapsed().as_secs_f64();
+    if json {
+        outln!("{}", system_json(&sys, &st, wall));
+        return Ok(());
+    }
+    let kn = |v: f64| v / 1e3;
+    outln!("riser statics: system '{}' ({} lines), {:.1} ms", sys.name, sys.lines.len(), wall * 1e3);
+    outln!(
+        "  pose            surge {} m, sway {} m, heave {} m, roll {} rad, pitch {} rad, yaw {} rad",
+        pose[0],
+        pose[1],
+        pose[2],
+        pose[3],
+        pose[4],
+        pose[5]
+    );
+    let (f, m) = (st.force, st.moment);
+    outln!("  force on vessel ({:.3}, {:.3}, {:.3}) kN", kn(f.x), kn(f.y), kn(f.z));
+    outln!("  moment          ({:.3}, {:.3}, {:.3}) kN m about the reference point", kn(m.x), kn(m.y), kn(m.z));
+    for l in &st.lines {
+        let td = l.touchdown_s.map_or("none".to_string(), |s| format!("{s:.2} m"));
+        outln!(
+            "  line {:<10} tension from {:.3} kN, to {:.3} kN, min {:.3} kN, touchdown {td}, anchor uplift {:.2} deg",
+            l.name,
+            kn(l.tension_from),
+            kn(l.tension_to),
+            kn(l.min_tension),
+            l.anchor_uplift_angle
+        );
+    }
+    let k = &st.stiffness;
+    outln!(
+        "  stiffness       surge {:.3} kN/m, sway {:.3} kN/m, heave {:.3} kN/m, roll {:.4e} N m/rad, pitch {:.4e} N \
+         m/rad, yaw {:.4e} N m/rad (diagonal; --json for the 6x6)",
+        kn(k[(0, 0)]),
+        kn(k[(1, 1)]),
+        kn(k[(2, 2)]),
+        k[(3, 3)],
+        k[(4, 4)],
+        k[(5, 5)]
+    );
+    Ok(())
+}
