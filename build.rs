@@ -283,14 +283,14 @@ fn main() {
     // changes only in fmi2DoStep. <InitialUnknowns>: the knowns of
     // Initialization Mode are the inputs and the variables with
     // initial="exact" (the parameters), and the outputs depend on them all:
-    // the static state of the parameters, its hang-off moved (and started
-    // moving) by the inputs. fmi2GetDirectionalDerivative's stiffness of the
-    // loads against the pose (a slow move, the line in equilibrium,
-    // docs/theory.md §8.3) is in no mode FMI 2.0's ∂h/∂v_known, whose pattern
-    // the dependencies give (zero between steps; at initialisation the first
-    // element's stretch): the standard has no rule that the dependencies list
-    // the knowns a derivative is asked for, and listing the pose would declare
-    // the false feedthrough again. The stiffness is an extension, asked by name.
+    // the statics of the parameters with the hang-off where the inputs put
+    // it (docs/theory.md §7.7). fmi2GetDirectionalDerivative's stiffness of
+    // the loads against the pose (a slow move, the line in equilibrium, §8.3)
+    // is that derivative in Initialization Mode; between steps FMI 2.0's
+    // ∂h/∂v_known is zero, as declared: the standard has no rule that the
+    // dependencies list the knowns a derivative is asked for, and listing the
+    // pose would declare a false feedthrough. There it is an extension, asked
+    // by name.
     let outputs: Vec<usize> =
         vars.iter().enumerate().filter(|(_, v)| v.causality == "output").map(|(i, _)| i).collect();
     for &i in &outputs {

@@ -126,7 +126,7 @@ pub fn is_system_source(name_or_path: &str) -> bool {
     std::fs::read_to_string(name_or_path).is_ok_and(|t| is_system_text(&t))
 }
 
-/// True if `s` is an identifier: [A-Za-z_][A-Za-z0-9_]*.
+/// True if `s` is an identifier: `[A-Za-z_][A-Za-z0-9_]*`.
 pub fn is_identifier(s: &str) -> bool {
     let mut c = s.chars();
     c.next().is_some_and(|f| f.is_ascii_alphabetic() || f == '_') && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
@@ -159,10 +159,12 @@ impl SystemScene {
                 None => return Err(parse_error(source, format!("line_type[{i}]: missing field `name`"))),
             };
             let model = match t.remove("model") {
-                Some(v) => v.try_into::<Model>().map_err(|e| {
-                    parse_error(source, format!("line_type.{name}.model: {e} (\"rod\" or \"cable\")"))
-                })?,
-                None => return Err(parse_error(source, format!("line_type.{name}: missing field `model` (rod or cable)"))),
+                Some(v) => v
+                    .try_into::<Model>()
+                    .map_err(|e| parse_error(source, format!("line_type.{name}.model: {e} (\"rod\" or \"cable\")")))?,
+                None => {
+                    return Err(parse_error(source, format!("line_type.{name}: missing field `model` (rod or cable)")));
+                }
             };
             if t.contains_key("length") {
                 errs.push(FieldError {
@@ -171,9 +173,8 @@ impl SystemScene {
                 });
             }
             t.insert("length".to_string(), toml::Value::Float(1.0));
-            let line: Line = toml::Value::Table(t)
-                .try_into()
-                .map_err(|e| parse_error(source, format!("line_type.{name}: {e}")))?;
+            let line: Line =
+                toml::Value::Table(t).try_into().map_err(|e| parse_error(source, format!("line_type.{name}: {e}")))?;
             line_types.push(LineType { name, model, line });
         }
         let mut env = raw.environment.unwrap_or_default();
@@ -181,7 +182,8 @@ impl SystemScene {
         let environment: Environment =
             toml::Value::Table(env).try_into().map_err(|e| parse_error(source, format!("environment: {e}")))?;
         let analysis_table = raw.analysis.unwrap_or_default();
-        for (key, whose) in [("model", "each [[line_type]]'s `model`"), ("n_elements", "each [[line]]'s `n_elements`")] {
+        for (key, whose) in [("model", "each [[line_type]]'s `model`"), ("n_elements", "each [[line]]'s `n_elements`")]
+        {
             if analysis_table.contains_key(key) {
                 errs.push(FieldError {
                     field: format!("analysis.{key}"),
@@ -189,9 +191,8 @@ impl SystemScene {
                 });
             }
         }
-        let analysis: Analysis = toml::Value::Table(analysis_table)
-            .try_into()
-            .map_err(|e| parse_error(source, format!("analysis: {e}")))?;
+        let analysis: Analysis =
+            toml::Value::Table(analysis_table).try_into().map_err(|e| parse_error(source, format!("analysis: {e}")))?;
         let sys = SystemScene {
             name: raw.name,
             description: raw.description,
@@ -289,7 +290,11 @@ impl SystemScene {
             err("line".into(), "a system needs at least one [[line]]".into());
         }
         let mut seen: Vec<(&str, &str)> = Vec::new();
-        let items = self.points.iter().map(|p| ("point", p.name.as_str())).chain(self.lines.iter().map(|l| ("line", l.name.as_str())));
+        let items = self
+            .points
+            .iter()
+            .map(|p| ("point", p.name.as_str()))
+            .chain(self.lines.iter().map(|l| ("line", l.name.as_str())));
         for (what, name) in items.chain(self.line_types.iter().map(|t| ("line_type", t.name.as_str()))) {
             if !is_identifier(name) {
                 err(
@@ -300,7 +305,10 @@ impl SystemScene {
             let clash = |(w, n): &&(&str, &str)| *n == name && ((*w == "line_type") == (what == "line_type"));
             if let Some((w, _)) = seen.iter().find(clash) {
                 let scope = if what == "line_type" { "line types" } else { "lines and points" };
-                err(format!("{what}.{name}"), format!("the name is already that of a {w}: names are unique over {scope}"));
+                err(
+                    format!("{what}.{name}"),
+                    format!("the name is already that of a {w}: names are unique over {scope}"),
+                );
             }
             seen.push((what, name));
         }
@@ -329,7 +337,10 @@ impl SystemScene {
         for (i, l) in self.lines.iter().enumerate() {
             if self.line_type(&l.line_type).is_none() {
                 let known: Vec<&str> = self.line_types.iter().map(|t| t.name.as_str()).collect();
-                err(format!("line.{}.type", l.name), format!("no [[line_type]] named '{}' (there are: {})", l.line_type, known.join(", ")));
+                err(
+                    format!("line.{}.type", l.name),
+                    format!("no [[line_type]] named '{}' (there are: {})", l.line_type, known.join(", ")),
+                );
                 line_ok[i] = false;
             }
             let mut kinds = Vec::new();
@@ -376,11 +387,17 @@ impl SystemScene {
                 } else if let Some(k) = f.strip_prefix("line.") {
                     (format!("line_type.{}.{k}", l.line_type), e.message)
                 } else if f.starts_with("anchor") {
-                    (format!("line.{}", l.name), format!("from point '{}' to point '{}': {}", vp.name, fp.name, e.message))
+                    (
+                        format!("line.{}", l.name),
+                        format!("from point '{}' to point '{}': {}", vp.name, fp.name, e.message),
+                    )
                 } else if f.starts_with("hang_off.offset") {
                     (format!("point.{}.position", vp.name), e.message)
                 } else if f == "seabed.z" && e.message.contains("anchor") {
-                    (format!("point.{}.position", fp.name), format!("in line {}'s frame at point '{}': {}", l.name, vp.name, e.message))
+                    (
+                        format!("point.{}.position", fp.name),
+                        format!("in line {}'s frame at point '{}': {}", l.name, vp.name, e.message),
+                    )
                 } else {
                     (e.field.clone(), e.message)
                 };

@@ -78,7 +78,7 @@ pub fn pose_rotation(pose: &[f64; 6]) -> M3 {
 /// The 6×6 stiffness on the vessel's reference point of a pinned vessel
 /// point at arm a = Rρ carrying force `force` (the line's on the vessel)
 /// with the line's translation stiffness `s` (17.3):
-/// K = [S, −S[a]×; [a]× S, −[F]×[a]× − [a]× S [a]×].
+/// `K = [S, −S[a]×; [a]× S, −[F]×[a]× − [a]× S [a]×]`.
 pub fn point_stiffness6(s: &M3, arm: &V3, force: &V3) -> M6 {
     let ax = skew(arm);
     let mut k = M6::zeros();
@@ -169,7 +169,7 @@ pub fn solve_system(sys: &SystemScene, pose: &[f64; 6], stiffness: bool) -> Resu
 }
 
 /// The pose turned by the small global rotation vector `dtheta` (rad) and
-/// moved by `du` (m): angles of exp([δθ]×) R (z-y-x), for finite differences
+/// moved by `du` (m): angles of `exp([δθ]×) R` (z-y-x), for finite differences
 /// of the stiffness's rotation columns.
 pub fn perturbed_pose(pose: &[f64; 6], du: V3, dtheta: V3) -> [f64; 6] {
     let r = crate::math::rigid::exp_so3(&dtheta) * pose_rotation(pose);

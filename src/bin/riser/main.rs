@@ -79,9 +79,8 @@ enum Command {
         /// Write shape.csv (S, x, y, z, tension) into this directory.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// The vessel's pose, surge,sway,heave (m),roll,pitch,yaw (rad), z-y-x: a system scene's lines re-solved
-        /// there (docs/guide/systems.md; systems only in this version).
-        #[arg(long, value_name = "SURGE,SWAY,HEAVE,ROLL,PITCH,YAW", allow_hyphen_values = true)]
+        /// A system scene's vessel pose: surge,sway,heave (m),roll,pitch,yaw (rad) (docs/guide/systems.md).
+        #[arg(long, value_name = "POSE", allow_hyphen_values = true)]
         pose: Option<String>,
     },
     /// Dynamic run from the static state with the vessel moving A sin(2πt/T) (heave, surge, sway, roll, pitch, yaw).

@@ -13,10 +13,7 @@ pub fn parse_pose(pose: Option<&str>) -> Result<[f64; 6], String> {
         .map(|t| t.trim().parse::<f64>().map_err(|_| format!("--pose: '{}' is not a number", t.trim())))
         .collect::<Result<_, _>>()?;
     let Ok(p) = <[f64; 6]>::try_from(v.as_slice()) else {
-        return Err(format!(
-            "--pose: {} number(s); it takes six: surge,sway,heave (m),roll,pitch,yaw (rad)",
-            v.len()
-        ));
+        return Err(format!("--pose: {} number(s); it takes six: surge,sway,heave (m),roll,pitch,yaw (rad)", v.len()));
     };
     if let Some(x) = p.iter().find(|x| !x.is_finite()) {
         return Err(format!("--pose: {x} is not finite"));
@@ -50,7 +47,10 @@ pub fn system_json(sys: &SystemScene, st: &SystemStatics, wall: f64) -> serde_js
                 "residual": l.report.residual,
             });
             if let Some(o) = row.as_object_mut() {
-                o.insert("vessel_end".into(), if l.vessel_end == riser::scene::system::VesselEnd::From { "from" } else { "to" }.into());
+                o.insert(
+                    "vessel_end".into(),
+                    if l.vessel_end == riser::scene::system::VesselEnd::From { "from" } else { "to" }.into(),
+                );
             }
             row
         })
@@ -87,7 +87,13 @@ pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&
         return Ok(());
     }
     let kn = |v: f64| v / 1e3;
-    outln!("riser statics: system '{}' ({} lines), {:.1} ms", sys.name, sys.lines.len(), wall * 1e3);
+    outln!("riser statics: system '{}' ({} lines)", sys.name, sys.lines.len());
+    let iterations = st.lines.iter().map(|l| l.report.iterations).max().unwrap_or(0);
+    let residual = st.lines.iter().map(|l| l.report.residual).fold(0.0, f64::max);
+    outln!(
+        "  Newton: at most {iterations} iterations a line, relative residual at most {residual:.2e}, {:.1} ms",
+        wall * 1e3
+    );
     outln!(
         "  pose            surge {} m, sway {} m, heave {} m, roll {} rad, pitch {} rad, yaw {} rad",
         pose[0],
