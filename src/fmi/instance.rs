@@ -136,12 +136,15 @@ pub struct Saved {
     /// time): a state restored into an instance started at another time
     /// keeps its own ramps (docs/theory.md §5.11).
     ramp_start: f64,
+    /// The bounded step's counters (`run_work`, `step_work`), so that a
+    /// restored state has the bounds of the run it came from.
+    work: [u64; 4],
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
 /// (12), the input history, the mode, the parameters' hash (2), the mean
 /// force over the last step (3), the ramps' start (1).
-const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 7;
+const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 11;
 
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
@@ -382,7 +385,9 @@ impl Instance {
     /// than once (libcosim reads outputs in initialisation mode, then sets
     /// inputs) see each message once.
     pub fn log_once(&mut self, status: Status, cat: Category, msg: &str) {
-        if self.said.iter().any(|m| m == msg) {
+        let delivered =
+            matches!(status, Status::Error | Status::Fatal) || (self.logging_on && self.categories[cat as usize]);
+        if !delivered || self.said.iter().any(|m| m == msg) {
             return;
         }
         self.said.push(msg.to_string());
@@ -576,7 +581,8 @@ impl Instance {
                 Category::Warning,
                 &format!(
                     "the vessel's inputs are not zero at the start: the line starts at rest in its static state \
-                     with the hang-off moved {:.3} m (a clamped end turned with the vessel)",
+                     with the hang-off moved {:.3} m (a start rotation turns the hang-off's position only: a \
+                     clamped end keeps its static direction)",
                     m.displacement.norm()
                 ),
             );
@@ -588,6 +594,10 @@ impl Instance {
         let (_, warnings) = crate::sim::design::Design::new(&scene).report(&scene, &sim.integrator, &sim.state);
         for w in &warnings {
             self.log_once(Status::Warning, Category::Warning, w);
+        }
+        if m.displacement.norm() > 0.0 || m.rotation != crate::math::M3::identity() {
+            // a start pose set in initialisation is the vessel's, not an absolute position
+            self.watch.forget_samples();
         }
         sim.start(m);
         sim.integrator.invalidate_tangent();
@@ -876,9 +886,6 @@ impl Instance {
             self.force_mean = impulse / h;
         }
         self.step_work = (sim.integrator.work(), bound);
-        if result.is_ok() {
-            self.run_work = (self.run_work.0 + self.step_work.0, self.run_work.1 + n);
-        }
         sim.integrator.set_work_bound(u64::MAX);
         let mut reached = sim.state.time;
         let mut outputs = sim.outputs();
@@ -895,6 +902,10 @@ impl Instance {
             result = Err(RiserError::NonFinite { name, time: at });
         }
         self.outputs = Some(outputs);
+        if result.is_ok() {
+            // a completed step's work counts towards the nominal (§7.6)
+            self.run_work = (self.run_work.0 + self.step_work.0, self.run_work.1 + n);
+        }
         match result {
             Ok(()) => {
                 self.warn_reach(t_end);
@@ -913,8 +924,9 @@ impl Instance {
                 let why = match e {
                     RiserError::Dynamics(crate::model::DynamicsError::WorkBound { .. }) => format!(
                         " (the bound is {WORK_FACTOR} times the step's nominal {nominal:.0} iterations, {n} internal \
-                         steps at {mean:.2} each on the run so far, plus {WORK_ALLOWANCE}: the step does not \
-                         converge at this time_step; the master may retry it shorter, from fmi2LastSuccessfulTime)"
+                         steps at w = {mean:.2}, the run's mean per internal step, at least 5, 25 before the first \
+                         step, plus {WORK_ALLOWANCE}: the step does not converge at this time_step; to go on, restore \
+                         a state saved before the step (fmi2SetFMUstate) and retry it shorter)"
                     ),
                     _ => String::new(),
                 };
@@ -1414,6 +1426,7 @@ impl Instance {
             hf_watch: self.hf_watch,
             params: Some(self.params.clone()),
             ramp_start: self.ramp_start,
+            work: [self.run_work.0, self.run_work.1, self.step_work.0, self.step_work.1],
         })
     }
 
@@ -1463,6 +1476,7 @@ impl Instance {
         self.history = s.history;
         self.watch.forget_samples();
         self.force_mean = s.force_mean;
+        (self.run_work, self.step_work) = ((s.work[0], s.work[1]), (s.work[2], s.work[3]));
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
         self.outputs = Some(sim.outputs());
@@ -1484,6 +1498,8 @@ impl Instance {
         extra.push((s.params_hash & 0xffff_ffff) as f64);
         extra.extend_from_slice(s.force_mean.as_slice());
         extra.push(s.ramp_start);
+        // the counters as exact integers (below 2^53 in any run)
+        extra.extend(s.work.iter().map(|&w| w as f64));
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
         out
@@ -1510,6 +1526,8 @@ impl Instance {
                 let params_hash = ((extra[n + 1] as u64) << 32) | (extra[n + 2] as u64 & 0xffff_ffff);
                 let force_mean = V3::new(extra[n + 3], extra[n + 4], extra[n + 5]);
                 let ramp_start = extra[n + 6];
+                let count = |x: f64| if (0.0..9.0e15).contains(&x) { x as u64 } else { 0 };
+                let work = [count(extra[n + 7]), count(extra[n + 8]), count(extra[n + 9]), count(extra[n + 10])];
                 Ok(Saved {
                     state,
                     inputs,
@@ -1520,6 +1538,7 @@ impl Instance {
                     hf_watch: None,
                     params: None,
                     ramp_start,
+                    work,
                 })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
@@ -1931,6 +1950,38 @@ mod tangent_tests {
         let back = later.deserialize(&bytes).unwrap();
         assert_eq!(later.restore(&back), Status::Ok);
         assert_eq!(first, run(&mut later, 30, 0.1, false));
+    }
+
+    /// A restored or deserialized state has the bounded step's counters of
+    /// the run it came from (docs/theory.md §7.6): the same bounds step by
+    /// step as the run it was saved from, whatever the instance did between.
+    #[test]
+    fn a_restored_state_has_its_run_s_step_bounds() {
+        let bounds = |i: &mut Instance| {
+            let vr = vr_of("step_newton_bound").unwrap();
+            let heave = crate::sim::Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+            (0..10)
+                .map(|_| {
+                    let t = i.sim.as_ref().unwrap().state.time;
+                    assert_eq!(i.set_real(vr_of("heave").unwrap(), heave.at(t).displacement.z), Status::Ok);
+                    assert_eq!(i.do_step(t, 0.1), Status::Ok);
+                    i.get_real(vr).unwrap()
+                })
+                .collect::<Vec<f64>>()
+        };
+        let mut i = started(5, 0.05, 1e-8);
+        run(&mut i, 30, 0.1, false);
+        let saved = i.save().unwrap();
+        let first = bounds(&mut i);
+        // more steps in between, then back
+        run(&mut i, 40, 0.1, false);
+        assert_eq!(i.restore(&saved), Status::Ok);
+        assert_eq!(bounds(&mut i), first);
+        let bytes = i.serialize(&saved);
+        let mut other = started(5, 0.05, 1e-8);
+        let back = other.deserialize(&bytes).unwrap();
+        assert_eq!(other.restore(&back), Status::Ok);
+        assert_eq!(bounds(&mut other), first);
     }
 
     /// A saved state continues bit for bit though the tangent is carried:

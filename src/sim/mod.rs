@@ -296,11 +296,13 @@ impl Simulation {
     /// Solves the statics again with the hang-off displaced by `d` (m,
     /// global; the FMU's inputs not zero at the start): the run then starts
     /// at rest in that equilibrium, not from the scene's with its hang-off
-    /// node alone moved (docs/theory.md §7.7). A flex joint keeps the
-    /// scene's static frame.
+    /// node alone moved (docs/theory.md §7.7). A flex joint's static frame
+    /// is that state's end frame (its spring at rest there).
     pub fn move_statics(&mut self, scene: &Scene, d: V3) -> Result<(), RiserError> {
         let statics = crate::sim::report::solve_scene_moved(scene, &self.statics, d)?;
         self.state = State::at_rest(statics.solution.config.clone(), self.state.time);
+        // a flex joint's spring at rest in that state
+        self.integrator.set_static_frame(&statics.solution.config);
         self.statics = statics;
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
         Ok(())
