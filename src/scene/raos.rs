@@ -141,51 +141,18 @@ impl RaoTable {
 
 /// Parses an RAO table (see the module's doc); errors name the line (1-based) and the column.
 pub fn parse_raos(text: &str) -> Result<RaoTable, String> {
-    let mut header: Option<[usize; 5]> = None;
-    let mut width = 0;
+    let header = "dof,frequency,direction,amplitude,phase: -, Hz, deg, m/m or rad/m, deg";
+    let lines = super::waves::named_rows(text, &COLUMNS, "an RAO table", header)?;
     // per dof: (frequency, direction, amplitude, phase, line)
     let mut rows: [Vec<Row>; 6] = Default::default();
-    for (i, line) in text.lines().enumerate() {
-        let n = i + 1;
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let Some(cols) = header else {
-            let mut cols = [usize::MAX; 5];
-            for (j, cell) in cells.iter().enumerate() {
-                match COLUMNS.iter().position(|c| c.eq_ignore_ascii_case(cell)) {
-                    Some(k) if cols[k] == usize::MAX => cols[k] = j,
-                    Some(_) => return Err(format!("line {n}: column '{cell}' appears twice in the header")),
-                    None => {
-                        return Err(format!(
-                            "line {n}: '{cell}' is not a column of an RAO table (the header is \
-                             dof,frequency,direction,amplitude,phase: -, Hz, deg, m/m or rad/m, deg)"
-                        ));
-                    }
-                }
-            }
-            if let Some(k) = cols.iter().position(|c| *c == usize::MAX) {
-                return Err(format!(
-                    "line {n}: the header lacks the column '{}' (expected dof,frequency,direction,amplitude,phase)",
-                    COLUMNS[k]
-                ));
-            }
-            header = Some(cols);
-            width = cells.len();
-            continue;
-        };
-        if cells.len() != width {
-            return Err(format!("line {n}: {} values, but the header has {width} columns", cells.len()));
-        }
-        let name = cells[cols[0]];
+    for (n, cells) in lines {
+        let name = cells[0];
         let dof = DOFS.iter().position(|d| d.eq_ignore_ascii_case(name)).ok_or_else(|| {
             format!("line {n}, column 'dof': '{name}' is not one of surge, sway, heave, roll, pitch, yaw")
         })?;
         let mut v = [0.0; 4];
         for (k, col) in COLUMNS[1..].iter().enumerate() {
-            let cell = cells[cols[k + 1]];
+            let cell = cells[k + 1];
             let x: f64 = cell.parse().map_err(|_| format!("line {n}, column '{col}': '{cell}' is not a number"))?;
             if !x.is_finite() {
                 return Err(format!("line {n}, column '{col}': {x} is not finite"));
@@ -207,9 +174,6 @@ pub fn parse_raos(text: &str) -> Result<RaoTable, String> {
             ));
         }
         rows[dof].push((f, d, a, p, n));
-    }
-    if header.is_none() {
-        return Err("no header: expected the line dof,frequency,direction,amplitude,phase".into());
     }
     if rows.iter().all(Vec::is_empty) {
         return Err("the table has a header but no RAOs".into());

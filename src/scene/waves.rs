@@ -282,7 +282,39 @@ const TABLE_COLUMNS: [&str; 4] = ["frequency", "amplitude", "phase", "direction"
 /// the header (the four columns, in any order), then one component per
 /// line. Errors name the line (1-based) and the column.
 pub fn parse_table(text: &str) -> Result<Vec<TableRow>, String> {
-    let mut header: Option<[usize; 4]> = None;
+    let header = "frequency,amplitude,phase,direction: Hz, m, deg, deg";
+    let lines = named_rows(text, &TABLE_COLUMNS, "a components table", header)?;
+    let mut rows = Vec::new();
+    for (n, cells) in lines {
+        let mut v = [0.0; 4];
+        for (k, name) in TABLE_COLUMNS.iter().enumerate() {
+            let cell = cells[k];
+            let x: f64 = cell.parse().map_err(|_| format!("line {n}, column '{name}': '{cell}' is not a number"))?;
+            let r = ranges::of_field(&format!("waves.table.{name}")).expect("the table's columns have ranges");
+            r.check(x).map_err(|m| format!("line {n}, column '{name}': {m}"))?;
+            v[k] = x;
+        }
+        rows.push(TableRow { frequency: v[0], amplitude: v[1], phase: v[2], direction: v[3] });
+    }
+    if rows.is_empty() {
+        return Err("the table has a header but no components".into());
+    }
+    Ok(rows)
+}
+
+/// The data rows of a CSV table with a named header (a components table,
+/// an RAO table): `#` comments and blank lines skipped, then the header
+/// (`names`, in any order, any case), then rows of as many cells; each row
+/// with its line number (1-based) and its cells in `names`' order. Errors
+/// name the line and the column; `what` names the table, `header` its
+/// columns with their units.
+pub(crate) fn named_rows<'a, const N: usize>(
+    text: &'a str,
+    names: &[&str; N],
+    what: &str,
+    header: &str,
+) -> Result<Vec<(usize, [&'a str; N])>, String> {
+    let mut columns: Option<[usize; N]> = None;
     let mut width = 0;
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -292,52 +324,31 @@ pub fn parse_table(text: &str) -> Result<Vec<TableRow>, String> {
             continue;
         }
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let Some(cols) = header else {
-            let mut cols = [usize::MAX; 4];
+        let Some(cols) = columns else {
+            let mut cols = [usize::MAX; N];
             for (j, cell) in cells.iter().enumerate() {
-                match TABLE_COLUMNS.iter().position(|c| c.eq_ignore_ascii_case(cell)) {
+                match names.iter().position(|c| c.eq_ignore_ascii_case(cell)) {
                     Some(k) if cols[k] == usize::MAX => cols[k] = j,
                     Some(_) => return Err(format!("line {n}: column '{cell}' appears twice in the header")),
                     None => {
-                        return Err(format!(
-                            "line {n}: '{cell}' is not a column of a components table (the header is \
-                             frequency,amplitude,phase,direction: Hz, m, deg, deg)"
-                        ));
+                        return Err(format!("line {n}: '{cell}' is not a column of {what} (the header is {header})"));
                     }
                 }
             }
             if let Some(k) = cols.iter().position(|c| *c == usize::MAX) {
-                return Err(format!(
-                    "line {n}: the header lacks the column '{}' (expected frequency,amplitude,phase,direction: Hz, m, \
-                     deg, deg)",
-                    TABLE_COLUMNS[k]
-                ));
+                return Err(format!("line {n}: the header lacks the column '{}' (expected {header})", names[k]));
             }
-            header = Some(cols);
+            columns = Some(cols);
             width = cells.len();
             continue;
         };
         if cells.len() != width {
-            return Err(format!(
-                "line {n}: {} values, but the header has {width} columns (frequency, amplitude, phase, direction)",
-                cells.len()
-            ));
+            return Err(format!("line {n}: {} values, but the header has {width} columns ({header})", cells.len()));
         }
-        let mut v = [0.0; 4];
-        for (k, name) in TABLE_COLUMNS.iter().enumerate() {
-            let cell = cells[cols[k]];
-            let x: f64 = cell.parse().map_err(|_| format!("line {n}, column '{name}': '{cell}' is not a number"))?;
-            let r = ranges::of_field(&format!("waves.table.{name}")).expect("the table's columns have ranges");
-            r.check(x).map_err(|m| format!("line {n}, column '{name}': {m}"))?;
-            v[k] = x;
-        }
-        rows.push(TableRow { frequency: v[0], amplitude: v[1], phase: v[2], direction: v[3] });
+        rows.push((n, cols.map(|c| cells[c])));
     }
-    if header.is_none() {
-        return Err("no header: expected the line frequency,amplitude,phase,direction (Hz, m, deg, deg)".into());
-    }
-    if rows.is_empty() {
-        return Err("the table has a header but no components".into());
+    if columns.is_none() {
+        return Err(format!("no header: expected the line {header}"));
     }
     Ok(rows)
 }
