@@ -10,6 +10,7 @@ pub mod fatigue;
 pub mod modes;
 pub mod report;
 pub mod system;
+pub mod system_dynamics;
 pub mod vessel;
 
 use crate::loads::waves::{Sea, sea_of};

@@ -31,6 +31,7 @@ macro_rules! out {
 mod modes;
 mod svg;
 mod system;
+mod system_run;
 mod touchdown;
 mod waves;
 
@@ -245,6 +246,10 @@ struct RunCli {
     /// Steps a factorised Newton tangent may be reused for (0: a new one every step).
     #[arg(long, value_name = "STEPS", default_value_t = 20)]
     max_tangent_age: u32,
+    /// A system of lines ([[line]]): step its lines on this many threads (default: the
+    /// machine's cores, at most one a line); the answers are the same bits on any number.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
     /// Print one JSON summary instead of the text summary.
     #[arg(long)]
     json: bool,
@@ -829,23 +834,16 @@ fn window_min_mean_max(v: &[(f64, f64)], t0: f64, t1: f64) -> [f64; 3] {
     [min, if span > 0.0 { integral / span } else { sampled_mean }, max]
 }
 
-fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
-    use riser::model::Outputs;
-    use riser::sim::{Heave, Simulation};
-    let RunArgs {
-        motions,
-        raos,
-        heave_until,
-        ramp,
-        duration,
-        window,
-        shape_times,
-        max_tangent_age,
-        json,
-        out,
-        fatigue: fatigue_asked,
-        fatigue_series,
-    } = args;
+/// The checks of `riser run`'s times and motions that need no scene:
+/// duration, ramp, --heave-until, the window within the run, and angles in
+/// radians below π/2.
+fn check_run_times(
+    motions: &Motions,
+    ramp: Option<f64>,
+    heave_until: Option<f64>,
+    duration: f64,
+    window: Option<(f64, f64)>,
+) -> Result<(), String> {
     if !(duration.is_finite() && duration > 0.0) {
         return Err(format!("--duration must be a positive number of seconds, got {duration}"));
     }
@@ -864,6 +862,80 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     {
         return Err(format!("--window {t0},{t1} must lie within the run, 0 to {duration} s (--duration)"));
     }
+    if let Some(name) = [("roll", motions.roll), ("pitch", motions.pitch), ("yaw", motions.yaw)]
+        .into_iter()
+        .find_map(|(name, m)| m.filter(|(a, _)| a.abs() >= 0.5 * std::f64::consts::PI).map(|_| name))
+    {
+        return Err(format!(
+            "--{name}: an amplitude of 90 degrees (π/2 rad) or more; the angles are in radians (0.1 rad = 5.7 deg)"
+        ));
+    }
+    Ok(())
+}
+
+/// Each harmonic motion asked for as a ramped sine about its axis: (axis,
+/// its sine), axes 0-5 heave, surge, sway of the reference point, roll,
+/// pitch, yaw (`Motions::all`'s order).
+fn harmonic_axes(motions: &Motions, until: Option<f64>, ramp: f64) -> Vec<(usize, riser::sim::Heave)> {
+    motions
+        .all()
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|(amplitude, period)| (i, riser::sim::Heave { amplitude, period, until, ramp })))
+        .collect()
+}
+
+/// The vessel's motion at `t` (s): the harmonics `axes` summed, plus the
+/// motion on its RAOs; the body rates of the angles' rates in `order` (§14).
+fn vessel_motion_at(
+    axes: &[(usize, riser::sim::Heave)],
+    rao: Option<&riser::sim::vessel::RaoMotion>,
+    order: riser::math::rigid::RotationOrder,
+    t: f64,
+) -> riser::sim::vessel::VesselMotion {
+    let mut m = riser::sim::vessel::VesselMotion::default();
+    let mut rates = [0.0; 3];
+    for (i, h) in axes {
+        let one = h.at(t);
+        let (u, v) = (one.displacement.z, one.velocity.z);
+        match i {
+            0 => (m.displacement.z, m.velocity.z) = (u, v),
+            1 => (m.displacement.x, m.velocity.x) = (u, v),
+            2 => (m.displacement.y, m.velocity.y) = (u, v),
+            k => (m.angles[k - 3], rates[k - 3]) = (u, v),
+        }
+    }
+    if let Some(r) = rao {
+        let (u, v) = r.dofs_at(t);
+        m.displacement += riser::math::V3::new(u[0], u[1], u[2]);
+        m.velocity += riser::math::V3::new(v[0], v[1], v[2]);
+        for k in 0..3 {
+            m.angles[k] += u[3 + k];
+            rates[k] += v[3 + k];
+        }
+    }
+    m.body_rates = order.body_rates(m.angles, rates);
+    m
+}
+
+fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
+    use riser::model::Outputs;
+    use riser::sim::Simulation;
+    let RunArgs {
+        motions,
+        raos,
+        heave_until,
+        ramp,
+        duration,
+        window,
+        shape_times,
+        max_tangent_age,
+        json,
+        out,
+        fatigue: fatigue_asked,
+        fatigue_series,
+    } = args;
+    check_run_times(&motions, ramp, heave_until, duration, window)?;
     let mut scene = load(scene, set).map_err(|e| e.to_string())?;
     if let Some(path) = raos {
         scene.vessel = Some(riser::scene::raos::VesselSpec { raos: Some(path) });
@@ -917,25 +989,12 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
-    if let Some(name) = [("roll", motions.roll), ("pitch", motions.pitch), ("yaw", motions.yaw)]
-        .into_iter()
-        .find_map(|(name, m)| m.filter(|(a, _)| a.abs() >= 0.5 * std::f64::consts::PI).map(|_| name))
-    {
-        return Err(format!(
-            "--{name}: an amplitude of 90 degrees (π/2 rad) or more; the angles are in radians (0.1 rad = 5.7 deg)"
-        ));
-    }
     let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
     let ramp = ramp.unwrap_or(period);
     // each motion a ramped sine about its axis (heave, surge, sway of the
     // reference point; roll, pitch, yaw), summed; the hang-off follows the
     // vessel at its offset (theory §14)
-    let axes: Vec<(usize, Heave)> = motions
-        .all()
-        .into_iter()
-        .enumerate()
-        .filter_map(|(i, m)| m.map(|(amplitude, period)| (i, Heave { amplitude, period, until: heave_until, ramp })))
-        .collect();
+    let axes = harmonic_axes(&motions, heave_until, ramp);
     let vessel = sim.vessel;
     // the vessel on its RAOs in the sea's own components (theory §14.5)
     let rao = riser::sim::vessel::rao_motion(&scene, sim.sea.as_ref())?;
@@ -953,31 +1012,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 .to_string(),
         );
     }
-    let vessel_motion = |t: f64| {
-        let mut m = riser::sim::vessel::VesselMotion::default();
-        let mut rates = [0.0; 3];
-        for (i, h) in &axes {
-            let one = h.at(t);
-            let (u, v) = (one.displacement.z, one.velocity.z);
-            match i {
-                0 => (m.displacement.z, m.velocity.z) = (u, v),
-                1 => (m.displacement.x, m.velocity.x) = (u, v),
-                2 => (m.displacement.y, m.velocity.y) = (u, v),
-                k => (m.angles[k - 3], rates[k - 3]) = (u, v),
-            }
-        }
-        if let Some(r) = &rao {
-            let (u, v) = r.dofs_at(t);
-            m.displacement += riser::math::V3::new(u[0], u[1], u[2]);
-            m.velocity += riser::math::V3::new(v[0], v[1], v[2]);
-            for k in 0..3 {
-                m.angles[k] += u[3 + k];
-                rates[k] += v[3 + k];
-            }
-        }
-        m.body_rates = vessel.order.body_rates(m.angles, rates);
-        m
-    };
+    let vessel_motion = |t: f64| vessel_motion_at(&axes, rao.as_ref(), vessel.order, t);
     let motion_fn = |t: f64| vessel.hang_off(&vessel_motion(t));
     // what timeseries.csv adds: the hang-off's displacement and the vessel's six degrees of freedom
     let motion_row = |t: f64, h: &riser::model::HangOff| {
@@ -1552,6 +1587,7 @@ fn main() -> ExitCode {
                 window,
                 shape_times,
                 max_tangent_age,
+                threads,
                 json,
                 out,
                 fatigue,
@@ -1560,11 +1596,13 @@ fn main() -> ExitCode {
                 fatigue_series,
             } = *r;
             let motions = Motions { heave, surge, sway, roll, pitch, yaw };
+            let is_system = riser::scene::system::is_system_source(&scene);
             match fatigue_spec(fatigue, scf, dff) {
-                Ok(fatigue) => run(
-                    &scene,
-                    &set,
-                    RunArgs {
+                Ok(_) if threads.is_some() && !is_system => {
+                    Err("--threads: only for a system of lines ([[line]]); a single line runs on one".to_string())
+                }
+                Ok(fatigue) => {
+                    let args = RunArgs {
                         motions,
                         raos,
                         heave_until,
@@ -1577,8 +1615,9 @@ fn main() -> ExitCode {
                         out,
                         fatigue,
                         fatigue_series,
-                    },
-                ),
+                    };
+                    if is_system { system_run::run(&scene, &set, args, threads) } else { run(&scene, &set, args) }
+                }
                 Err(m) => Err(m),
             }
         }

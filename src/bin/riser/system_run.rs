@@ -1,0 +1,341 @@
+//! `riser run SYSTEM --surge A,T --heave A,T … --duration D`: the dynamics
+//! of a system of lines on one vessel under the vessel's prescribed motion
+//! (issue 49, docs/guide/systems.md, docs/theory.md §17.5), the lines on
+//! threads; its JSON, text summary and timeseries.csv.
+
+use riser::math::V3;
+use riser::scene::system::SystemScene;
+use riser::sim::system_dynamics::{LineRun, SystemRun};
+use std::io::Write;
+use std::path::Path;
+
+/// What a line's run keeps at each output time (not the whole `Outputs`:
+/// a three-hour run of many lines would hold gigabytes).
+#[derive(Clone, Copy)]
+struct Sample {
+    t: f64,
+    top_force: V3,
+    top_moment: V3,
+    vessel_force: V3,
+    vessel_moment: V3,
+    tension_from: f64,
+    tension_to: f64,
+    min_tension: f64,
+    /// Arc length of the touchdown from the line's vessel end, m (NaN: none).
+    touchdown_s: f64,
+    /// The line's energy balance residual, J, and what it exchanged (|work| summed), J.
+    balance: f64,
+    exchanged: f64,
+    /// |K| + |U| + |V|, J (the balance's resolution, as a single line's).
+    held: f64,
+}
+
+fn sample(l: &LineRun, e0: f64) -> Sample {
+    let o = l.sim.outputs();
+    let (tension_from, tension_to) = l.tensions(&o);
+    Sample {
+        t: o.time,
+        top_force: o.top_force,
+        top_moment: o.top_moment,
+        vessel_force: o.vessel_force,
+        vessel_moment: o.vessel_moment,
+        tension_from,
+        tension_to,
+        min_tension: o.min_tension,
+        touchdown_s: if o.touchdown_s < l.scene.line.length { o.touchdown_s } else { f64::NAN },
+        balance: o.energy_balance_residual(e0),
+        exchanged: o.work_top.abs() + o.work_hydro.abs() + o.work_anchor.abs() + o.work_seabed.abs(),
+        held: o.kinetic_energy.abs() + o.strain_energy.abs() + o.potential_energy.abs(),
+    }
+}
+
+/// `riser run` of a system file.
+pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usize>) -> Result<(), String> {
+    let crate::RunArgs {
+        motions,
+        raos,
+        heave_until,
+        ramp,
+        duration,
+        window,
+        shape_times,
+        max_tangent_age,
+        json,
+        out,
+        fatigue,
+        fatigue_series: _,
+    } = args;
+    let not_yet = |what: &str| Err(format!("{what}: not yet for a system scene ({})", "docs/guide/systems.md"));
+    if !set.is_empty() {
+        return not_yet("--set (edit the system's file)");
+    }
+    if raos.is_some() {
+        return not_yet("--raos (give the vessel's motion by --surge, --heave, ...)");
+    }
+    if fatigue.is_some() {
+        return not_yet("--fatigue (run the line as a single-line scene)");
+    }
+    if !shape_times.is_empty() {
+        return not_yet("--shape-times (timeseries.csv has every line's tensions)");
+    }
+    crate::check_run_times(&motions, ramp, heave_until, duration, window)?;
+    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let threads = match threads {
+        Some(0) => return Err("--threads must be at least 1".to_string()),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    }
+    .min(sys.lines.len());
+    let dt = sys.analysis.time_step;
+    let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
+    let wall0 = std::time::Instant::now();
+    let mut run = SystemRun::new(&sys)?;
+    for l in &mut run.lines {
+        l.sim.integrator.options_mut().max_tangent_age = max_tangent_age;
+    }
+    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
+    let ramp = ramp.unwrap_or(period);
+    let axes = crate::harmonic_axes(&motions, heave_until, ramp);
+    // the system's angles compose z-y-x (§17), as its lines' vessels do
+    let order = run.lines[0].sim.vessel.order;
+    let motion = |t: f64| crate::vessel_motion_at(&axes, None, order, t);
+    run.start(&motion(0.0));
+    let targets: Vec<f64> =
+        (1..=n_steps).map(|k| riser::sim::internal_step_end(0.0, duration, dt, k, n_steps)).collect();
+    let progress = std::sync::Mutex::new(crate::Progress::new(!json));
+    let steps_done = std::sync::atomic::AtomicU64::new(0);
+    let total = n_steps * run.lines.len() as u64;
+    let solve_start = std::time::Instant::now();
+    let per_line = run.for_each_line(threads, &|l: &mut LineRun| {
+        // the energy reference: the line's energy at the start
+        let e = l.sim.initial_energy;
+        let mut samples = Vec::with_capacity(targets.len() + 1);
+        samples.push(sample(l, e));
+        for &t in &targets {
+            if let Err(err) = l.advance_to(t, &motion) {
+                return (samples, Some(format!("line '{}': {err}", l.name)));
+            }
+            samples.push(sample(l, e));
+            let done = steps_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            // the bar is drawn by whichever thread finds it free
+            if let Ok(mut p) = progress.try_lock() {
+                p.update(done as f64 / total as f64 * duration, duration, done);
+            }
+        }
+        (samples, None)
+    });
+    progress.lock().unwrap_or_else(|p| p.into_inner()).finish();
+    let solve_wall = solve_start.elapsed().as_secs_f64();
+    // a failed line ends the system's record at its last good time
+    let failure = per_line.iter().find_map(|(_, f)| f.clone());
+    let n_kept = per_line.iter().map(|(s, _)| s.len()).min().unwrap_or(0);
+    let series: Vec<&[Sample]> = per_line.iter().map(|(s, _)| &s[..n_kept]).collect();
+    let times: Vec<f64> = series[0].iter().map(|s| s.t).collect();
+    let sum = |f: &dyn Fn(&Sample) -> V3| -> Vec<V3> {
+        (0..n_kept).map(|k| series.iter().map(|s| f(&s[k])).fold(V3::zeros(), |a, b| a + b)).collect()
+    };
+    let force = sum(&|s| s.top_force);
+    let moment = sum(&|s| s.top_moment);
+    let force_vessel = sum(&|s| s.vessel_force);
+    let moment_vessel = sum(&|s| s.vessel_moment);
+    let balance: Vec<f64> = (0..n_kept).map(|k| series.iter().map(|s| s[k].balance).sum()).collect();
+    let exchanged = (0..n_kept).map(|k| series.iter().map(|s| s[k].exchanged).sum::<f64>()).fold(0.0, f64::max);
+    let held = (0..n_kept).map(|k| series.iter().map(|s| s[k].held).sum::<f64>()).fold(0.0, f64::max);
+    let balance_max = balance.iter().map(|b| b.abs()).fold(0.0, f64::max);
+    let balance_scale = exchanged.max(riser::sim::report::ENERGY_RESOLUTION * held);
+    // the steady window: after the motion's ramp and one period, and the sea's
+    let scene0 = &run.lines[0].scene;
+    let sea = riser::loads::waves::ramp_and_period(scene0).map_err(|e| e.to_string())?;
+    let settled =
+        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
+    let current_grown = riser::loads::current_ramp(scene0).duration;
+    let ((w0, w1), short) = crate::steady_window(window, settled, current_grown, duration);
+    let mut warnings: Vec<String> = short.into_iter().collect();
+    if let Some(sea) = run.lines[0].sim.sea.as_ref() {
+        warnings.extend(riser::loads::waves::repeat_warning(sea.components(), duration));
+    }
+    let shortest = motions.all().into_iter().flatten().map(|m| m.1).filter(|p| *p > 0.0).reduce(f64::min);
+    if let Some(p) = shortest {
+        warnings.extend(riser::sim::design::steps_per_period_warning("the vessel's", p, dt));
+    }
+    let window_of = |v: &[(f64, f64)]| crate::window_min_mean_max(v, w0, w1);
+    let of = |f: &dyn Fn(usize) -> f64| -> Vec<(f64, f64)> { (0..n_kept).map(|k| (times[k], f(k))).collect() };
+    let xyz = |v: &[V3]| -> serde_json::Value {
+        serde_json::json!({
+            "x": window_of(&of(&|k| v[k].x)).map(finite),
+            "y": window_of(&of(&|k| v[k].y)).map(finite),
+            "z": window_of(&of(&|k| v[k].z)).map(finite),
+        })
+    };
+    let in_window = |t: f64| t >= w0 - 1e-9 && t <= w1 + 1e-9;
+    let mut rows = Vec::new();
+    for (l, s) in run.lines.iter().zip(&series) {
+        let from = window_of(&s.iter().map(|x| (x.t, x.tension_from)).collect::<Vec<_>>());
+        let to = window_of(&s.iter().map(|x| (x.t, x.tension_to)).collect::<Vec<_>>());
+        let min_tension = s.iter().filter(|x| in_window(x.t)).map(|x| x.min_tension).fold(f64::INFINITY, f64::min);
+        let td = s
+            .iter()
+            .any(|x| in_window(x.t) && !x.touchdown_s.is_nan())
+            .then(|| window_of(&s.iter().map(|x| (x.t, x.touchdown_s)).collect::<Vec<_>>()).map(finite));
+        if min_tension < 0.0 {
+            warnings.push(format!(
+                "line '{}' goes into compression in the steady window: the smallest axial force is {:.3} kN",
+                l.name,
+                min_tension / 1e3
+            ));
+        }
+        rows.push((l, from, to, min_tension, td));
+    }
+    crate::warn_all(&warnings);
+    let simulated = times.last().copied().unwrap_or(0.0);
+    if let Some(dir) = &out {
+        write_csv(dir, &run, &series, &times, [&force, &moment, &force_vessel, &moment_vessel], &balance, &motion)
+            .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+    }
+    let wall = wall0.elapsed().as_secs_f64();
+    let steps: u64 = run.lines.iter().map(|l| l.sim.state.steps).sum();
+    let iterations: u64 = run.lines.iter().map(|l| l.sim.state.newton_iterations).sum();
+    if json {
+        let lines: Vec<serde_json::Value> = rows
+            .iter()
+            .map(|(l, from, to, min_tension, td)| {
+                serde_json::json!({
+                    "name": l.name,
+                    "model": if l.scene.analysis.model == riser::scene::Model::Rod { "rod" } else { "cable" },
+                    "n_elements": l.scene.analysis.n_elements,
+                    "static_tension_from": l.static_tensions().0,
+                    "static_tension_to": l.static_tensions().1,
+                    "tension_from": from.map(finite),
+                    "tension_to": to.map(finite),
+                    "min_tension": finite(*min_tension),
+                    "touchdown_s": td,
+                })
+            })
+            .collect();
+        let v = serde_json::json!({
+            "scene": sys.name,
+            "system": true,
+            "motion": motions.describe(),
+            "time_step": dt,
+            "newton_tolerance": sys.analysis.newton_tolerance,
+            "duration": simulated,
+            "ramp": ramp,
+            "completed": failure.is_none(),
+            "error": failure,
+            "steady": {
+                "window": [w0, w1],
+                "top_force": xyz(&force),
+                "top_moment": xyz(&moment),
+                "vessel_force": xyz(&force_vessel),
+                "vessel_moment": xyz(&moment_vessel),
+                "lines": lines,
+            },
+            "energy_balance_residual": balance_max,
+            "energy_balance_relative": if balance_scale > 0.0 { balance_max / balance_scale } else { 0.0 },
+            "threads": threads,
+            "steps": steps,
+            "newton_iterations": iterations,
+            "wall_time": wall,
+            "solve_wall_time": solve_wall,
+            "real_time_factor": simulated / solve_wall.max(1e-12),
+        });
+        outln!("{v}");
+    } else {
+        let kn = |v: f64| v / 1e3;
+        outln!(
+            "riser run: system '{}' ({} lines, time step {} s), {}{}",
+            sys.name,
+            run.lines.len(),
+            dt,
+            motions.describe(),
+            if period > 0.0 { format!(", ramped over {ramp} s") } else { String::new() }
+        );
+        outln!("  steady window {w0} to {w1} s (min / mean / max):");
+        for (name, v) in [("force on vessel", &force), ("moment", &moment)] {
+            let unit = if name == "moment" { "kN m" } else { "kN" };
+            for (axis, f) in [("x", 0), ("y", 1), ("z", 2)] {
+                let w = window_of(&of(&|k| v[k][f]));
+                outln!("    {name:<16} {axis}  {:12.3} / {:12.3} / {:12.3} {unit}", kn(w[0]), kn(w[1]), kn(w[2]));
+            }
+        }
+        for (l, from, to, min_tension, td) in &rows {
+            let td = td
+                .map(|t| format!(", touchdown {:.1} to {:.1} m", t[0].unwrap_or(f64::NAN), t[2].unwrap_or(f64::NAN)))
+                .unwrap_or_default();
+            outln!(
+                "    line {:<12} tension from {:.3} / {:.3} / {:.3} kN, to {:.3} / {:.3} / {:.3} kN, min axial {:.3} \
+                 kN{td}",
+                l.name,
+                kn(from[0]),
+                kn(from[1]),
+                kn(from[2]),
+                kn(to[0]),
+                kn(to[1]),
+                kn(to[2]),
+                kn(*min_tension)
+            );
+        }
+        outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged (all lines)", balance_max, exchanged);
+        outln!(
+            "  {steps} steps over {} lines on {threads} thread(s), {:.2} Newton iterations/step; {:.2} s wall, {:.0}x \
+             real time",
+            run.lines.len(),
+            iterations as f64 / steps.max(1) as f64,
+            wall,
+            simulated / solve_wall.max(1e-12)
+        );
+        if let Some(dir) = &out {
+            outln!("  wrote {}", dir.join("timeseries.csv").display());
+        }
+    }
+    match failure {
+        Some(f) => Err(format!("the run stopped at t = {simulated} s: {f}")),
+        None => Ok(()),
+    }
+}
+
+fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
+}
+
+/// timeseries.csv of a system: t, the resultants (global and vessel frame),
+/// the vessel's motion, the energy balance residual, and per line
+/// `LINE.tension_from`, `LINE.tension_to`, `LINE.min_tension`.
+fn write_csv(
+    dir: &Path,
+    run: &SystemRun,
+    series: &[&[Sample]],
+    times: &[f64],
+    loads: [&[V3]; 4],
+    balance: &[f64],
+    motion: &dyn Fn(f64) -> riser::sim::vessel::VesselMotion,
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join("timeseries.csv"))?);
+    write!(f, "t")?;
+    for name in ["top_force", "top_moment", "vessel_force", "vessel_moment"] {
+        for a in ["x", "y", "z"] {
+            write!(f, ",{name}_{a}")?;
+        }
+    }
+    write!(f, ",surge,sway,heave,roll,pitch,yaw,energy_balance_residual")?;
+    for l in &run.lines {
+        write!(f, ",{0}.tension_from,{0}.tension_to,{0}.min_tension", l.name)?;
+    }
+    writeln!(f)?;
+    for (k, t) in times.iter().enumerate() {
+        write!(f, "{t}")?;
+        for v in loads {
+            write!(f, ",{},{},{}", v[k].x, v[k].y, v[k].z)?;
+        }
+        let m = motion(*t);
+        let d = m.displacement;
+        write!(f, ",{},{},{},{},{},{}", d.x, d.y, d.z, m.angles[0], m.angles[1], m.angles[2])?;
+        write!(f, ",{}", balance[k])?;
+        for s in series {
+            write!(f, ",{},{},{}", s[k].tension_from, s[k].tension_to, s[k].min_tension)?;
+        }
+        writeln!(f)?;
+    }
+    f.flush()
+}
