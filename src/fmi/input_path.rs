@@ -402,6 +402,14 @@ impl Path {
         }
     }
 
+    /// The motion at time s (clamped to the step) of a point at `offset` ρ in
+    /// the vessel frame other than the path's hang-off (another line's vessel
+    /// point in a system, §17.6), composed as [`Path::at`] composes the
+    /// hang-off's.
+    pub fn at_offset(&self, s: f64, offset: V3) -> HangOff {
+        Path { offset, ..*self }.at(s)
+    }
+
     /// The vessel reference point's acceleration at time s (clamped to the step), m/s².
     pub fn acceleration(&self, s: f64) -> V3 {
         let mut a = V3::zeros();

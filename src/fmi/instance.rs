@@ -139,6 +139,8 @@ pub struct Saved {
     /// The bounded step's counters (`run_work`, `step_work`), so that a
     /// restored state has the bounds of the run it came from.
     work: [u64; 4],
+    /// A system's other lines' states, in order (§17.6).
+    others: Vec<State>,
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
@@ -205,6 +207,9 @@ pub struct Instance {
     /// before the first step.
     hf_watch: Option<GrowthWatch>,
     sim: Option<Simulation>,
+    /// A system's lines beyond its first (`sim`), moved by the same vessel
+    /// path (docs/theory.md §17.6); empty for a single-line scene.
+    others: Vec<super::system::OtherLine>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
     /// at initialisation, copied without allocating in fmi2DoStep).
@@ -325,6 +330,7 @@ impl Instance {
             knob: None,
             hf_watch: None,
             sim: None,
+            others: Vec::new(),
             step_start: None,
             scene: None,
             outputs: None,
@@ -357,6 +363,7 @@ impl Instance {
         self.knob = None;
         self.hf_watch = None;
         self.sim = None;
+        self.others.clear();
         self.step_start = None;
         self.scene = None;
         self.outputs = None;
@@ -452,31 +459,39 @@ impl Instance {
         if start_time != self.start_time {
             // a static state built early (outputs read before) starts anew
             self.sim = None;
+            self.others.clear();
             self.outputs = None;
         }
         self.start_time = start_time;
         Status::Ok
     }
 
-    /// The scene with the parameters the master set.
+    /// The scene with the parameters the master set (a system's: its first line's).
     fn build_scene(&self) -> Result<Scene, String> {
+        Ok(self.build_scenes()?.swap_remove(0))
+    }
+
+    /// The scene with the parameters the master set: one for a single-line
+    /// scene; a system's lines, in order (its first the instance's line,
+    /// [`super::system::line_scenes`]).
+    fn build_scenes(&self) -> Result<Vec<Scene>, String> {
         let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
             Some((Value::String(s), _)) => s.clone(),
             _ => "catenary".into(),
         };
-        let mut scene = match Scene::builtin(&name) {
-            Some(s) => s,
+        let builtin = Scene::builtin(&name);
+        let path = match &builtin {
+            Some(_) => None,
             None => {
                 let p = PathBuf::from(&name);
-                let path = if p.is_absolute() {
+                Some(if p.is_absolute() {
                     p
                 } else if let Some(r) = &self.resources {
                     let in_res = r.join(&p);
                     if in_res.exists() { in_res } else { p }
                 } else {
                     p
-                };
-                Scene::load(path.to_str().unwrap_or(&name)).map_err(|e| e.to_string())?
+                })
             }
         };
         let mut sets = Vec::new();
@@ -495,10 +510,22 @@ impl Instance {
                 {
                     text = r.join(&text).to_string_lossy().into_owned();
                 }
-                sets.push(format!("{n}={text}"));
+                sets.push((&VARIABLES[i], text));
             }
         }
-        scene = scene.with_overrides(&sets).map_err(|e| match e {
+        let scene = match builtin {
+            Some(s) => s,
+            None => {
+                let path = path.as_deref().and_then(|p| p.to_str()).unwrap_or(&name).to_string();
+                if crate::scene::system::is_system_source(&path) {
+                    let sys = crate::scene::system::SystemScene::load(&path).map_err(|e| e.to_string())?;
+                    return super::system::line_scenes(&sys, &sets);
+                }
+                Scene::load(&path).map_err(|e| e.to_string())?
+            }
+        };
+        let sets: Vec<String> = sets.iter().map(|(v, text)| format!("{}={text}", v.name)).collect();
+        let scene = scene.with_overrides(&sets).map_err(|e| match e {
             // the master's parameters named as such, not as the command line's --set
             SceneError::Invalid(errs) if errs.iter().all(|f| f.field.starts_with("--set ")) => {
                 let list: Vec<String> =
@@ -507,7 +534,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok(scene)
+        Ok(vec![scene])
     }
 
     /// fmi2EnterInitializationMode.
@@ -532,10 +559,13 @@ impl Instance {
         if self.sim.is_some() {
             return Status::Ok;
         }
-        let scene = match self.build_scene() {
+        let mut scenes = match self.build_scenes() {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
+        // a system's lines beyond its first (docs/theory.md §17.6)
+        let other_scenes = scenes.split_off(1);
+        let scene = scenes.swap_remove(0);
         // the accuracy knob (docs/theory.md §16): the numerics for the design
         // motion (the master's is not known yet), those the master set kept;
         // read back through n_elements, time_step and newton_tolerance
@@ -601,7 +631,37 @@ impl Instance {
         }
         sim.start(m);
         sim.integrator.invalidate_tangent();
-        let outputs = sim.outputs();
+        let mut outputs = sim.outputs();
+        // a system's other lines, each in its statics at its vessel point
+        // moved as the first line's hang-off is (§17.6)
+        let mut others = Vec::with_capacity(other_scenes.len());
+        for line_scene in other_scenes {
+            let name = line_scene.name.clone();
+            let mut other = match Simulation::from_scene(&line_scene) {
+                Ok(s) => s,
+                Err(e) => return self.fail(&format!("initialisation failed: line '{name}': {e}")),
+            };
+            other.state.time = self.start_time;
+            let mi = self.history.start(coupling, &other.vessel, &inp);
+            if mi.displacement.norm() > 0.0
+                && let Err(e) = other.move_statics(&line_scene, mi.displacement)
+            {
+                return self.fail(&format!(
+                    "initialisation failed: line '{name}': the static state with its vessel point moved {:.3} m by \
+                     the vessel's inputs at the start: {e}",
+                    mi.displacement.norm()
+                ));
+            }
+            let design = crate::sim::design::Design::new(&line_scene);
+            for w in design.report(&line_scene, &other.integrator, &other.state).1 {
+                self.log_once(Status::Warning, Category::Warning, &format!("line '{name}': {w}"));
+            }
+            other.start(mi);
+            other.integrator.invalidate_tangent();
+            super::system::add_line(&mut outputs, &other.outputs());
+            let step_start = other.state.clone();
+            others.push(super::system::OtherLine { name, scene: line_scene, sim: other, step_start });
+        }
         // the boundary's invariant: never an output that is not a number
         if let Some(name) = outputs.first_non_finite() {
             return self.fail(&format!(
@@ -625,6 +685,19 @@ impl Instance {
                 sim.statics.top_tension / 1e3
             ),
         );
+        if !others.is_empty() {
+            self.log_once(
+                Status::Ok,
+                Category::Events,
+                &format!(
+                    "a system of {} lines: the loads on the vessel and the energies are the system's; the \
+                     single-line outputs (top_tension, shape[k], ...) are its first line's, '{}'",
+                    others.len() + 1,
+                    scene.name
+                ),
+            );
+        }
+        self.others = others;
         self.last_successful_time = self.start_time;
         self.sim = Some(sim);
         Status::Ok
@@ -848,6 +921,9 @@ impl Instance {
         if let Some(start) = self.step_start.as_mut() {
             start.clone_from(&sim.state);
         }
+        for o in &mut self.others {
+            o.step_start.clone_from(&o.sim.state);
+        }
         // the factorised tangent is carried from one communication step to the
         // next, as within one (modified Newton, theory §5.7); a saved or
         // restored state starts from a new one ([`Instance::save`],
@@ -868,38 +944,72 @@ impl Instance {
             if steps > 0 { (work as f64 / steps as f64).max(MIN_NOMINAL_ITERATIONS) } else { FIRST_NOMINAL_ITERATIONS };
         let nominal = n as f64 * mean;
         let bound = (WORK_FACTOR as f64 * nominal).min(1e15) as u64 + WORK_ALLOWANCE;
+        // (a system's lines each within the bound, §17.6)
         sim.integrator.set_work_bound(bound);
+        for o in &mut self.others {
+            o.sim.integrator.set_work_bound(bound);
+        }
         let mut result = Ok(());
+        let mut failed_line: Option<usize> = None;
         let mut f_prev = self.outputs.as_ref().map_or(V3::zeros(), |o| o.top_force);
         let (mut t_prev, mut impulse) = (now, V3::zeros());
-        for k in 1..=n {
+        'steps: for k in 1..=n {
             let target = if k == n { t_end } else { now + k as f64 * dt };
             if let Err(e) = sim.advance_to(target, &motion) {
                 result = Err(e);
                 break;
             }
-            let f = sim.integrator.top_force(&sim.state);
+            let mut f = sim.integrator.top_force(&sim.state);
+            // a system's other lines along the same vessel path at their own vessel points
+            for (j, o) in self.others.iter_mut().enumerate() {
+                let offset = o.sim.vessel.offset;
+                if let Err(e) = o.sim.advance_to(target, &|s: f64| path.at_offset(s, offset)) {
+                    (result, failed_line) = (Err(e), Some(j));
+                    break 'steps;
+                }
+                f += o.sim.integrator.top_force(&o.sim.state);
+            }
             impulse += (f_prev + f) * (0.5 * (target - t_prev));
             (f_prev, t_prev) = (f, target);
         }
         if result.is_ok() {
             self.force_mean = impulse / h;
         }
-        self.step_work = (sim.integrator.work(), bound);
+        let work = self.others.iter().map(|o| o.sim.integrator.work()).fold(sim.integrator.work(), u64::max);
+        self.step_work = (work, bound);
         sim.integrator.set_work_bound(u64::MAX);
+        for o in &mut self.others {
+            o.sim.integrator.set_work_bound(u64::MAX);
+        }
+        let failed_line = failed_line.map(|j| self.others[j].name.clone());
         let mut reached = sim.state.time;
         let mut outputs = sim.outputs();
+        for o in &self.others {
+            super::system::add_line(&mut outputs, &o.sim.outputs());
+        }
         // the boundary's invariant: never an output that is not a number. A
-        // state that gives one is discarded, back to the step's start.
-        if let Some(name) = outputs.first_non_finite() {
+        // state that gives one is discarded, back to the step's start; a
+        // system whose step failed too (its lines at different times: all
+        // back to the step's start, §17.6).
+        let non_finite = outputs.first_non_finite();
+        if non_finite.is_some() || (result.is_err() && !self.others.is_empty()) {
             if let Some(start) = &self.step_start {
                 sim.state.clone_from(start);
             }
             sim.integrator.invalidate_tangent();
+            for o in &mut self.others {
+                o.sim.state.clone_from(&o.step_start);
+                o.sim.integrator.invalidate_tangent();
+            }
             let at = reached;
             reached = sim.state.time;
             outputs = sim.outputs();
-            result = Err(RiserError::NonFinite { name, time: at });
+            for o in &self.others {
+                super::system::add_line(&mut outputs, &o.sim.outputs());
+            }
+            if let Some(name) = non_finite {
+                result = Err(RiserError::NonFinite { name, time: at });
+            }
         }
         self.outputs = Some(outputs);
         if result.is_ok() {
@@ -930,10 +1040,15 @@ impl Instance {
                     ),
                     _ => String::new(),
                 };
+                let line = match (&failed_line, self.others.is_empty()) {
+                    (Some(l), _) => format!("line '{l}': "),
+                    (None, false) => format!("line '{}': ", self.scene.as_ref().map_or("", |s| s.name.as_str())),
+                    (None, true) => String::new(),
+                };
                 self.log(
                     Status::Discard,
                     Category::Discard,
-                    &format!("step from t = {now} s to {t_end} s discarded at t = {reached} s: {e}{why}"),
+                    &format!("step from t = {now} s to {t_end} s discarded at t = {reached} s: {line}{e}{why}"),
                 );
                 Status::Discard
             }
@@ -1170,24 +1285,19 @@ impl Instance {
                 return st;
             }
         }
-        let (stiffness, rotation, offset, order, force, moment) = match &self.sim {
-            Some(sim) => {
-                let o = self.outputs.as_ref();
-                (
-                    sim.hang_off_stiffness6(),
-                    sim.state.hang_off.rotation,
-                    sim.vessel.offset,
-                    sim.vessel.order,
-                    o.map_or(V3::zeros(), |o| o.top_force),
-                    o.map_or(V3::zeros(), |o| o.top_moment),
-                )
+        let Some(sim) = &self.sim else { return self.fail(&format!("{F}: no state yet")) };
+        let (rotation, order) = (sim.state.hang_off.rotation, sim.vessel.order);
+        let (force, moment) = self.outputs.as_ref().map_or((V3::zeros(), V3::zeros()), |o| (o.top_force, o.top_moment));
+        // each line's stiffness at its vessel point, its arm and its force (a
+        // system's summed, §17.6)
+        let mut lines = Vec::with_capacity(1 + self.others.len());
+        for (name, line) in std::iter::once(("", sim)).chain(self.others.iter().map(|o| (o.name.as_str(), &o.sim))) {
+            match line.hang_off_stiffness6() {
+                Ok(s) => lines.push((s, line.vessel.offset, line.integrator.top_force(&line.state))),
+                Err(e) if name.is_empty() => return self.fail(&format!("{F}: {e}")),
+                Err(e) => return self.fail(&format!("{F}: line '{name}': {e}")),
             }
-            None => return self.fail(&format!("{F}: no state yet")),
-        };
-        let s = match stiffness {
-            Ok(s) => s,
-            Err(e) => return self.fail(&format!("{F}: {e}")),
-        };
+        }
         // the pose change of the seed: δu and the global rotation δθ (14.2)
         let angles = [self.inputs[6], self.inputs[7], self.inputs[8]];
         let r_in = order.rotation(angles);
@@ -1201,13 +1311,17 @@ impl Instance {
                 dtheta += r_in * order.body_rates(angles, rates) * dv;
             }
         }
-        let arm = rotation * offset;
-        let dx = du + dtheta.cross(&arm);
-        // the support's force and end moment on the line change by S₆ [δx; δθ] (8.7); the vessel's by minus that
-        let ds = s * nalgebra::Vector6::new(dx.x, dx.y, dx.z, dtheta.x, dtheta.y, dtheta.z);
-        let df = -V3::new(ds[0], ds[1], ds[2]);
-        let d_end = -V3::new(ds[3], ds[4], ds[5]);
-        let dm = dtheta.cross(&arm).cross(&force) + arm.cross(&df) + d_end;
+        let (mut df, mut dm) = (V3::zeros(), V3::zeros());
+        for (s, offset, f_line) in &lines {
+            let arm = rotation * offset;
+            let dx = du + dtheta.cross(&arm);
+            // the support's force and end moment on the line change by S₆ [δx; δθ] (8.7); the vessel's by minus that
+            let ds = s * nalgebra::Vector6::new(dx.x, dx.y, dx.z, dtheta.x, dtheta.y, dtheta.z);
+            let df_line = -V3::new(ds[0], ds[1], ds[2]);
+            let d_end = -V3::new(ds[3], ds[4], ds[5]);
+            df += df_line;
+            dm += dtheta.cross(&arm).cross(f_line) + arm.cross(&df_line) + d_end;
+        }
         let rt = rotation.transpose();
         let (dvf, dvm) = (rt * (df - dtheta.cross(&force)), rt * (dm - dtheta.cross(&moment)));
         let value = |a: usize| [df, dm, dvf, dvm][a / 3][a % 3];
@@ -1256,6 +1370,7 @@ impl Instance {
                 if self.mode != StepComplete {
                     // the start depends on the inputs: rebuild at exit
                     self.sim = None;
+                    self.others.clear();
                     self.outputs = None;
                 }
                 Status::Ok
@@ -1313,6 +1428,7 @@ impl Instance {
         *slot = Some(x);
         if self.mode != StepComplete {
             self.sim = None;
+            self.others.clear();
             self.outputs = None;
         }
         Status::Ok
@@ -1361,6 +1477,7 @@ impl Instance {
         self.params[vr as usize] = Some((value, true));
         self.scene = None;
         self.sim = None;
+        self.others.clear();
         self.outputs = None;
         Status::Ok
     }
@@ -1415,6 +1532,9 @@ impl Instance {
     pub fn save(&mut self) -> Option<Saved> {
         let sim = self.sim.as_mut()?;
         sim.integrator.invalidate_tangent();
+        for o in &mut self.others {
+            o.sim.integrator.invalidate_tangent();
+        }
         let sim = self.sim.as_ref()?;
         Some(Saved {
             state: sim.state.clone(),
@@ -1427,6 +1547,7 @@ impl Instance {
             params: Some(self.params.clone()),
             ramp_start: self.ramp_start,
             work: [self.run_work.0, self.run_work.1, self.step_work.0, self.step_work.1],
+            others: self.others.iter().map(|o| o.sim.state.clone()).collect(),
         })
     }
 
@@ -1442,10 +1563,14 @@ impl Instance {
         let Some(sim) = self.sim.as_mut() else {
             return self.fail("fmi2SetFMUstate before initialisation");
         };
-        if s.state.mesh() != sim.state.mesh() {
+        if s.state.mesh() != sim.state.mesh()
+            || s.others.len() != self.others.len()
+            || s.others.iter().zip(&self.others).any(|(a, o)| a.mesh() != o.sim.state.mesh())
+        {
             return self.fail("the FMU state has another mesh");
         }
         if !s.state.is_finite()
+            || !s.others.iter().all(State::is_finite)
             || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite())
             || !s.ramp_start.is_finite()
         {
@@ -1456,15 +1581,32 @@ impl Instance {
         let start = self.step_start.get_or_insert_with(State::default);
         start.clone_from(&sim.state);
         sim.state.clone_from(&s.state);
-        if let Some(name) = sim.outputs().first_non_finite() {
+        for (o, saved) in self.others.iter_mut().zip(&s.others) {
+            o.step_start.clone_from(&o.sim.state);
+            o.sim.state.clone_from(saved);
+        }
+        let mut outputs = sim.outputs();
+        for o in &self.others {
+            super::system::add_line(&mut outputs, &o.sim.outputs());
+        }
+        if let Some(name) = outputs.first_non_finite() {
             sim.state.clone_from(start);
+            for o in &mut self.others {
+                o.sim.state.clone_from(&o.step_start);
+            }
             return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
         }
         sim.integrator.invalidate_tangent();
+        for o in &mut self.others {
+            o.sim.integrator.invalidate_tangent();
+        }
         // the state's own ramps (the same unless restored into an instance
         // started at another time)
         if s.ramp_start != self.ramp_start {
             sim.set_ramps_start(s.ramp_start);
+            for o in &mut self.others {
+                o.sim.set_ramps_start(s.ramp_start);
+            }
             self.ramp_start = s.ramp_start;
         }
         // the watch as it was (said once: stays off); a deserialized state
@@ -1479,7 +1621,7 @@ impl Instance {
         (self.run_work, self.step_work) = ((s.work[0], s.work[1]), (s.work[2], s.work[3]));
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
-        self.outputs = Some(sim.outputs());
+        self.outputs = Some(outputs);
         Status::Ok
     }
 
@@ -1502,7 +1644,17 @@ impl Instance {
         extra.extend(s.work.iter().map(|&w| w as f64));
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
-        out
+        if s.others.is_empty() {
+            return out;
+        }
+        // a system: each line's block, framed (§17.6)
+        let mut blocks = vec![out];
+        for o in &s.others {
+            let mut b = Vec::new();
+            o.write_bytes(&[], &mut b);
+            blocks.push(b);
+        }
+        super::system::frame(&blocks)
     }
 
     /// fmi2DeSerializeFMUstate.
@@ -1510,6 +1662,27 @@ impl Instance {
         let Some(sim) = self.sim.as_ref() else {
             return Err(self.fail("fmi2DeSerializeFMUstate before initialisation"));
         };
+        // a system's: its lines' blocks (§17.6)
+        let mut others = Vec::with_capacity(self.others.len());
+        let mut bytes = bytes;
+        if !self.others.is_empty() {
+            let blocks = match super::system::unframe(bytes, 1 + self.others.len()) {
+                Ok(b) => b,
+                Err(e) => return Err(self.fail(&e)),
+            };
+            for (b, o) in blocks[1..].iter().zip(&self.others) {
+                match State::read_bytes(b, o.sim.state.mesh()) {
+                    Ok((state, extra)) if extra.is_empty() => others.push(state),
+                    Ok(_) => return Err(self.fail("serialized FMU state has an unexpected layout")),
+                    Err(e) => {
+                        return Err(
+                            self.fail(&format!("cannot read the serialized FMU state of line '{}': {e}", o.name))
+                        );
+                    }
+                }
+            }
+            bytes = blocks[0];
+        }
         match State::read_bytes(bytes, sim.state.mesh()) {
             Ok((state, extra)) if extra.len() == SAVED_EXTRA => {
                 let mut inputs = [0.0; N_INPUTS];
@@ -1539,6 +1712,7 @@ impl Instance {
                     params: None,
                     ramp_start,
                     work,
+                    others,
                 })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
@@ -2257,5 +2431,195 @@ mod start_pose_tests {
             let after = i.get_real(tension).unwrap();
             assert!((after - at_start).abs() <= 1e-6 * at_start, "{model}: {after} after a step from {at_start}");
         }
+    }
+}
+
+#[cfg(test)]
+mod system_tests {
+    //! A system scene in the FMU (§17.6): its loads are the sums of its lines
+    //! run alone, each as the single-line scene it is; its directional
+    //! derivative the sum of theirs; its state saved, serialized and
+    //! restored continues bit for bit; the master's parameters on it.
+    use super::*;
+    use crate::fmi::vars::vr_of;
+    use crate::scene::system::SystemScene;
+    use std::sync::Arc;
+
+    const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
+
+    /// The OC3 mooring with 20 elements a line, written to `dir`; and each
+    /// of its lines as the single-line scene it is.
+    fn files(dir: &std::path::Path) -> (String, Vec<String>) {
+        let text = OC3.replace("n_elements = 100", "n_elements = 20");
+        let path = dir.join("oc3.toml");
+        std::fs::write(&path, &text).unwrap();
+        let sys = SystemScene::from_toml(&text, "oc3").unwrap();
+        let lines = (0..sys.lines.len())
+            .map(|i| {
+                let (_, vp, _) = sys.ends(i);
+                let scene = sys.line_scene(i, crate::math::V3::from(vp.position));
+                let p = dir.join(format!("line{i}.toml"));
+                std::fs::write(&p, toml::to_string(&scene).unwrap()).unwrap();
+                p.to_string_lossy().into_owned()
+            })
+            .collect();
+        (path.to_string_lossy().into_owned(), lines)
+    }
+
+    fn instance(scene: &str, sets: &[(&str, Value)]) -> (Instance, Status) {
+        let mut i = Instance::new("t", GUID, None, Arc::new(|_, _, _: &str| {}), false).unwrap();
+        assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String(scene.to_string())), Status::Ok);
+        for (name, v) in sets {
+            assert_eq!(i.set_param(vr_of(name).unwrap(), v.clone()), Status::Ok);
+        }
+        i.enter_initialization_mode();
+        let st = i.exit_initialization_mode();
+        (i, st)
+    }
+
+    /// Surge, heave and pitch at time t: the vessel's inputs.
+    fn inputs(i: &mut Instance, t: f64) {
+        let set = |i: &mut Instance, n: &str, x: f64| assert_eq!(i.set_real(vr_of(n).unwrap(), x), Status::Ok);
+        set(i, "surge", 5.0 * (0.2 * t).sin());
+        set(i, "heave", 1.0 * (0.5 * t).sin());
+        set(i, "pitch", 0.03 * (0.3 * t).sin());
+    }
+
+    const LOADS: [&str; 6] =
+        ["top_force_x", "top_force_y", "top_force_z", "top_moment_x", "top_moment_y", "top_moment_z"];
+
+    fn loads(i: &mut Instance) -> [f64; 6] {
+        LOADS.map(|n| i.get_real(vr_of(n).unwrap()).unwrap())
+    }
+
+    /// The system's loads on the vessel are its three lines' run alone, each
+    /// as its single-line scene at its vessel point, summed: within
+    /// round-off (each line's path is planned from its own hang-off, the
+    /// system's from the first's and moved to each vessel point), the
+    /// first line bit for bit; the energies summed likewise.
+    #[test]
+    fn a_system_is_the_sum_of_its_lines_run_alone() {
+        let dir = std::env::temp_dir().join(format!("riser-fmu-system-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (system, lines) = files(&dir);
+        let (mut sys, st) = instance(&system, &[]);
+        assert_eq!(st, Status::Ok);
+        let mut alone: Vec<Instance> = lines.iter().map(|l| instance(l, &[]).0).collect();
+        let h = 0.2;
+        for k in 0..60 {
+            let t = k as f64 * h;
+            inputs(&mut sys, t);
+            assert_eq!(sys.do_step(t, h), Status::Ok);
+            let mut sum = [0.0; 6];
+            let mut energy = 0.0;
+            for a in &mut alone {
+                inputs(a, t);
+                assert_eq!(a.do_step(t, h), Status::Ok);
+                let l = loads(a);
+                for c in 0..6 {
+                    sum[c] += l[c];
+                }
+                energy += a.get_real(vr_of("total_energy").unwrap()).unwrap();
+            }
+            let got = loads(&mut sys);
+            let scale = sum[..3].iter().map(|x| x.abs()).fold(0.0, f64::max);
+            for c in 0..6 {
+                let tol = 1e-9 * if c < 3 { scale } else { 70.0 * scale };
+                assert!((got[c] - sum[c]).abs() <= tol, "t = {} s, {}: {} vs {}", t + h, LOADS[c], got[c], sum[c]);
+            }
+            let e = sys.get_real(vr_of("total_energy").unwrap()).unwrap();
+            assert!((e - energy).abs() <= 1e-9 * energy.abs(), "{e} vs {energy}");
+            // the single-line outputs are the first line's, bit for bit
+            let first = alone[0].get_real(vr_of("top_tension").unwrap()).unwrap();
+            assert_eq!(sys.get_real(vr_of("top_tension").unwrap()).unwrap(), first);
+        }
+        // the surge moved the vessel: the chains pull it back
+        assert!(loads(&mut sys)[0].abs() > 1e5, "{:?}", loads(&mut sys));
+        // the directional derivative is the sum of the lines' (the 6x6 on the vessel)
+        let unknowns: Vec<u32> = LOADS.iter().map(|n| vr_of(n).unwrap()).collect();
+        for known in ["surge", "heave", "pitch", "yaw"] {
+            let k = [vr_of(known).unwrap()];
+            let mut d = [0.0; 6];
+            assert_eq!(sys.directional_derivative(&unknowns, &k, &[1.0], &mut d), Status::Ok);
+            let mut sum = [0.0; 6];
+            for a in &mut alone {
+                let mut da = [0.0; 6];
+                assert_eq!(a.directional_derivative(&unknowns, &k, &[1.0], &mut da), Status::Ok);
+                for c in 0..6 {
+                    sum[c] += da[c];
+                }
+            }
+            let scale = d.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            for c in 0..6 {
+                assert!((d[c] - sum[c]).abs() <= 1e-9 * scale, "d{}/d{known}: {} vs {}", LOADS[c], d[c], sum[c]);
+            }
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// A system's state saved, serialized, read back into another instance
+    /// and restored continues bit for bit; a state of another system (or of
+    /// a single line) is refused, named.
+    #[test]
+    fn a_systems_state_serializes_and_continues_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("riser-fmu-system-state-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (system, lines) = files(&dir);
+        let (mut a, _) = instance(&system, &[]);
+        let h = 0.25;
+        for k in 0..20 {
+            inputs(&mut a, k as f64 * h);
+            assert_eq!(a.do_step(k as f64 * h, h), Status::Ok);
+        }
+        let saved = a.save().unwrap();
+        let bytes = a.serialize(&saved);
+        let (mut b, _) = instance(&system, &[]);
+        let back = b.deserialize(&bytes).unwrap();
+        assert_eq!(b.restore(&back), Status::Ok);
+        for k in 20..40 {
+            let t = k as f64 * h;
+            inputs(&mut a, t);
+            inputs(&mut b, t);
+            assert_eq!(a.do_step(t, h), Status::Ok);
+            assert_eq!(b.do_step(t, h), Status::Ok);
+            assert_eq!(loads(&mut a), loads(&mut b), "t = {} s", t + h);
+        }
+        for (x, y) in a.others.iter().zip(&b.others) {
+            assert_eq!(x.sim.state, y.sim.state, "line {}", x.name);
+        }
+        // a single line's state in a system, and a system's in a single line
+        let (mut single, _) = instance(&lines[0], &[]);
+        let one = single.save().unwrap();
+        assert!(b.deserialize(&single.serialize(&one)).is_err());
+        assert!(single.deserialize(&bytes).is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// The master's parameters on a system: the numerics apply to every
+    /// line; a line property is refused, named, unless it is the first
+    /// line's value (a master that sets every start value).
+    #[test]
+    fn a_master_sets_the_numerics_of_every_line_and_no_line_property() {
+        let dir = std::env::temp_dir().join(format!("riser-fmu-system-params-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (system, _) = files(&dir);
+        let (i, st) = instance(&system, &[("time_step", Value::Real(0.1))]);
+        assert_eq!(st, Status::Ok);
+        assert!(i.others.iter().all(|o| o.sim.integrator.options().time_step == 0.1));
+        assert_eq!(i.sim.as_ref().unwrap().integrator.options().time_step, 0.1);
+        let (_, st) = instance(&system, &[("n_elements", Value::Integer(20))]);
+        assert_eq!(st, Status::Ok, "the first line's own value");
+        let messages = Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
+        let m = messages.clone();
+        let mut i =
+            Instance::new("t", GUID, None, Arc::new(move |_, _, s: &str| m.lock().unwrap().push(s.into())), true)
+                .unwrap();
+        assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String(system.clone())), Status::Ok);
+        assert_eq!(i.set_param(vr_of("mass_per_length").unwrap(), Value::Real(100.0)), Status::Ok);
+        i.enter_initialization_mode();
+        assert_eq!(i.exit_initialization_mode(), Status::Error);
+        let said = messages.lock().unwrap().join("\n");
+        assert!(said.contains("mass_per_length=100") && said.contains("system of lines"), "{said}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -7,4 +7,5 @@ pub mod exports;
 pub mod input_path;
 pub mod instance;
 pub mod plausibility;
+pub mod system;
 pub mod vars;

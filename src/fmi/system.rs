@@ -1,0 +1,175 @@
+//! A system of lines in the FMU (issue 49, docs/guide/fmu.md "A system of
+//! lines", docs/theory.md §17.6): the `scene` parameter may name a system
+//! file. Its first `[[line]]` is the instance's line (its single-line
+//! outputs, `top_tension`, `shape[k]`, … are that line's); the others are
+//! [`OtherLine`]s moved by the same vessel path at their own vessel
+//! points; the loads on the vessel and the energies are the system's sums
+//! (17.7, 17.8).
+
+use super::vars::{Kind, Variable};
+use crate::model::{Outputs, State};
+use crate::scene::Scene;
+use crate::scene::system::SystemScene;
+use crate::sim::Simulation;
+
+/// A line of the system beyond its first, in a run.
+pub struct OtherLine {
+    pub name: String,
+    pub scene: Scene,
+    pub sim: Simulation,
+    /// Its state at the start of the communication step in progress
+    /// (allocated at initialisation, copied without allocating).
+    pub step_start: State,
+}
+
+/// The parameters a master may set on a system: they apply to every line
+/// (the numerics and the ramps). A line's properties, its frame (anchor,
+/// hang-off, water surface, seabed height) and the sea are the system
+/// file's.
+pub const SYSTEM_WIDE: [&str; 6] =
+    ["time_step", "newton_tolerance", "structural_damping", "rho_infinity", "static_current", "current_ramp"];
+
+/// True if the master's value `text` for `v` is what `reading` (the
+/// scene's) says: equal numbers (to 1e-12), flags or texts.
+fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
+    let Some(r) = reading else { return false };
+    match v.kind {
+        Kind::Real => match (text.parse::<f64>(), r.parse::<f64>()) {
+            (Ok(x), Ok(y)) => (x - y).abs() <= 1e-12 * x.abs().max(y.abs()),
+            _ => false,
+        },
+        Kind::Integer => matches!((text.parse::<i64>(), r.parse::<i64>()), (Ok(x), Ok(y)) if x == y),
+        Kind::Boolean => matches!((text.parse::<bool>(), r.parse::<bool>()), (Ok(x), Ok(y)) if x == y),
+        Kind::String => text == r,
+    }
+}
+
+/// Each line's single-line scene of `sys` at the neutral pose with the
+/// master's parameters `sets` (variable, its value as text): those of
+/// [`SYSTEM_WIDE`] applied to every line; any other must read as the
+/// first line's scene reads it (a master that sets every start value of
+/// the generic FMU sets the default scene's), else it is refused, named.
+pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<Scene>, String> {
+    if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
+        return Err(m);
+    }
+    if sys.analysis.accuracy > 0.0 {
+        return Err("accuracy: not for a system of lines in this version; give each line's n_elements and the \
+                    system's time_step and newton_tolerance"
+            .to_string());
+    }
+    let wide: Vec<String> =
+        sets.iter().filter(|(v, _)| SYSTEM_WIDE.contains(&v.name)).map(|(v, t)| format!("{}={t}", v.name)).collect();
+    let mut scenes = Vec::with_capacity(sys.lines.len());
+    for (i, l) in sys.lines.iter().enumerate() {
+        let (_, vp, _) = sys.ends(i);
+        let scene = sys.line_scene(i, crate::math::V3::from(vp.position));
+        let scene =
+            scene.with_overrides(&wide).map_err(|e| format!("invalid parameter value: line '{}': {e}", l.name))?;
+        scenes.push(scene);
+    }
+    let refused: Vec<String> = sets
+        .iter()
+        .filter(|(v, t)| !SYSTEM_WIDE.contains(&v.name) && !same_value(v, t, scenes[0].parameter(v.name).as_deref()))
+        .map(|(v, t)| format!("{}={t}", v.name))
+        .collect();
+    if !refused.is_empty() {
+        return Err(format!(
+            "invalid parameter value: {}: scene '{}' is a system of lines, whose lines take their properties, \
+             frames and sea from its file; a master may set {} on it (they apply to every line), and any other \
+             parameter only to the value its first line has",
+            refused.join(", "),
+            sys.name,
+            SYSTEM_WIDE.join(", ")
+        ));
+    }
+    Ok(scenes)
+}
+
+/// Adds line `other`'s loads on the vessel and its energies to the
+/// system's outputs `sum` (17.7, 17.8); the single-line outputs stay the
+/// first line's.
+pub fn add_line(sum: &mut Outputs, other: &Outputs) {
+    sum.top_force += other.top_force;
+    sum.top_moment += other.top_moment;
+    sum.vessel_force += other.vessel_force;
+    sum.vessel_moment += other.vessel_moment;
+    sum.total_energy += other.total_energy;
+    sum.kinetic_energy += other.kinetic_energy;
+    sum.strain_energy += other.strain_energy;
+    sum.potential_energy += other.potential_energy;
+    sum.work_top += other.work_top;
+    sum.work_hydro += other.work_hydro;
+    sum.work_anchor += other.work_anchor;
+    sum.dissipated_energy += other.dissipated_energy;
+    sum.algorithmic_dissipation += other.algorithmic_dissipation;
+    sum.work_seabed += other.work_seabed;
+}
+
+/// The serialized state of a system: this magic, the number of blocks (u64),
+/// then per line its length (u64) and its [`State::write_bytes`] block, the
+/// first line's carrying the instance's numbers.
+pub const SYSTEM_MAGIC: &[u8; 8] = b"RISERSY\0";
+
+/// The framed blocks of a system's serialized state.
+pub fn frame(blocks: &[Vec<u8>]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(16 + blocks.iter().map(|b| b.len() + 8).sum::<usize>());
+    out.extend_from_slice(SYSTEM_MAGIC);
+    out.extend_from_slice(&(blocks.len() as u64).to_le_bytes());
+    for b in blocks {
+        out.extend_from_slice(&(b.len() as u64).to_le_bytes());
+        out.extend_from_slice(b);
+    }
+    out
+}
+
+/// The blocks of [`frame`]'s bytes, or why they are not a system's state of
+/// `lines` lines.
+pub fn unframe(bytes: &[u8], lines: usize) -> Result<Vec<&[u8]>, String> {
+    let bad = || format!("the serialized FMU state is not that of a system of {lines} lines");
+    if bytes.len() < 16 || &bytes[..8] != SYSTEM_MAGIC {
+        return Err(bad());
+    }
+    let count = u64::from_le_bytes(bytes[8..16].try_into().map_err(|_| bad())?);
+    if count != lines as u64 {
+        return Err(bad());
+    }
+    let mut at = 16;
+    let mut blocks = Vec::with_capacity(lines);
+    for _ in 0..lines {
+        let len = bytes
+            .get(at..at + 8)
+            .and_then(|b| b.try_into().ok())
+            .map(u64::from_le_bytes)
+            .ok_or_else(|| "the serialized FMU state is truncated".to_string())?;
+        let end = usize::try_from(len).ok().and_then(|l| (at + 8).checked_add(l)).filter(|&e| e <= bytes.len());
+        let Some(end) = end else { return Err("the serialized FMU state is truncated".to_string()) };
+        blocks.push(&bytes[at + 8..end]);
+        at = end;
+    }
+    if at != bytes.len() {
+        return Err(bad());
+    }
+    Ok(blocks)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn framed_blocks_read_back_and_damage_is_named() {
+        let blocks = vec![vec![1u8, 2, 3], vec![], vec![9u8; 40]];
+        let bytes = frame(&blocks);
+        let back = unframe(&bytes, 3).unwrap();
+        assert_eq!(back, blocks.iter().map(|b| b.as_slice()).collect::<Vec<_>>());
+        assert!(unframe(&bytes, 2).is_err(), "another number of lines");
+        assert!(unframe(&bytes[..bytes.len() - 1], 3).is_err(), "truncated");
+        let mut long = bytes.clone();
+        long.push(0);
+        assert!(unframe(&long, 3).is_err(), "trailing bytes");
+        let mut huge = bytes.clone();
+        huge[16..24].copy_from_slice(&u64::MAX.to_le_bytes());
+        assert!(unframe(&huge, 3).is_err(), "a length beyond the bytes");
+    }
+}
