@@ -8,6 +8,7 @@ use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
 use crate::model::{Outputs, State};
+use crate::scene::system::VesselEnd;
 use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
@@ -210,6 +211,8 @@ pub struct Instance {
     /// A system's lines beyond its first (`sim`), moved by the same vessel
     /// path (docs/theory.md §17.6); empty for a single-line scene.
     others: Vec<super::system::OtherLine>,
+    /// Which end of a system's first line is on the vessel (a single line: `From`, the hang-off).
+    system_first_end: VesselEnd,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
     /// at initialisation, copied without allocating in fmi2DoStep).
@@ -331,6 +334,7 @@ impl Instance {
             hf_watch: None,
             sim: None,
             others: Vec::new(),
+            system_first_end: VesselEnd::From,
             step_start: None,
             scene: None,
             outputs: None,
@@ -353,6 +357,15 @@ impl Instance {
             .iter()
             .map(|v| if v.causality == Causality::Parameter { Some((parse_start(v), false)) } else { None })
             .collect();
+        // a packaged system FMU's scene (riser-tools package-fmu --scene): its start value
+        let packaged =
+            self.resources.as_ref().and_then(|r| std::fs::read_to_string(r.join(super::system::PACKAGED_SCENE)).ok());
+        if let (Some(name), Some(vr)) = (packaged, super::vars::vr_of("scene")) {
+            let name = name.trim();
+            if !name.is_empty() {
+                self.params[vr as usize] = Some((Value::String(name.to_string()), false));
+            }
+        }
         self.inputs = [0.0; N_INPUTS];
         self.history = InputHistory::new();
         self.logged_modes = None;
@@ -468,13 +481,13 @@ impl Instance {
 
     /// The scene with the parameters the master set (a system's: its first line's).
     fn build_scene(&self) -> Result<Scene, String> {
-        Ok(self.build_scenes()?.swap_remove(0))
+        Ok(self.build_scenes()?.swap_remove(0).0)
     }
 
     /// The scene with the parameters the master set: one for a single-line
     /// scene; a system's lines, in order (its first the instance's line,
     /// [`super::system::line_scenes`]).
-    fn build_scenes(&self) -> Result<Vec<Scene>, String> {
+    fn build_scenes(&self) -> Result<Vec<(Scene, VesselEnd)>, String> {
         let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
             Some((Value::String(s), _)) => s.clone(),
             _ => "catenary".into(),
@@ -534,7 +547,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok(vec![scene])
+        Ok(vec![(scene, VesselEnd::From)])
     }
 
     /// fmi2EnterInitializationMode.
@@ -565,7 +578,8 @@ impl Instance {
         };
         // a system's lines beyond its first (docs/theory.md §17.6)
         let other_scenes = scenes.split_off(1);
-        let scene = scenes.swap_remove(0);
+        let (scene, first_end) = scenes.swap_remove(0);
+        self.system_first_end = first_end;
         // the accuracy knob (docs/theory.md §16): the numerics for the design
         // motion (the master's is not known yet), those the master set kept;
         // read back through n_elements, time_step and newton_tolerance
@@ -635,7 +649,7 @@ impl Instance {
         // a system's other lines, each in its statics at its vessel point
         // moved as the first line's hang-off is (§17.6)
         let mut others = Vec::with_capacity(other_scenes.len());
-        for line_scene in other_scenes {
+        for (line_scene, vessel_end) in other_scenes {
             let name = line_scene.name.clone();
             let mut other = match Simulation::from_scene(&line_scene) {
                 Ok(s) => s,
@@ -660,7 +674,7 @@ impl Instance {
             other.integrator.invalidate_tangent();
             super::system::add_line(&mut outputs, &other.outputs());
             let step_start = other.state.clone();
-            others.push(super::system::OtherLine { name, scene: line_scene, sim: other, step_start });
+            others.push(super::system::OtherLine { name, vessel_end, scene: line_scene, sim: other, step_start });
         }
         // the boundary's invariant: never an output that is not a number
         if let Some(name) = outputs.first_non_finite() {
@@ -1134,6 +1148,9 @@ impl Instance {
 
     /// fmi2GetReal for one value reference.
     pub fn get_real(&mut self, vr: u32) -> Result<f64, Status> {
+        if let Some((line, q)) = super::system::line_output(vr) {
+            return self.get_line_output(vr, line, q);
+        }
         let v = self.var(vr, Kind::Real)?;
         Ok(match v.causality {
             Causality::Input => self.inputs[INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0)],
@@ -1160,6 +1177,36 @@ impl Instance {
                 Err(self.fail(&format!("internal error: {} is not finite ({x}); please report it", v.name)))
             }
         })
+    }
+
+    /// A system's line output (a packaged system FMU's `LINE.tension_from`,
+    /// …; [`super::system::LINE_OUTPUTS`]): line `line`'s quantity `q`.
+    fn get_line_output(&mut self, vr: u32, line: usize, q: usize) -> Result<f64, Status> {
+        if matches!(self.mode, Instantiated | InitializationMode) {
+            let st = self.initialise();
+            if st != Status::Ok {
+                return Err(st);
+            }
+        }
+        let Some(sim) = &self.sim else { return Err(self.fail("no state yet")) };
+        let first_end = self.system_first_end;
+        let x = match line {
+            0 => super::system::line_values(first_end, &sim.outputs())[q],
+            k => match self.others.get(k - 1) {
+                Some(o) => super::system::line_values(o.vessel_end, &o.sim.outputs())[q],
+                None => {
+                    let lines = 1 + self.others.len();
+                    return Err(self.fail(&format!(
+                        "unknown value reference {vr} (a line output of line {line}; the scene has {lines} line(s))"
+                    )));
+                }
+            },
+        };
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.fail(&format!("internal error: line output {vr} is not finite ({x})")))
+        }
     }
 
     /// A parameter's value: the master's if it set it, otherwise the scene's

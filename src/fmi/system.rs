@@ -9,12 +9,14 @@
 use super::vars::{Kind, Variable};
 use crate::model::{Outputs, State};
 use crate::scene::Scene;
-use crate::scene::system::SystemScene;
+use crate::scene::system::{SystemScene, VesselEnd};
 use crate::sim::Simulation;
 
 /// A line of the system beyond its first, in a run.
 pub struct OtherLine {
     pub name: String,
+    /// Which of its ends is on the vessel.
+    pub vessel_end: VesselEnd,
     pub scene: Scene,
     pub sim: Simulation,
     /// Its state at the start of the communication step in progress
@@ -49,7 +51,7 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// [`SYSTEM_WIDE`] applied to every line; any other must read as the
 /// first line's scene reads it (a master that sets every start value of
 /// the generic FMU sets the default scene's), else it is refused, named.
-pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<Scene>, String> {
+pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<(Scene, VesselEnd)>, String> {
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }
@@ -62,15 +64,15 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
         sets.iter().filter(|(v, _)| SYSTEM_WIDE.contains(&v.name)).map(|(v, t)| format!("{}={t}", v.name)).collect();
     let mut scenes = Vec::with_capacity(sys.lines.len());
     for (i, l) in sys.lines.iter().enumerate() {
-        let (_, vp, _) = sys.ends(i);
+        let (end, vp, _) = sys.ends(i);
         let scene = sys.line_scene(i, crate::math::V3::from(vp.position));
         let scene =
             scene.with_overrides(&wide).map_err(|e| format!("invalid parameter value: line '{}': {e}", l.name))?;
-        scenes.push(scene);
+        scenes.push((scene, end));
     }
     let refused: Vec<String> = sets
         .iter()
-        .filter(|(v, t)| !SYSTEM_WIDE.contains(&v.name) && !same_value(v, t, scenes[0].parameter(v.name).as_deref()))
+        .filter(|(v, t)| !SYSTEM_WIDE.contains(&v.name) && !same_value(v, t, scenes[0].0.parameter(v.name).as_deref()))
         .map(|(v, t)| format!("{}={t}", v.name))
         .collect();
     if !refused.is_empty() {
@@ -151,6 +153,96 @@ pub fn unframe(bytes: &[u8], lines: usize) -> Result<Vec<&[u8]>, String> {
         return Err(bad());
     }
     Ok(blocks)
+}
+
+/// The file in a packaged system FMU's resources that names its scene (the
+/// `scene` parameter's start value there): `riser-tools package-fmu --scene`.
+pub const PACKAGED_SCENE: &str = "packaged_scene.txt";
+
+/// The first value reference of a system's own outputs: line `i`'s
+/// quantity `q` ([`LINE_OUTPUTS`]) is `SYSTEM_VR_BASE + LINE_OUTPUTS.len() · i + q`,
+/// whatever the system (the packaged FMU's modelDescription.xml names them).
+pub const SYSTEM_VR_BASE: u32 = 100_000;
+
+/// Each line's outputs in a packaged system FMU: name suffix, unit, description.
+pub const LINE_OUTPUTS: [(&str, &str, &str); 4] = [
+    ("tension_from", "N", "tension at the line's `from` end"),
+    ("tension_to", "N", "tension at the line's `to` end"),
+    ("min_tension", "N", "smallest axial force along the line"),
+    ("touchdown_s", "m", "arc length from the line's vessel end to the touchdown (its length: none)"),
+];
+
+/// Which line and quantity a system output's value reference is.
+pub fn line_output(vr: u32) -> Option<(usize, usize)> {
+    let k = vr.checked_sub(SYSTEM_VR_BASE)? as usize;
+    Some((k / LINE_OUTPUTS.len(), k % LINE_OUTPUTS.len()))
+}
+
+/// The values of [`LINE_OUTPUTS`] of a line whose vessel end is `vessel_end`, of its outputs `o`.
+pub fn line_values(vessel_end: VesselEnd, o: &Outputs) -> [f64; 4] {
+    let (from, to) = match vessel_end {
+        VesselEnd::From => (o.top_tension, o.bottom_tension),
+        VesselEnd::To => (o.bottom_tension, o.top_tension),
+    };
+    [from, to, o.min_tension, o.touchdown_s]
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// The modelDescription.xml of a system FMU (`riser model-description
+/// --scene FILE`, `riser-tools package-fmu --scene`): the generic FMU's
+/// variables with the `scene` parameter's start `resource` (the system file
+/// in the FMU's resources), and each line's [`LINE_OUTPUTS`] as
+/// `LINE.tension_from`, … (no direct feedthrough, initial values of the
+/// parameters and inputs, as every output).
+pub fn model_description(sys: &SystemScene, resource: &str) -> Result<String, String> {
+    let md = super::vars::MODEL_DESCRIPTION;
+    let scene_start = r#"<String start="catenary"/>"#;
+    let at = md.find(r#"name="scene""#).ok_or("the model description has no scene parameter")?;
+    let rel = md[at..].find(scene_start).ok_or("the scene parameter has no start value")?;
+    let mut out = String::with_capacity(md.len() + 400 * sys.lines.len());
+    out.push_str(&md[..at + rel]);
+    out.push_str(&format!(r#"<String start="{}"/>"#, xml_escape(resource)));
+    let rest = &md[at + rel + scene_start.len()..];
+    let n_vars = md.matches("<ScalarVariable ").count();
+    // the initial unknowns' dependencies of an output (top_tension's)
+    let top = super::vars::vr_of("top_tension").ok_or("no top_tension")?;
+    let top_index = super::vars::VARIABLES.iter().position(|v| v.vr == top).ok_or("no top_tension")? + 1;
+    let initial = rest
+        .split("<InitialUnknowns>")
+        .nth(1)
+        .and_then(|s| s.lines().find(|l| l.contains(&format!(r#"index="{top_index}""#))))
+        .and_then(|l| l.split("dependencies=\"").nth(1))
+        .and_then(|l| l.split('"').next())
+        .ok_or("the model description has no initial unknown of top_tension")?
+        .to_string();
+    let (mut vars, mut outputs, mut unknowns) = (String::new(), String::new(), String::new());
+    for (i, l) in sys.lines.iter().enumerate() {
+        for (q, (suffix, unit, what)) in LINE_OUTPUTS.iter().enumerate() {
+            let vr = SYSTEM_VR_BASE + (LINE_OUTPUTS.len() * i + q) as u32;
+            let index = n_vars + 1 + LINE_OUTPUTS.len() * i + q;
+            vars.push_str(&format!(
+                "    <ScalarVariable name=\"{}.{suffix}\" valueReference=\"{vr}\" description=\"line {}: {what}\" \
+                 causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real unit=\"{unit}\"/>\n    \
+                 </ScalarVariable>\n",
+                l.name,
+                xml_escape(&l.name)
+            ));
+            outputs.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"\"/>\n"));
+            unknowns.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"{initial}\"/>\n"));
+        }
+    }
+    let insert = |text: &str, before: &str, what: &str| -> Result<String, String> {
+        let k = text.find(before).ok_or(format!("the model description has no {before}"))?;
+        Ok(format!("{}{what}{}", &text[..k], &text[k..]))
+    };
+    let rest = insert(rest, "  </ModelVariables>", &vars)?;
+    let rest = insert(&rest, "    </Outputs>", &outputs)?;
+    let rest = insert(&rest, "    </InitialUnknowns>", &unknowns)?;
+    out.push_str(&rest);
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -101,7 +101,13 @@ enum Command {
         json: bool,
     },
     /// Print the FMU's modelDescription.xml (generated from modelDescription/variables.csv).
-    ModelDescription,
+    ModelDescription {
+        /// A system scene file: the model description of a system FMU with it in its resources
+        /// (its `scene` parameter's start value the file's name; each line's outputs
+        /// LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s).
+        #[arg(long, value_name = "FILE")]
+        scene: Option<String>,
+    },
     /// The rainflow cycles (ASTM E1049-85) of a history, one number a line in FILE, as a JSON
     /// array of [range, count] in the order the procedure finds them (the tests' hook).
     #[command(hide = true)]
@@ -1624,10 +1630,11 @@ fn main() -> ExitCode {
         Command::Rainflow { file } => rainflow_command(&file),
         Command::Modes(args) => modes::modes(args),
         Command::Waves(args) => waves::waves(args),
-        Command::ModelDescription => {
+        Command::ModelDescription { scene: None } => {
             out!("{}", riser::fmi::vars::MODEL_DESCRIPTION);
             Ok(())
         }
+        Command::ModelDescription { scene: Some(path) } => system_run::model_description(&path),
         Command::Params { scene, json } => params(&scene, json),
         Command::Scene { scene, set } => load(&scene, &set).map(print_scene).map_err(|e| e.to_string()),
     };

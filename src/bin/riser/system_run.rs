@@ -339,3 +339,21 @@ fn write_csv(
     }
     f.flush()
 }
+
+/// `riser model-description --scene SYSTEM.toml`: the model description of
+/// the system FMU that has the file in its resources.
+pub fn model_description(path: &str) -> Result<(), String> {
+    if !riser::scene::system::is_system_source(path) {
+        return Err(format!(
+            "--scene {path}: not a system scene file ([[line]]); a single-line scene needs no FMU of its own: the \
+             generic FMU takes it as its `scene` parameter"
+        ));
+    }
+    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
+        return Err(m);
+    }
+    let name = std::path::Path::new(path).file_name().and_then(|n| n.to_str()).unwrap_or(path);
+    out!("{}", riser::fmi::system::model_description(&sys, name)?);
+    Ok(())
+}
