@@ -7,7 +7,6 @@ docs/theory.md §7); its lines' outputs named; coupled both ways to the six-degr
 vessel in libcosim."""
 import json
 import subprocess
-import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -31,17 +30,8 @@ def system_scene(tmp_path_factory):
 def system_fmu(fmu_path, riser_bin, system_scene, tmp_path_factory):
     """The system FMU: the generic FMU's binary, `riser model-description --scene`, the scene in
     its resources and resources/packaged_scene.txt (what `riser-tools package-fmu --scene` writes)."""
-    out = tmp_path_factory.mktemp("system_fmu") / "oc3.fmu"
-    xml = subprocess.run([riser_bin, "model-description", "--scene", str(system_scene)], check=True,
-                         capture_output=True, text=True).stdout
-    with zipfile.ZipFile(fmu_path) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
-        for item in src.infolist():
-            if item.filename != "modelDescription.xml":
-                dst.writestr(item, src.read(item.filename))
-        dst.writestr("modelDescription.xml", xml)
-        dst.write(system_scene, f"resources/{system_scene.name}")
-        dst.writestr("resources/packaged_scene.txt", system_scene.name)
-    return out
+    from riser_tools.fmu import package_system
+    return package_system(fmu_path, riser_bin, system_scene, tmp_path_factory.mktemp("system_fmu") / "oc3.fmu")
 
 
 def ramped(amplitude, period, ramp, t):

@@ -124,6 +124,25 @@ def package(binary: str = "target/release/riser", lib: str = "target/release/lib
     return out
 
 
+def package_system(fmu: str | Path, binary: str | Path, scene: str | Path, out: str | Path) -> Path:
+    """A system FMU from a packaged generic FMU `fmu` (its binary and resources): what `package`
+    with `scene` writes, without the build's library at hand (the tests' way): `riser
+    model-description --scene` of `binary`, the scene in resources/ and resources/packaged_scene.txt."""
+    scene, out = Path(scene), Path(out)
+    done = subprocess.run([str(binary), "model-description", "--scene", str(scene)], capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"riser model-description --scene {scene}: {done.stderr.strip()}")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
+        for item in src.infolist():
+            if item.filename != "modelDescription.xml":
+                dst.writestr(item, src.read(item.filename))
+        dst.writestr("modelDescription.xml", done.stdout)
+        dst.write(scene, f"resources/{scene.name}")
+        dst.writestr("resources/packaged_scene.txt", scene.name)
+    return out
+
+
 def package_main(argv: Sequence[str] | None = None) -> None:
     """`riser-tools package-fmu [--bin ...] [--lib ...] [--out fmu/riser.fmu] [--scene SYSTEM.toml]`
     (`make fmu`)."""
@@ -139,4 +158,4 @@ def package_main(argv: Sequence[str] | None = None) -> None:
     print(f"wrote {package(args.bin, args.lib, args.out, scene=args.scene)}")
 
 
-__all__ = ["AXES", "FmuRun", "INPUTS", "energy_balance", "input_table", "package", "simulate"]
+__all__ = ["AXES", "FmuRun", "INPUTS", "energy_balance", "input_table", "package", "package_system", "simulate"]
