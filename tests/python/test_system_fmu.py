@@ -130,3 +130,25 @@ def test_bad_system_runs_are_named(system_scene, riser_bin):
     done = subprocess.run([riser_bin, "run", "catenary", "--duration", "1", "--threads", "2"], capture_output=True,
                           text=True)
     assert done.returncode != 0 and "only for a system" in done.stderr
+
+
+def test_riser_scene_and_modes_take_a_system(system_scene, riser_bin, tmp_path):
+    """`riser scene SYSTEM` prints each line as the single-line scene it is; saved as a file, that
+    scene's modes (`riser modes LINE.toml`) are the system's modes of that line (`riser modes
+    SYSTEM`: the vessel held, the lines vibrate independently); the three chains of the symmetric
+    spread have the same periods."""
+    text = subprocess.run([riser_bin, "scene", str(system_scene)], check=True, capture_output=True,
+                          text=True).stdout
+    assert text.count("# line '") == 3
+    # the second line's scene, as printed (up to the next line's header)
+    second = text.split("# line 'line2'")[1].split("\n", 1)[1].split("# line '")[0]
+    line2 = tmp_path / "line2.toml"
+    line2.write_text(second)
+    sys_modes = json.loads(subprocess.run([riser_bin, "modes", str(system_scene), "--count", "4", "--json"],
+                                          check=True, capture_output=True, text=True).stdout)
+    alone = json.loads(subprocess.run([riser_bin, "modes", str(line2), "--count", "4", "--json"], check=True,
+                                      capture_output=True, text=True).stdout)
+    rows = {l["name"]: l["periods"] for l in sys_modes["lines"]}
+    assert np.allclose(rows["line2"], alone["periods"], rtol=1e-12, atol=0)
+    assert np.allclose(rows["line2"], rows["line3"], rtol=1e-9) and np.allclose(rows["line1"], rows["line2"], rtol=1e-6)
+    assert [m["period"] for m in sys_modes["modes"]] == sorted((m["period"] for m in sys_modes["modes"]), reverse=True)

@@ -1636,6 +1636,9 @@ fn main() -> ExitCode {
         }
         Command::ModelDescription { scene: Some(path) } => system_run::model_description(&path),
         Command::Params { scene, json } => params(&scene, json),
+        Command::Scene { scene, set } if riser::scene::system::is_system_source(&scene) => {
+            system_run::print_system(&scene, &set)
+        }
         Command::Scene { scene, set } => load(&scene, &set).map(print_scene).map_err(|e| e.to_string()),
     };
     match result {

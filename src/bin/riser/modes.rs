@@ -44,6 +44,12 @@ pub fn modes(args: ModesArgs) -> Result<(), String> {
     if count == 0 {
         return Err("--count must be at least 1".into());
     }
+    if riser::scene::system::is_system_source(&scene) {
+        if out.is_some() {
+            return Err("--out: not yet for a system scene; --json has every line's periods".into());
+        }
+        return super::system_run::modes(&scene, &set, count, json);
+    }
     let scene = super::load(&scene, &set).map_err(|e| e.to_string())?;
     let t0 = std::time::Instant::now();
     let rep = scene_modes(&scene, count).map_err(|e| e.to_string())?;

@@ -357,3 +357,99 @@ pub fn model_description(path: &str) -> Result<(), String> {
     out!("{}", riser::fmi::system::model_description(&sys, name)?);
     Ok(())
 }
+
+/// `riser scene SYSTEM`: the system as the models see it: its points, and
+/// each line as the single-line scene it is (its frame at its vessel point,
+/// docs/theory.md §17.1), with the properties along it.
+pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
+    if !set.is_empty() {
+        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
+    }
+    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    outln!("# system '{}': {} lines, {} points; {}", sys.name, sys.lines.len(), sys.points.len(), sys.description);
+    outln!("# the system's frame: origin at the vessel's reference point at rest, z up");
+    outln!("# {:<24} {:<8} {:>12} {:>12} {:>12}", "point", "kind", "x (m)", "y (m)", "z (m)");
+    for p in &sys.points {
+        let kind = format!("{:?}", p.kind).to_lowercase();
+        let [x, y, z] = p.position;
+        outln!("# {:<24} {:<8} {x:>12.3} {y:>12.3} {z:>12.3}", p.name, kind);
+    }
+    for (i, l) in sys.lines.iter().enumerate() {
+        let (end, vp, _) = sys.ends(i);
+        let scene = sys.line_scene(i, V3::from(vp.position));
+        let end = if end == riser::scene::system::VesselEnd::From { "from" } else { "to" };
+        outln!();
+        outln!(
+            "# line '{}' ({}, {} to {}; its {end} end on the vessel at point '{}'), as the single-line scene it is \
+             (its frame's origin at that point at rest):",
+            l.name,
+            l.line_type,
+            l.from,
+            l.to,
+            vp.name
+        );
+        crate::print_scene(scene);
+    }
+    Ok(())
+}
+
+/// `riser modes SYSTEM`: with the vessel held, the lines vibrate
+/// independently (they meet only at the vessel): the system's modes are
+/// its lines', each line's `count` lowest, merged by period.
+pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(), String> {
+    if !set.is_empty() {
+        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
+    }
+    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
+        return Err(m);
+    }
+    let t0 = std::time::Instant::now();
+    let mut lines = Vec::new();
+    for (i, l) in sys.lines.iter().enumerate() {
+        let (_, vp, _) = sys.ends(i);
+        let scene = sys.line_scene(i, V3::from(vp.position));
+        let rep = riser::sim::modes::scene_modes(&scene, count).map_err(|e| format!("line '{}': {e}", l.name))?;
+        lines.push((l.name.clone(), rep));
+    }
+    let wall = t0.elapsed().as_secs_f64();
+    let mut merged: Vec<(&str, &riser::sim::modes::SceneMode)> =
+        lines.iter().flat_map(|(n, r)| r.modes.iter().map(move |m| (n.as_str(), m))).collect();
+    merged.sort_by(|a, b| b.1.period.total_cmp(&a.1.period));
+    if json {
+        let finite = |v: f64| v.is_finite().then_some(v);
+        let v = serde_json::json!({
+            "scene": sys.name,
+            "system": true,
+            "lines": lines.iter().map(|(n, r)| serde_json::json!({
+                "name": n,
+                "periods": r.modes.iter().map(|m| finite(m.period)).collect::<Vec<_>>(),
+                "directions": r.modes.iter().map(|m| m.direction.name()).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
+            "modes": merged.iter().map(|(n, m)| serde_json::json!({
+                "line": n, "number": m.number, "period": finite(m.period), "direction": m.direction.name(),
+            })).collect::<Vec<_>>(),
+            "wall_time": wall,
+        });
+        outln!("{v}");
+        return Ok(());
+    }
+    outln!(
+        "riser modes: system '{}' ({} lines; the vessel held, each line's {count} lowest modes, longest period first)",
+        sys.name,
+        sys.lines.len()
+    );
+    outln!("  {:>4} {:<24} {:>6} {:>12} {:>12}  direction", "", "line", "mode", "period (s)", "freq (Hz)");
+    for (k, (n, m)) in merged.iter().enumerate() {
+        outln!(
+            "  {:>4} {n:<24} {:>6} {:>12.4} {:>12.5}  {}",
+            k + 1,
+            m.number,
+            m.period,
+            m.frequency,
+            m.direction.name()
+        );
+    }
+    outln!("  {:.2} s", wall);
+    Ok(())
+}
