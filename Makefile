@@ -33,8 +33,8 @@ demo: build venv fmu
 	mkdir -p $(DEMO_DIR)
 	$(BIN) statics catenary --out $(DEMO_DIR)
 	$(TOOLS) plot-statics $(DEMO_DIR)/shape.csv $(DEMO_DIR)/shape.png --title "catenary (built-in scene): static state" --surface-z 10
-	$(TOOLS) demo --fmu fmu/riser.fmu --out $(DEMO_DIR)
-	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png, vessel_coupling.csv, vessel_coupling.png"
+	$(TOOLS) demo --fmu fmu/riser.fmu --bin $(BIN) --out $(DEMO_DIR)
+	@echo "demo output in $(DEMO_DIR)/: shape.csv, shape.png, fmu_timeseries.csv, shapes.png, tension_energy.png, vessel_coupling.csv, vessel_coupling.png, moored_vessel.csv, moored_vessel.png"
 
 # The seed paper's runs: docs/paper_runs.md, docs/paper_runs_damped.md
 # and docs/figures/paper_*.png (a few minutes).

@@ -18,6 +18,7 @@ power bond (what tests/python/test_coupling.py checks).
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -321,7 +322,7 @@ def _execution(algorithm, riser_fmu, vessel_fmu, riser, vessel):
     return ex, r, v, rr, vr
 
 
-def _record(ex, r, v, rr, vr, duration, step_size=None):
+def _record(ex, r, v, rr, vr, duration, step_size=None, extra=()):
     from libcosimpy.CosimObserver import CosimObserver
 
     obs = CosimObserver.create_last_value()
@@ -335,23 +336,24 @@ def _record(ex, r, v, rr, vr, duration, step_size=None):
         k += 1
         t = k * step_size if step_size else ex.status().current_time / 1e9
         rows.append([t] + list(obs.last_real_values(v, [vr[n] for n in vnames]))
-                    + list(obs.last_real_values(r, [rr[n] for n in RISER_OUT])))
+                    + list(obs.last_real_values(r, [rr[n] for n in RISER_OUT + list(extra)])))
         if t >= duration - 1e-9:
             break
     a = np.array(rows)
-    out = {n: a[:, i] for i, n in enumerate(["t"] + vnames + RISER_OUT)}
+    out = {n: a[:, i] for i, n in enumerate(["t"] + vnames + RISER_OUT + list(extra))}
     out["rotations"] = "roll" in rr
     return out
 
 
 def fixed_step6(riser_fmu: str, vessel_fmu: str, h: float, duration: float, riser: dict | None = None,
-                vessel: dict | None = None):
+                vessel: dict | None = None, extra: Sequence[str] = ()):
     """libcosim's fixed-step algorithm (Jacobi) on riser and the six-degree-of-freedom vessel
     (osp/vessel/Vessel6.py): the vessel's pose and velocities → riser's inputs of the same names
     (the rotations only if the riser FMU has them), riser's top_force_* and top_moment_* (global) →
     the vessel's inputs of the same names. `riser`, `vessel`: initial values (str, bool or real).
     Returns the columns t, the vessel's pose, velocities, work, work_magnitude and riser's
-    RISER_OUT after every step, and `rotations` (whether the riser took the vessel's rotation)."""
+    RISER_OUT (and riser's `extra` outputs, e.g. a system FMU's LINE.tension_from) after every step,
+    and `rotations` (whether the riser took the vessel's rotation)."""
     from libcosimpy.CosimExecution import CosimExecution
 
     ex, r, v, rr, vr = _execution(lambda: CosimExecution.from_step_size(step_size=int(round(h * 1e9))),
@@ -361,7 +363,7 @@ def fixed_step6(riser_fmu: str, vessel_fmu: str, h: float, duration: float, rise
             ex.connect_real_variables(v, vr[name], r, rr[name])
     for name in FORCE + MOMENT:
         ex.connect_real_variables(r, rr[name], v, vr[name])
-    return _record(ex, r, v, rr, vr, duration, step_size=h)
+    return _record(ex, r, v, rr, vr, duration, step_size=h, extra=extra)
 
 
 def ecco6(riser_fmu: str, vessel_fmu: str, duration: float, riser: dict | None = None, vessel: dict | None = None,

@@ -20,6 +20,14 @@ Prints the vessel's heave, roll and pitch amplitudes and the top tension's min/m
 steady window (one wave period after the ramp to the end), the moment's amplitude, the check
 M = (R ρ) × F at the vessel's pose and the wall time; writes out/demo/vessel_coupling.csv and
 out/demo/vessel_coupling.png. `--vessel-duration 0` leaves it out.
+
+Last (issue 49): a moored vessel, docs/cases/moored_vessel.toml: the same vessel held by four
+catenary chains and carrying a steel catenary riser, the five lines one system FMU (packaged from
+fmu/riser.fmu with `riser model-description --scene`), both ways in libcosim at 0.05 s for 100 s in
+the vessel's wave, its own station-keeping springs off (the chains hold it). Prints the vessel's
+motion, the resultant force on it and each line's tension at its vessel end over the steady
+window; writes out/demo/moored_vessel.csv and out/demo/moored_vessel.png. `--moored-duration 0`
+leaves it out.
 """
 
 from __future__ import annotations
@@ -51,6 +59,9 @@ def main(argv: Sequence[str] | None = None) -> None:
     ap.add_argument("--ramp", type=float, default=20.0, help="s; 0 is the paper's abrupt start (default one period)")
     ap.add_argument("--vessel-duration", type=float, default=60.0,
                     help="s of the coupling with the six-degree-of-freedom vessel (0 leaves it out)")
+    ap.add_argument("--moored-duration", type=float, default=100.0,
+                    help="s of the moored vessel, a system FMU of four chains and a riser (0 leaves it out)")
+    ap.add_argument("--bin", default="target/release/riser", help="the riser binary (model-description --scene)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -115,6 +126,8 @@ def main(argv: Sequence[str] | None = None) -> None:
     print(f"  wrote {out}/fmu_timeseries.csv, shapes.png, tension_energy.png")
     if args.vessel_duration > 0:
         vessel_coupling(args.fmu, out, args.vessel_duration, damping=args.damping)
+    if args.moored_duration > 0:
+        moored_vessel(args.fmu, args.bin, out, args.moored_duration)
 
 
 def moment_error(res) -> float:
@@ -211,4 +224,93 @@ def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: f
     fig.savefig(out / "vessel_coupling.png", dpi=110)
     plt.close(fig)
     print(f"  wrote {out}/vessel_coupling.csv, vessel_coupling.png")
+    return res
+
+
+MOORED_SCENE = Path("docs") / "cases" / "moored_vessel.toml"  # make demo runs from the repository
+# the vessel without its own station-keeping springs (the chains hold it), trimmed for the lines' load at t = 0
+MOORED_VESSEL = {"stiffness_11": 0.0, "stiffness_22": 0.0, "stiffness_66": 0.0, "balance_initial_load": True}
+
+
+def moored_vessel(fmu_path: str, riser_bin: str, out: str | Path, duration: float = 100.0, h: float = 0.05,
+                  scene: str | Path = MOORED_SCENE) -> dict:
+    """The moored vessel: the system FMU of `scene` (packaged from `fmu_path` with `riser_bin`) both
+    ways with osp/vessel/Vessel6.py in libcosim at `h` for `duration` s. Prints the summary, writes
+    `out`/moored_vessel.csv and moored_vessel.png; returns fixed_step6's columns with the lines'."""
+    import subprocess
+    import tempfile
+    import time
+    import tomllib
+
+    from ..coupling_loop import build_vessel_fmu, fixed_step6
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    lines = [(l["name"], l["from"], l["to"]) for l in tomllib.loads(Path(scene).read_text())["line"]]
+    kinds = {p["name"]: p["kind"] for p in tomllib.loads(Path(scene).read_text())["point"]}
+    # each line's tension at its vessel end
+    at_vessel = {n: f"{n}.tension_{'from' if kinds[a] == 'vessel' else 'to'}" for n, a, _ in lines}
+    with tempfile.TemporaryDirectory(prefix="riser_demo_moored_") as tmp:
+        system = fmu.package_system(fmu_path, riser_bin, scene, Path(tmp) / "moored_vessel.fmu")
+        try:
+            vessel_fmu = build_vessel_fmu(tmp, "Vessel6")
+        except subprocess.CalledProcessError as e:
+            raise RuntimeError(f"pythonfmu could not build osp/vessel/Vessel6.py:\n{e.stderr.decode(errors='replace')}"
+                               ) from e
+        w0 = time.perf_counter()
+        res = fixed_step6(str(system), vessel_fmu, h, duration, vessel=MOORED_VESSEL,
+                          extra=list(at_vessel.values()))
+        wall = time.perf_counter() - w0
+    t = res["t"]
+    t0 = min(60.0, 0.5 * duration)  # the roll near its resonance grows for about 50 s
+    win = t >= t0 - 1e-9
+    amp = {n: np.ptp(res[n][win]) / 2 for n in ["surge", "sway", "heave", "roll", "pitch", "yaw"]}
+    print(f"a moored vessel (docs/cases/moored_vessel.toml: four chains and a steel catenary riser, one system FMU) "
+          f"on the six-degree-of-freedom vessel, both ways in libcosim at {h:g} s, {duration:g} s in its wave")
+    print(f"  steady window {t0:g} to {duration:g} s:")
+    print(f"    vessel mean surge {time_mean(t[win], res['surge'][win]):.3f} m; amplitudes surge {amp['surge']:.3f} m, "
+          f"heave {amp['heave']:.3f} m, roll {np.degrees(amp['roll']):.2f}°, pitch {np.degrees(amp['pitch']):.2f}°")
+    for c in "xyz":
+        f = res[f"top_force_{c}"][win]
+        print(f"    force on the vessel {c}  min {f.min() / 1e3:10.1f} / mean {time_mean(t[win], f) / 1e3:10.1f} / "
+              f"max {f.max() / 1e3:10.1f} kN")
+    for n, col in at_vessel.items():
+        x = res[col][win]
+        print(f"    {n:<22} tension at the vessel min {x.min() / 1e3:8.1f} / mean {time_mean(t[win], x) / 1e3:8.1f} / "
+              f"max {x.max() / 1e3:8.1f} kN")
+    print(f"  wall time                {wall:.2f} s (real-time factor {duration / wall:.1f}, libcosim with both "
+          f"FMUs)")
+    columns = ["t", "surge", "sway", "heave", "roll", "pitch", "yaw", "top_force_x", "top_force_y", "top_force_z",
+               "top_moment_x", "top_moment_y", "top_moment_z"] + list(at_vessel.values())
+    with open(out / "moored_vessel.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for row in zip(*(res[n] for n in columns)):
+            w.writerow([repr(float(x)) for x in row])
+    import matplotlib.pyplot as plt
+    fig, (a1, a2, a3, a4) = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
+    for n in ["surge", "sway", "heave"]:
+        a1.plot(t, res[n], lw=0.8, label=n)
+    a1.set_ylabel("translation (m)")
+    for n in ["roll", "pitch", "yaw"]:
+        a2.plot(t, np.degrees(res[n]), lw=0.8, label=n)
+    a2.set_ylabel("rotation (°)")
+    for c in "xyz":
+        f = res[f"top_force_{c}"]
+        a3.plot(t, (f - f[0]) / 1e3, lw=0.8, label=f"top_force_{c} − {f[0] / 1e3:.0f} kN")
+    a3.set_ylabel("force on the vessel\n− F(0) (kN)")
+    for n, col in at_vessel.items():
+        a4.plot(t, res[col] / 1e3, lw=0.8, label=n)
+    a4.set_ylabel("tension at the\nvessel (kN)")
+    a4.set_xlabel("t (s)")
+    for a in (a1, a2, a3, a4):
+        a.grid(True, alpha=0.3)
+        a.axvline(t0, color="k", lw=0.5, ls=":")
+        a.legend(fontsize=7, loc="upper left")
+    a1.set_title(f"moored vessel: four chains and a riser (one system FMU) both ways in libcosim (fixed step {h:g} s)")
+    fig.tight_layout()
+    fig.savefig(out / "moored_vessel.png", dpi=110)
+    plt.close(fig)
+    print(f"  wrote {out}/moored_vessel.csv, moored_vessel.png")
+    res["wall"] = wall
     return res
