@@ -51,20 +51,10 @@ fn sample(l: &LineRun, e0: f64) -> Sample {
 
 /// `riser run` of a system file.
 pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usize>) -> Result<(), String> {
-    let crate::RunArgs {
-        motions,
-        raos,
-        heave_until,
-        ramp,
-        duration,
-        window,
-        shape_times,
-        max_tangent_age,
-        json,
-        out,
-        fatigue,
-        fatigue_series: _,
-    } = args;
+    let (motions, heave_until, ramp, duration, window) =
+        (args.motions, args.heave_until, args.ramp, args.duration, args.window);
+    let (max_tangent_age, json, out) = (args.max_tangent_age, args.json, args.out);
+    let (raos, fatigue, shape_times) = (args.raos, args.fatigue, args.shape_times);
     let not_yet = |what: &str| Err(format!("{what}: not yet for a system scene ({})", "docs/guide/systems.md"));
     if !set.is_empty() {
         return not_yet("--set (edit the system's file)");

@@ -130,6 +130,25 @@ def main(argv: Sequence[str] | None = None) -> None:
         moored_vessel(args.fmu, args.bin, out, args.moored_duration)
 
 
+def _csv_and_pose_plot(path: Path, res: dict, columns: Sequence[str]):
+    """Writes `columns` of a coupled run `res` to the CSV `path`; returns a figure of four rows
+    and its axes, the vessel's translations and rotations plotted in the first two."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for row in zip(*(res[n] for n in columns)):
+            w.writerow([repr(float(x)) for x in row])
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
+    for n in ["surge", "sway", "heave"]:
+        axes[0].plot(res["t"], res[n], lw=0.8, label=n)
+    axes[0].set_ylabel("translation (m)")
+    for n in ["roll", "pitch", "yaw"]:
+        axes[1].plot(res["t"], np.degrees(res[n]), lw=0.8, label=n)
+    axes[1].set_ylabel("rotation (°)")
+    return fig, axes
+
+
 def moment_error(res) -> float:
     """max |M − (R ρ) × F| over the run at the vessel's recorded pose, relative to |ρ| max |F|
     (tests/python/test_coupling6.py's moment_error; R = I if riser did not take the rotation)."""
@@ -193,19 +212,8 @@ def vessel_coupling(fmu_path: str, out: str | Path, duration: float = 60.0, h: f
     print(f"  |M − (Rρ)×F| / (|ρ| max|F|) at the vessel's pose: {res['moment_error']:.1e} (whole run)")
     print(f"  wall time                {wall:.2f} s (real-time factor {duration / wall:.1f}, libcosim with both "
           f"FMUs)")
-    with open(out / "vessel_coupling.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(VESSEL_COLUMNS)
-        for row in zip(*(res[n] for n in VESSEL_COLUMNS)):
-            w.writerow([repr(float(x)) for x in row])
+    fig, (a1, a2, a3, a4) = _csv_and_pose_plot(out / "vessel_coupling.csv", res, VESSEL_COLUMNS)
     import matplotlib.pyplot as plt
-    fig, (a1, a2, a3, a4) = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
-    for n in ["surge", "sway", "heave"]:
-        a1.plot(t, res[n], lw=0.8, label=n)
-    a1.set_ylabel("translation (m)")
-    for n in ["roll", "pitch", "yaw"]:
-        a2.plot(t, np.degrees(res[n]), lw=0.8, label=n)
-    a2.set_ylabel("rotation (°)")
     a3.plot(t, res["top_tension"] / 1e3, lw=0.8)
     a3.set_ylabel("top tension (kN)")
     for c in "xyz":
@@ -282,19 +290,8 @@ def moored_vessel(fmu_path: str, riser_bin: str, out: str | Path, duration: floa
           f"FMUs)")
     columns = ["t", "surge", "sway", "heave", "roll", "pitch", "yaw", "top_force_x", "top_force_y", "top_force_z",
                "top_moment_x", "top_moment_y", "top_moment_z"] + list(at_vessel.values())
-    with open(out / "moored_vessel.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(columns)
-        for row in zip(*(res[n] for n in columns)):
-            w.writerow([repr(float(x)) for x in row])
+    fig, (a1, a2, a3, a4) = _csv_and_pose_plot(out / "moored_vessel.csv", res, columns)
     import matplotlib.pyplot as plt
-    fig, (a1, a2, a3, a4) = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
-    for n in ["surge", "sway", "heave"]:
-        a1.plot(t, res[n], lw=0.8, label=n)
-    a1.set_ylabel("translation (m)")
-    for n in ["roll", "pitch", "yaw"]:
-        a2.plot(t, np.degrees(res[n]), lw=0.8, label=n)
-    a2.set_ylabel("rotation (°)")
     for c in "xyz":
         f = res[f"top_force_{c}"]
         a3.plot(t, (f - f[0]) / 1e3, lw=0.8, label=f"top_force_{c} − {f[0] / 1e3:.0f} kN")
