@@ -133,7 +133,7 @@ fn bad_systems_are_named() {
     assert!(has(&e, "analysis.model", "line_type"), "{e:?}");
     // a single-line command given a system says so
     match Scene::from_toml(OC3, "oc3") {
-        Err(e) => assert!(e.to_string().contains("only `riser statics` takes a system"), "{e}"),
+        Err(e) => assert!(e.to_string().contains("this command takes a single-line scene"), "{e}"),
         Ok(_) => panic!("a system read as a single line"),
     }
 }

@@ -211,8 +211,9 @@ pub struct Instance {
     /// A system's lines beyond its first (`sim`), moved by the same vessel
     /// path (docs/theory.md §17.6); empty for a single-line scene.
     others: Vec<super::system::OtherLine>,
-    /// Which end of a system's first line is on the vessel (a single line: `From`, the hang-off).
-    system_first_end: VesselEnd,
+    /// Which end of a system's first line is on the vessel; `None` for a
+    /// single-line scene, which has no line outputs (`LINE.tension_from`, …).
+    system_first_end: Option<VesselEnd>,
     /// The state at the start of the communication step in progress: a step
     /// whose outputs come out non-finite is discarded back to it (allocated
     /// at initialisation, copied without allocating in fmi2DoStep).
@@ -334,7 +335,7 @@ impl Instance {
             hf_watch: None,
             sim: None,
             others: Vec::new(),
-            system_first_end: VesselEnd::From,
+            system_first_end: None,
             step_start: None,
             scene: None,
             outputs: None,
@@ -481,13 +482,13 @@ impl Instance {
 
     /// The scene with the parameters the master set (a system's: its first line's).
     fn build_scene(&self) -> Result<Scene, String> {
-        Ok(self.build_scenes()?.swap_remove(0).0)
+        Ok(self.build_scenes()?.0.swap_remove(0).0)
     }
 
     /// The scene with the parameters the master set: one for a single-line
     /// scene; a system's lines, in order (its first the instance's line,
     /// [`super::system::line_scenes`]).
-    fn build_scenes(&self) -> Result<Vec<(Scene, VesselEnd)>, String> {
+    fn build_scenes(&self) -> Result<(Vec<(Scene, VesselEnd)>, bool), String> {
         let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
             Some((Value::String(s), _)) => s.clone(),
             _ => "catenary".into(),
@@ -532,7 +533,7 @@ impl Instance {
                 let path = path.as_deref().and_then(|p| p.to_str()).unwrap_or(&name).to_string();
                 if crate::scene::system::is_system_source(&path) {
                     let sys = crate::scene::system::SystemScene::load(&path).map_err(|e| e.to_string())?;
-                    return super::system::line_scenes(&sys, &sets);
+                    return Ok((super::system::line_scenes(&sys, &sets)?, true));
                 }
                 Scene::load(&path).map_err(|e| e.to_string())?
             }
@@ -547,7 +548,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok(vec![(scene, VesselEnd::From)])
+        Ok((vec![(scene, VesselEnd::From)], false))
     }
 
     /// fmi2EnterInitializationMode.
@@ -572,14 +573,14 @@ impl Instance {
         if self.sim.is_some() {
             return Status::Ok;
         }
-        let mut scenes = match self.build_scenes() {
+        let (mut scenes, is_system) = match self.build_scenes() {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
         // a system's lines beyond its first (docs/theory.md §17.6)
         let other_scenes = scenes.split_off(1);
         let (scene, first_end) = scenes.swap_remove(0);
-        self.system_first_end = first_end;
+        self.system_first_end = is_system.then_some(first_end);
         // the accuracy knob (docs/theory.md §16): the numerics for the design
         // motion (the master's is not known yet), those the master set kept;
         // read back through n_elements, time_step and newton_tolerance
@@ -1189,7 +1190,11 @@ impl Instance {
             }
         }
         let Some(sim) = &self.sim else { return Err(self.fail("no state yet")) };
-        let first_end = self.system_first_end;
+        let Some(first_end) = self.system_first_end else {
+            return Err(
+                self.fail(&format!("unknown value reference {vr} (line outputs exist for a system scene only)"))
+            );
+        };
         let x = match line {
             0 => super::system::line_values(first_end, &sim.outputs())[q],
             k => match self.others.get(k - 1) {

@@ -411,5 +411,5 @@ impl SystemScene {
 }
 
 /// What a command that takes only single-line scenes says of a system.
-pub const NOT_YET: &str = "a system of lines ([[line]]): only `riser statics` takes a system in this version \
-                           (docs/guide/systems.md)";
+pub const NOT_YET: &str = "a system of lines ([[line]]): this command takes a single-line scene; `riser statics`, \
+                           `riser run`, `riser scene`, `riser modes` and the FMU take a system (docs/guide/systems.md)";
