@@ -10,6 +10,7 @@
 //! tests/python/test_system.py.
 
 use riser::math::{M6, V3};
+use riser::model::cable::statics::touchdown_start;
 use riser::scene::SceneError;
 use riser::scene::system::{PointKind, SystemScene, VesselEnd};
 use riser::sim::system::{
@@ -149,8 +150,18 @@ fn a_chain_lying_from_a_free_point_starts_taut() {
     let scene = sys.line_scene_at(main, joint, anchor);
     let model = riser::model::cable::CableModel::from_scene(&scene);
     let x = cable_start(&model, scene.hang_off(), scene.anchor()).expect("a start");
-    let slack = (0..model.cable.n_el).filter(|&e| model.cable.stretch(&x, e) <= 1.0).count();
-    assert_eq!(slack, 0, "slack segments in the start");
+    let slack = |x: &[V3]| (0..model.cable.n_el).filter(|&e| model.cable.stretch(x, e) <= 1.0).count();
+    assert_eq!(slack(&x), 0, "slack segments in the start");
+    // the library's start, for the record (measured: 217 of 300 segments
+    // slack; not asserted: the scene's own solve copes, slowly)
+    if let Some(t) = touchdown_start(&model, scene.hang_off(), scene.anchor()) {
+        let worst = (0..model.cable.n_el).map(|e| model.cable.stretch(&t, e) - 1.0).fold(f64::INFINITY, f64::min);
+        eprintln!(
+            "touchdown_start: {} of {} segments slack, the least strain {worst:.2e}",
+            slack(&t),
+            model.cable.n_el
+        );
+    }
     let solved = solve_line_between(&sys, main, joint, anchor, None).unwrap();
     eprintln!(
         "main: {} Newton iterations, {} continuation steps",
