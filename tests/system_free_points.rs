@@ -262,3 +262,34 @@ fn the_command_line_prints_the_free_points() {
         assert!(l["tension_from"].as_f64().unwrap() > 0.0 && l["tension_to"].as_f64().unwrap() > 0.0);
     }
 }
+
+/// A buoy whose lines cannot hold it under water (its chain to the anchor
+/// removed) has no equilibrium: refused, named, with why; and a system with
+/// no vessel point refuses a pose that would move nothing.
+#[test]
+fn a_system_without_equilibrium_or_vessel_is_named() {
+    let buoy = std::fs::read_to_string(path("subsea_buoy_mooring")).unwrap();
+    let anchor = buoy.find("[[point]]\nname = \"anchor\"").unwrap();
+    let buoy_point = buoy.find("[[point]]\nname = \"buoy\"").unwrap();
+    let tether = buoy.find("[[line]]\nname = \"tether\"").unwrap();
+    let rope = buoy.find("[[line]]\nname = \"rope\"").unwrap();
+    let rising = format!("{}{}{}", &buoy[..anchor], &buoy[buoy_point..tether], &buoy[rope..]);
+    let sys = SystemScene::from_toml(&rising, "rising").unwrap_or_else(|e| panic!("{e}"));
+    let e = solve_system(&sys, &[0.0; 6], false).unwrap_err();
+    assert!(e.contains("free point 'buoy'") && e.contains("rises to the surface"), "{e}");
+    // the clump's fairlead made a fixed point: a system on no vessel
+    let fixed = std::env::temp_dir().join(format!("riser_no_vessel_{}.toml", std::process::id()));
+    let text = std::fs::read_to_string(path("clump_weight_mooring")).unwrap();
+    std::fs::write(&fixed, text.replace("kind = \"vessel\"", "kind = \"fixed\"")).unwrap();
+    let run = |pose: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_riser"))
+            .args(["statics", fixed.to_str().unwrap(), "--pose", pose])
+            .output()
+            .unwrap()
+    };
+    let (moved, neutral) = (run("5,0,0,0,0,0"), run("0,0,0,0,0,0"));
+    std::fs::remove_file(&fixed).ok();
+    let err = String::from_utf8_lossy(&moved.stderr);
+    assert!(!moved.status.success() && err.contains("has no vessel point"), "{err}");
+    assert!(neutral.status.success(), "{}", String::from_utf8_lossy(&neutral.stderr));
+}

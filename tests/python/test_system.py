@@ -1,5 +1,5 @@
-"""A system of lines on one vessel against MoorPy (issue 49, first increment:
-statics without free points; docs/guide/systems.md, docs/theory.md §17).
+"""A system of lines on one vessel against MoorPy (issue 49: statics, with and
+without free points; docs/guide/systems.md, docs/theory.md §17).
 
 The OC3-Hywind spar's mooring (docs/cases/oc3_hywind_mooring.toml) built in
 MoorPy 1.3.0 (requirements-peers.txt) from the same file: its points, line

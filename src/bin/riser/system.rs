@@ -95,6 +95,14 @@ pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
     let pose = parse_pose(pose)?;
+    let on_vessel = sys.points.iter().any(|p| p.kind == riser::scene::system::PointKind::Vessel);
+    if !on_vessel && pose.iter().any(|&v| v != 0.0) {
+        return Err(format!(
+            "--pose: system '{}' has no vessel point (its lines join fixed and free points): nothing moves with \
+             the vessel's pose",
+            sys.name
+        ));
+    }
     let t0 = std::time::Instant::now();
     let st = solve_system(&sys, &pose, true)?;
     let wall = t0.elapsed().as_secs_f64();
