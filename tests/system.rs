@@ -1,5 +1,5 @@
-//! A system of lines on one vessel (issue 49, first increment: statics,
-//! no free points; docs/guide/systems.md, docs/theory.md §17): the format's
+//! A system of lines on one vessel (issue 49, statics without free points,
+//! which tests/system_free_points.rs tests; docs/guide/systems.md, docs/theory.md §17): the format's
 //! checks, the OC3-Hywind spar's mooring against its published surge
 //! stiffness, the 6×6 stiffness against central differences of the
 //! system's own statics, and the command line.
@@ -105,10 +105,9 @@ fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
 
 #[test]
 fn bad_systems_are_named() {
-    // a free point: not yet, named
-    let free = OC3.replacen("name = \"anchor1\"\nkind = \"fixed\"", "name = \"anchor1\"\nkind = \"free\"", 1);
-    let e = invalid(&free);
-    assert!(has(&e, "point.anchor1.kind", "not yet"), "{e:?}");
+    // a free point's keys on a vessel point (free points: tests/system_free_points.rs)
+    let e = invalid(&OC3.replacen("kind = \"vessel\"", "kind = \"vessel\"\nmass = 1.0", 1));
+    assert!(has(&e, "point.fairlead1.mass", "only a free point"), "{e:?}");
     // an unknown point, an unknown type
     let e = invalid(&OC3.replacen("to = \"fairlead1\"", "to = \"fairlead9\"", 1));
     assert!(has(&e, "line.line1.to", "fairlead9") && has(&e, "point.fairlead1", "no line uses"), "{e:?}");

@@ -65,7 +65,7 @@ fn one_and_two_threads_give_the_same_bits() {
 }
 
 /// The resultant moment about the reference point against its definition
-/// (17.7), read off the state: each line's force on the vessel at its
+/// (17.11), read off the state: each line's force on the vessel at its
 /// fairlead's position (the hang-off node, in the global frame) less the
 /// reference point's, with the vessel turned by about 3 degrees on every
 /// axis; and the vessel-frame loads are the global ones turned by Rᵀ.
@@ -92,7 +92,7 @@ fn the_resultant_moment_is_the_forces_at_the_turning_fairleads() {
     assert!((r.moment_vessel - rot.transpose() * r.moment).norm() < 1e-9 * scale);
 }
 
-/// One energy balance for the system (17.8): the sum of its lines'
+/// One energy balance for the system (17.12): the sum of its lines'
 /// residuals is a small part of the energy they exchanged with the vessel,
 /// the water and the seabed over a minute of turning motion (the scheme
 /// conserves energy to its Newton tolerance, §5.5).

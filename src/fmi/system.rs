@@ -4,7 +4,7 @@
 //! outputs, `top_tension`, `shape[k]`, … are that line's); the others are
 //! [`OtherLine`]s moved by the same vessel path at their own vessel
 //! points; the loads on the vessel and the energies are the system's sums
-//! (17.7, 17.8).
+//! (17.11, 17.12).
 
 use super::vars::{Kind, Variable};
 use crate::model::{Outputs, State};
@@ -89,7 +89,7 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
 }
 
 /// Adds line `other`'s loads on the vessel and its energies to the
-/// system's outputs `sum` (17.7, 17.8); the single-line outputs stay the
+/// system's outputs `sum` (17.11, 17.12); the single-line outputs stay the
 /// first line's.
 pub fn add_line(sum: &mut Outputs, other: &Outputs) {
     sum.top_force += other.top_force;

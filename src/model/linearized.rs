@@ -75,6 +75,9 @@ pub trait Linearized {
     /// Rows of the hang-off's position x, y, z (spatial components), whose
     /// residuals are the reactions of the support on the line.
     fn hang_off_rows(&self) -> [usize; 3];
+    /// Rows of the anchor's position x, y, z (the end at S = L), whose
+    /// residuals are the reactions of the anchor on the line.
+    fn anchor_rows(&self) -> [usize; 3];
     /// The static residual R(q) = f_int − f_ext at `cfg` into `r` (the loads
     /// of the static equilibrium) and its tangent ∂R/∂q into `k`.
     fn static_tangent(&self, cfg: &RodConfig, r: &mut [f64], k: &mut BandedSystem);

@@ -1,20 +1,22 @@
 //! A system of lines on one vessel (issue 49, docs/guide/systems.md): the
 //! scene format. `[[line_type]]` (`name`, `model` = `rod` | `cable`, and the
 //! keys of `[line]` but `length`), `[[point]]` (`name`, `kind` = `fixed` |
-//! `vessel` | `free`, `position`), `[[line]]` (`name`, `type`, `from`, `to`,
-//! `length`, `n_elements`); `[environment]`, `[current]`, `[seabed]`,
-//! `[waves]` and `[analysis]` shared. The system's frame has its origin at
-//! the vessel reference point's initial position, z up: a fixed point's
-//! `position` is global, a vessel point's is in the vessel frame relative to
-//! the reference point.
+//! `vessel` | `free`, `position`; a free point's `mass`, `volume`,
+//! `cd_area`, `ca`), `[[line]]` (`name`, `type`, `from`, `to`, `length`,
+//! `n_elements`); `[environment]`, `[current]`, `[seabed]`, `[waves]` and
+//! `[analysis]` shared. The system's frame has its origin at the vessel
+//! reference point's initial position, z up: a fixed point's `position` is
+//! global, a vessel point's is in the vessel frame relative to the reference
+//! point, a free point's is its initial global position.
 //!
 //! A system is recognised by its `[[line]]` array (a single-line scene has
 //! a `[line]` table and keeps its meaning). Each line is the single-line
 //! [`Scene`] it is alone ([`SystemScene::line_scene`]): its frame at its
-//! vessel point, the anchor, the water surface, the seabed and the waves'
-//! phase origin shifted by that point's global position. This increment
-//! takes lines between a fixed and a vessel point; free points are refused
-//! ("not yet").
+//! hang-off (its vessel point where it has one, else its free end, the
+//! higher of two free ends), its other end the single line's anchor, the
+//! water surface, the seabed and the waves' phase origin shifted by the
+//! hang-off's global position. A line joins any two points but two fixed or
+//! two vessel points.
 
 use super::checker::FieldError;
 use super::{Analysis, CurrentSpec, Environment, Line, Model, Scene, SceneError, SeabedSpec, in_users_terms, waves};
@@ -29,7 +31,8 @@ pub enum PointKind {
     Fixed,
     /// A fairlead or hang-off: `position` in the vessel frame from the reference point.
     Vessel,
-    /// A joint, clump weight or buoy (not yet: refused).
+    /// A joint, clump weight or buoy: a point mass in equilibrium under
+    /// its lines, its weight and buoyancy and the seabed's contact.
     Free,
 }
 
@@ -39,8 +42,44 @@ pub enum PointKind {
 pub struct PointSpec {
     pub name: String,
     pub kind: PointKind,
-    /// m: global for a fixed point, in the vessel frame for a vessel point.
+    /// m: global for a fixed point, in the vessel frame for a vessel point,
+    /// global and initial (where the statics start) for a free point.
     pub position: [f64; 3],
+    /// A free point's mass, kg (default 0).
+    #[serde(default)]
+    pub mass: Option<f64>,
+    /// A free point's displaced volume, m³ (default 0): its buoyancy ρ g V
+    /// below the water surface.
+    #[serde(default)]
+    pub volume: Option<f64>,
+    /// A free point's drag area C_d A, m² (default 0; the dynamics').
+    #[serde(default)]
+    pub cd_area: Option<f64>,
+    /// A free point's added-mass coefficient (default 0; the dynamics'): added mass C_a ρ V.
+    #[serde(default)]
+    pub ca: Option<f64>,
+}
+
+impl PointSpec {
+    /// Mass, kg (0 unless a free point gives it).
+    pub fn mass(&self) -> f64 {
+        self.mass.unwrap_or(0.0)
+    }
+
+    /// Displaced volume, m³ (0 unless a free point gives it).
+    pub fn volume(&self) -> f64 {
+        self.volume.unwrap_or(0.0)
+    }
+
+    /// Drag area C_d A, m².
+    pub fn cd_area(&self) -> f64 {
+        self.cd_area.unwrap_or(0.0)
+    }
+
+    /// Added-mass coefficient.
+    pub fn ca(&self) -> f64 {
+        self.ca.unwrap_or(0.0)
+    }
 }
 
 /// `[[line]]` of a system.
@@ -136,12 +175,14 @@ fn parse_error(source: &str, message: String) -> SceneError {
     SceneError::Parse { source: source.to_string(), message: in_users_terms(&message) }
 }
 
-/// Which end of a line is on the vessel.
+/// Which end of a line is its single-line scene's hang-off
+/// ([`SystemScene::ends`]): the vessel point where the line has one (so, on
+/// a line between a fixed and a vessel point, the end on the vessel).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VesselEnd {
-    /// `from` is the vessel point, `to` the fixed one.
+    /// `from` is the hang-off (the vessel point), `to` the anchor.
     From,
-    /// `to` is the vessel point, `from` the fixed one.
+    /// `to` is the hang-off (the vessel point), `from` the anchor.
     To,
 }
 
@@ -226,26 +267,45 @@ impl SystemScene {
         self.line_types.iter().find(|t| t.name == name)
     }
 
-    /// Which end of line `i` is on the vessel, its vessel point and its fixed point
-    /// (a validated system: one of each).
+    /// Which end of line `i` is its single-line scene's hang-off, its
+    /// hang-off point and its anchor point (a validated system). The hang-off
+    /// is the vessel point where the line has one (a line between a fixed
+    /// and a vessel point: the vessel point, the fixed point its anchor);
+    /// between a fixed and a free point, the free point; between two free
+    /// points, the higher at their initial positions (`from` if level).
     pub fn ends(&self, i: usize) -> (VesselEnd, &PointSpec, &PointSpec) {
         let l = &self.lines[i];
         let (a, b) = (self.point(&l.from).expect("validated"), self.point(&l.to).expect("validated"));
-        if a.kind == PointKind::Vessel { (VesselEnd::From, a, b) } else { (VesselEnd::To, b, a) }
+        let from_hangs = match (a.kind, b.kind) {
+            (PointKind::Vessel, _) => true,
+            (_, PointKind::Vessel) => false,
+            (PointKind::Free, PointKind::Fixed) => true,
+            (PointKind::Fixed, PointKind::Free) => false,
+            _ => a.position[2] >= b.position[2],
+        };
+        if from_hangs { (VesselEnd::From, a, b) } else { (VesselEnd::To, b, a) }
     }
 
-    /// The single-line scene line `i` is with its vessel point at `fairlead`
-    /// (global, m): its frame's origin there (the hang-off), the anchor, the
-    /// water surface, the seabed and the waves' phase origin shifted by
-    /// −`fairlead`; the hang-off's `offset` is the point's vessel-frame
-    /// position ρ (pinned).
+    /// The single-line scene line `i` is with its hang-off at `fairlead`
+    /// (global, m) and its anchor where the scene puts it (a fixed point's
+    /// position, a free point's initial one): its frame's origin at the
+    /// hang-off, the anchor, the water surface, the seabed and the waves'
+    /// phase origin shifted by −`fairlead`; the hang-off's `offset` is the
+    /// vessel point's vessel-frame position ρ (pinned), zero at a free point.
     pub fn line_scene(&self, i: usize, fairlead: V3) -> Scene {
+        let (_, _, fp) = self.ends(i);
+        self.line_scene_at(i, fairlead, V3::from(fp.position))
+    }
+
+    /// [`SystemScene::line_scene`] with its anchor end at `anchor` (global, m):
+    /// a line with a free end, its ends where the system's statics put them.
+    pub fn line_scene_at(&self, i: usize, fairlead: V3, anchor: V3) -> Scene {
         let l = &self.lines[i];
-        let (_, vp, fp) = self.ends(i);
+        let (_, vp, _) = self.ends(i);
         let t = self.line_type(&l.line_type).expect("validated");
         let mut line = t.line.clone();
         line.length = l.length;
-        let a = V3::from(fp.position) - fairlead;
+        let a = anchor - fairlead;
         let mut environment = self.environment.clone();
         environment.water_surface_z -= fairlead.z;
         let seabed = self.seabed.as_ref().map(|b| {
@@ -274,15 +334,21 @@ impl SystemScene {
             seabed,
             waves,
             analysis,
-            hang_off: super::HangOffSpec { offset: vp.position, ..Default::default() },
+            hang_off: super::HangOffSpec {
+                offset: if vp.kind == PointKind::Vessel { vp.position } else { [0.0; 3] },
+                ..Default::default()
+            },
             vessel: None,
         }
     }
 
     /// Every problem, each naming its field: names (identifiers, unique over
-    /// lines and points; line types among themselves), references, ends (one
-    /// fixed and one vessel point a line), points no line uses, free points
-    /// (not yet), and each line's own scene at the neutral pose.
+    /// lines and points; line types among themselves), references, ends (not
+    /// two fixed nor two vessel points a line), points no line uses, a free
+    /// point's keys (and theirs refused on other points), a free point with
+    /// no path through lines to a fixed or a vessel point, a free point
+    /// below the seabed, and each line's own scene at the neutral pose (free
+    /// points at their initial positions).
     fn check(&self) -> Vec<FieldError> {
         let mut errs = Vec::new();
         let mut err = |field: String, message: String| errs.push(FieldError { field, message });
@@ -313,21 +379,46 @@ impl SystemScene {
             seen.push((what, name));
         }
         for p in &self.points {
-            if p.kind == PointKind::Free {
-                err(
-                    format!("point.{}.kind", p.name),
-                    format!(
-                        "point '{}' is free (a joint, clump weight or buoy): not yet supported; this version solves \
-                         systems whose lines each join a fixed point and a vessel point",
-                        p.name
-                    ),
-                );
+            let keys = [("mass", p.mass), ("volume", p.volume), ("cd_area", p.cd_area), ("ca", p.ca)];
+            for (key, v) in keys {
+                let Some(v) = v else { continue };
+                if p.kind != PointKind::Free {
+                    err(
+                        format!("point.{}.{key}", p.name),
+                        format!(
+                            "only a free point has a `{key}`: point '{}' is {} (its lines' ends are held there)",
+                            p.name,
+                            if p.kind == PointKind::Fixed { "fixed" } else { "on the vessel" }
+                        ),
+                    );
+                } else if !(v.is_finite() && (0.0..=MAX_POINT_VALUE).contains(&v)) {
+                    err(
+                        format!("point.{}.{key}", p.name),
+                        format!("{v} must be finite, within [0, {MAX_POINT_VALUE:e}]"),
+                    );
+                }
             }
-            if !p.position.iter().all(|v| v.is_finite() && v.abs() <= super::ranges::MAX_COORDINATE) {
+            let position_ok = p.position.iter().all(|v| v.is_finite() && v.abs() <= super::ranges::MAX_COORDINATE);
+            if !position_ok {
                 err(
                     format!("point.{}.position", p.name),
                     format!("{:?} must be finite, within ±{} m", p.position, super::ranges::MAX_COORDINATE),
                 );
+            }
+            if p.kind == PointKind::Free && position_ok {
+                if let Some(b) = &self.seabed {
+                    let bed = b.height_at(p.position[0], p.position[1]);
+                    if p.position[2] < bed - 1e-9 * bed.abs().max(1.0) {
+                        err(
+                            format!("point.{}.position", p.name),
+                            format!(
+                                "the free point starts below the seabed (z = {} m under it): start it on the seabed \
+                                 or above",
+                                super::ranges::number(bed)
+                            ),
+                        );
+                    }
+                }
             }
             if !self.lines.iter().any(|l| l.from == p.name || l.to == p.name) {
                 err(format!("point.{}", p.name), "no line uses this point".into());
@@ -353,22 +444,55 @@ impl SystemScene {
                     Some(pt) => kinds.push(pt.kind),
                 }
             }
-            if kinds.len() == 2 {
-                let mut k = kinds.clone();
-                k.sort_by_key(|k| *k as u8);
-                if k != [PointKind::Fixed, PointKind::Vessel] && !kinds.contains(&PointKind::Free) {
-                    err(
-                        format!("line.{}", l.name),
-                        format!(
-                            "joins point '{}' ({:?}) and point '{}' ({:?}): a line joins a fixed point and a vessel \
-                             point in this version",
-                            l.from, kinds[0], l.to, kinds[1]
-                        ),
-                    );
+            if kinds.len() == 2 && kinds[0] == kinds[1] && kinds[0] != PointKind::Free {
+                let what = if kinds[0] == PointKind::Fixed { "two fixed points" } else { "two vessel points" };
+                err(
+                    format!("line.{}", l.name),
+                    format!(
+                        "joins point '{}' and point '{}', {what}: a line joins a fixed point and a vessel point, \
+                         or either to a free point, or two free points",
+                        l.from, l.to
+                    ),
+                );
+                line_ok[i] = false;
+            }
+            if l.from == l.to {
+                err(format!("line.{}", l.name), format!("both its ends are point '{}'", l.from));
+                line_ok[i] = false;
+            }
+        }
+        // every free point reaches a fixed or a vessel point through lines
+        let held = |p: &PointSpec| p.kind != PointKind::Free;
+        let mut reached: Vec<bool> = self.points.iter().map(held).collect();
+        loop {
+            let mut grew = false;
+            for l in &self.lines {
+                let (Some(a), Some(b)) = (
+                    self.points.iter().position(|p| p.name == l.from),
+                    self.points.iter().position(|p| p.name == l.to),
+                ) else {
+                    continue;
+                };
+                if reached[a] != reached[b] {
+                    reached[a] = true;
+                    reached[b] = true;
+                    grew = true;
                 }
-                if k != [PointKind::Fixed, PointKind::Vessel] {
-                    line_ok[i] = false;
-                }
+            }
+            if !grew {
+                break;
+            }
+        }
+        for (p, r) in self.points.iter().zip(&reached) {
+            let used = self.lines.iter().any(|l| l.from == p.name || l.to == p.name);
+            if !r && used {
+                err(
+                    format!("point.{}", p.name),
+                    format!(
+                        "free point '{}' has no path through lines to a fixed point or the vessel: nothing holds it",
+                        p.name
+                    ),
+                );
             }
         }
         if !errs.is_empty() {
@@ -409,6 +533,14 @@ impl SystemScene {
         errs
     }
 }
+
+/// The largest axial strain a line's ends may demand of it (a single line's
+/// anchor distance check), for the statics of free points.
+pub const MAX_REACH_STRAIN: f64 = super::validate::MAX_REACH_STRAIN;
+
+/// The largest mass (kg), volume (m³), drag area (m²) or added-mass
+/// coefficient a free point may have.
+pub const MAX_POINT_VALUE: f64 = 1e9;
 
 /// What a command that takes only single-line scenes says of a system.
 pub const NOT_YET: &str = "a system of lines ([[line]]): this command takes a single-line scene; `riser statics`, \

@@ -4,8 +4,8 @@
 //! harmonics, the FMU's inputs): each line is then its own single-line run
 //! ([`Simulation`] of [`SystemScene::line_scene`], its hang-off at its vessel
 //! point ρ, moved by the vessel's motion as a single line's is, §14), and the
-//! system's loads on the vessel are the sums of the lines' (17.7). Its energy
-//! balance is the sum of the lines' (17.8).
+//! system's loads on the vessel are the sums of the lines' (17.11). Its energy
+//! balance is the sum of the lines' (17.12).
 //!
 //! The lines are stepped on threads ([`SystemRun::for_each_line`]): a line's
 //! arithmetic is the same on any thread and no line reads another's state,
@@ -177,7 +177,7 @@ impl SystemRun {
     }
 
     /// The lines' loads on the vessel of their outputs `outputs` (one per
-    /// line, in order), summed (17.7): the force and its moment about the
+    /// line, in order), summed (17.11): the force and its moment about the
     /// reference point with the lines' end moments, global and in the
     /// vessel frame.
     pub fn resultant(outputs: &[Outputs]) -> VesselLoads {
@@ -203,7 +203,7 @@ impl SystemRun {
 }
 
 /// The system's energy balance of its lines' outputs `outputs` against their
-/// energies at the start `e0` (17.8): the sum of the lines' residuals, J.
+/// energies at the start `e0` (17.12): the sum of the lines' residuals, J.
 pub fn energy_balance_residual(outputs: &[Outputs], e0: &[f64]) -> f64 {
     outputs.iter().zip(e0).map(|(o, e)| o.energy_balance_residual(*e)).sum()
 }

@@ -6,7 +6,9 @@
 //!   docs/performance.md gives the cost) and the band LU for K − σM;
 //! - the line's stiffness at the hang-off, the Schur complement of the
 //!   static tangent on the hang-off's position (3×3, eq. 8.6) and with the
-//!   end's rotation (6×6, eq. 8.7), with the band LU.
+//!   end's rotation (6×6, eq. 8.7), with the band LU;
+//! - the line's stiffness at both its ends' positions (6×6, the ends
+//!   pinned: a system's free points, docs/theory.md §17.4).
 
 use crate::math::band::LinearSolveError;
 use crate::math::{M3, M6, V3};
@@ -307,6 +309,67 @@ pub fn hang_off_stiffness6<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M
             for a in 0..3 {
                 s[(3 + a, j)] = -dm[a];
             }
+        }
+    }
+    if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
+}
+
+/// The line's tangent stiffness at both its ends' positions about `cfg`
+/// (docs/theory.md §17.4, eq. 17.6): with e = (x_h, x_a), the hang-off's
+/// and the anchor's positions, the Schur complement
+/// S = K_ee − K_ei K_ii⁻¹ K_ie of the static tangent on them, the interior
+/// unknowns in equilibrium (the other held unknowns, a twist's, held):
+/// [δR_h; δR_a] = S [δx_h; δx_a], δR the change of the supports' forces on
+/// the line (N per m). The ends' rotations are free (pinned ends); the
+/// forces the line exerts on its ends change by −S δe. Its 3×3 block at the
+/// hang-off is [`hang_off_stiffness`]'s on a pinned end.
+pub fn end_stiffness6<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M6, EigenError> {
+    end_stiffness6_shifted(line, cfg, 0.0)
+}
+
+/// [`end_stiffness6`] with `shift` (N/m) added to the interior unknowns'
+/// diagonal: a line whose interior has no stiffness in some direction (a
+/// chain slack on a frictionless seabed) has a finite one, the ends' as
+/// though each interior unknown were held by a spring of that stiffness.
+/// An approximation for a Newton direction (a system's free points), not
+/// the line's stiffness.
+pub fn end_stiffness6_shifted<L: Linearized>(line: &L, cfg: &RodConfig, shift: f64) -> Result<M6, EigenError> {
+    let n = line.n_dof();
+    let fixed = line.fixed_dofs();
+    let is_fixed = |i: usize| fixed.binary_search(&i).is_ok();
+    let driven: Vec<usize> = line.hang_off_rows().into_iter().chain(line.anchor_rows()).collect();
+    if driven.iter().any(|&i| !is_fixed(i)) {
+        return Err(EigenError::HangOffFree);
+    }
+    let mut sys = line.new_system().map_err(EigenError::Linear)?;
+    let mut r = vec![0.0; n];
+    line.static_tangent(cfg, &mut r, &mut sys);
+    let mut s = M6::zeros();
+    for (i, &bi) in driven.iter().enumerate() {
+        for (j, &bj) in driven.iter().enumerate() {
+            s[(i, j)] = sys.get(bi, bj);
+        }
+    }
+    let rows: Vec<Vec<f64>> = driven.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
+    let cols: Vec<Vec<f64>> =
+        driven.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
+    if !s.iter().chain(rows.iter().flatten()).all(|v| v.is_finite()) {
+        return Err(EigenError::NotFinite);
+    }
+    if shift != 0.0 {
+        for i in (0..n).filter(|&i| !is_fixed(i)) {
+            sys.add(i, i, shift);
+        }
+    }
+    for &i in &fixed {
+        sys.constrain(i);
+    }
+    sys.factorize().map_err(EigenError::Linear)?;
+    for (j, mut dq) in cols.into_iter().enumerate() {
+        // K_ii Δq = −K_ie e_j
+        sys.solve_in_place(&mut dq).map_err(EigenError::Linear)?;
+        for (i, row) in rows.iter().enumerate() {
+            s[(i, j)] += (0..n).filter(|&k| !is_fixed(k)).map(|k| row[k] * dq[k]).sum::<f64>();
         }
     }
     if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }

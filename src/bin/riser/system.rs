@@ -2,7 +2,7 @@
 //! statics of a system of lines on one vessel (issue 49,
 //! docs/guide/systems.md), its JSON and text summary.
 
-use riser::scene::system::SystemScene;
+use riser::scene::system::{SystemScene, VesselEnd};
 use riser::sim::system::{SystemStatics, solve_system};
 
 /// `--pose`'s six numbers (m, rad); none: the neutral pose.
@@ -34,25 +34,40 @@ pub fn system_json(sys: &SystemScene, st: &SystemStatics, wall: f64) -> serde_js
         .lines
         .iter()
         .map(|l| {
+            let end = |e: VesselEnd| if e == VesselEnd::From { "from" } else { "to" };
             let mut row = serde_json::json!({
                 "name": l.name,
                 "tension_from": l.tension_from,
                 "tension_to": l.tension_to,
                 "min_tension": l.min_tension,
                 "touchdown_s": l.touchdown_s,
-                "anchor_force": v3(&l.anchor_force),
-                "anchor_uplift_angle": l.anchor_uplift_angle,
-                "fairlead": v3(&l.fairlead),
+                "hang_off_end": end(l.hang_off_end),
                 "iterations": l.report.iterations,
                 "residual": l.report.residual,
             });
             if let Some(o) = row.as_object_mut() {
-                o.insert(
-                    "vessel_end".into(),
-                    if l.vessel_end == riser::scene::system::VesselEnd::From { "from" } else { "to" }.into(),
-                );
+                // a fixed end's load; the vessel point's position where the line has one
+                if let (Some(f), Some(a)) = (l.anchor_force, l.anchor_uplift_angle) {
+                    o.insert("anchor_force".into(), v3(&f).into());
+                    o.insert("anchor_uplift_angle".into(), a.into());
+                }
+                o.insert("fairlead".into(), l.vessel_end.map(|_| v3(&l.fairlead)).into());
+                o.insert("vessel_end".into(), l.vessel_end.map(end).into());
             }
             row
+        })
+        .collect();
+    let points: Vec<serde_json::Value> = st
+        .points
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "name": p.name,
+                "position": v3(&p.position),
+                "load": v3(&p.load),
+                "line_force": v3(&(p.residual - p.load)),
+                "residual": p.residual.norm(),
+            })
         })
         .collect();
     let k: Vec<Vec<f64>> = (0..6).map(|i| (0..6).map(|j| st.stiffness[(i, j)]).collect()).collect();
@@ -63,7 +78,8 @@ pub fn system_json(sys: &SystemScene, st: &SystemStatics, wall: f64) -> serde_js
         "top_force": v3(&st.force),
         "top_moment": v3(&st.moment),
         "lines": lines,
-        "points": Vec::<serde_json::Value>::new(),
+        "points": points,
+        "point_iterations": st.iterations,
         "stiffness": k,
         "wall_time": wall,
     })
@@ -79,6 +95,14 @@ pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
     let pose = parse_pose(pose)?;
+    let on_vessel = sys.points.iter().any(|p| p.kind == riser::scene::system::PointKind::Vessel);
+    if !on_vessel && pose.iter().any(|&v| v != 0.0) {
+        return Err(format!(
+            "--pose: system '{}' has no vessel point (its lines join fixed and free points): nothing moves with \
+             the vessel's pose",
+            sys.name
+        ));
+    }
     let t0 = std::time::Instant::now();
     let st = solve_system(&sys, &pose, true)?;
     let wall = t0.elapsed().as_secs_f64();
@@ -108,13 +132,29 @@ pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&
     outln!("  moment          ({:.3}, {:.3}, {:.3}) kN m about the reference point", kn(m.x), kn(m.y), kn(m.z));
     for l in &st.lines {
         let td = l.touchdown_s.map_or("none".to_string(), |s| format!("{s:.2} m"));
+        let uplift = l.anchor_uplift_angle.map_or(String::new(), |a| format!(", anchor uplift {a:.2} deg"));
         outln!(
-            "  line {:<10} tension from {:.3} kN, to {:.3} kN, min {:.3} kN, touchdown {td}, anchor uplift {:.2} deg",
+            "  line {:<10} tension from {:.3} kN, to {:.3} kN, min {:.3} kN, touchdown {td}{uplift}",
             l.name,
             kn(l.tension_from),
             kn(l.tension_to),
             kn(l.min_tension),
-            l.anchor_uplift_angle
+        );
+    }
+    if !st.points.is_empty() {
+        outln!("  free points in equilibrium after {} Newton iterations:", st.iterations);
+    }
+    for p in &st.points {
+        outln!(
+            "  point {:<9} at ({:.3}, {:.3}, {:.3}) m, its own load ({:.3}, {:.3}, {:.3}) kN, out of balance {:.2e} N",
+            p.name,
+            p.position.x,
+            p.position.y,
+            p.position.z,
+            kn(p.load.x),
+            kn(p.load.y),
+            kn(p.load.z),
+            p.residual.norm()
         );
     }
     let k = &st.stiffness;

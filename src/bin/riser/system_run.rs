@@ -368,10 +368,11 @@ pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
         let (end, vp, _) = sys.ends(i);
         let scene = sys.line_scene(i, V3::from(vp.position));
         let end = if end == riser::scene::system::VesselEnd::From { "from" } else { "to" };
+        let at = if vp.kind == riser::scene::system::PointKind::Vessel { "on the vessel" } else { "at the free point" };
         outln!();
         outln!(
-            "# line '{}' ({}, {} to {}; its {end} end on the vessel at point '{}'), as the single-line scene it is \
-             (its frame's origin at that point at rest):",
+            "# line '{}' ({}, {} to {}; its {end} end {at} '{}'), as the single-line scene it is (its frame's origin \
+             at that point at rest; a free point at its initial position):",
             l.name,
             l.line_type,
             l.from,

@@ -39,6 +39,11 @@ impl Linearized for CableLinearized<'_> {
         [0, 1, 2]
     }
 
+    fn anchor_rows(&self) -> [usize; 3] {
+        let i = NODE_DOF * self.model.cable.n_el;
+        [i, i + 1, i + 2]
+    }
+
     fn static_tangent(&self, cfg: &RodConfig, r: &mut [f64], k: &mut BandedSystem) {
         self.statics.residual(&cfg.x, r, Some(k));
     }

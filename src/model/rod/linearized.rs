@@ -113,6 +113,11 @@ impl Linearized for RodLinearized<'_> {
         [i, i + 1, i + 2]
     }
 
+    fn anchor_rows(&self) -> [usize; 3] {
+        let i = Rod::x_dof(self.model.rod.n_el);
+        [i, i + 1, i + 2]
+    }
+
     fn static_tangent(&self, cfg: &RodConfig, r: &mut [f64], k: &mut BandedSystem) {
         self.statics.residual(cfg, r, Some(k));
     }
