@@ -499,7 +499,8 @@ def edit_scene(text: str, n_elements: int | None = None, time_step: float | None
 
 
 def run_riser(riser_bin: str, scene: str | Path, out: str | Path, motions: Sequence[Motion],
-              duration: float, threads: int | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+              duration: float, threads: int | None = None,
+              window: tuple[float, float] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """`riser run SCENE --surge ... --heave ... --duration D --out OUT --json`: its
     timeseries.csv as columns and its JSON."""
     import json
@@ -510,6 +511,8 @@ def run_riser(riser_bin: str, scene: str | Path, out: str | Path, motions: Seque
     args += ["--duration", f"{duration:g}", "--out", str(out), "--json"]
     if threads is not None:
         args += ["--threads", str(threads)]
+    if window is not None:
+        args += ["--window", f"{window[0]:g},{window[1]:g}"]
     p = subprocess.run(args, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(args)}: {p.stderr.strip()}")
