@@ -35,6 +35,8 @@ COMMANDS = {
     "physics-switches": ("riser_tools.studies.physics_switches", "the cost of each physics switch"),
     "moordyn": ("riser_tools.studies.moordyn_compare", "MoorDyn on the catenary scene (make moordyn)"),
     "moordyn-seabed": ("riser_tools.studies.moordyn_seabed", "MoorDyn on the steel catenary (make moordyn-seabed)"),
+    "moordyn-system": ("riser_tools.studies.moordyn_system", "OC3-Hywind's mooring under a prescribed vessel motion against "
+                                                            "MoorDyn-C (docs/system_moordyn.md)"),
     "lowe-langley": ("riser_tools.studies.lowe_langley", "the Lowe & Langley jumper (make lowe-langley)"),
     "accuracy": ("riser_tools.studies.accuracy", "calibration and check of the accuracy knob (make accuracy)"),
     "accuracy-fit": ("riser_tools.studies.accuracy_fit", "the wave terms' constants of the accuracy knob, fitted to docs/accuracy_runs.csv (--still: the step term's candidate forms)"),
