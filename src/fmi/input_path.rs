@@ -220,7 +220,7 @@ pub struct VesselInputs {
     pub rates: [f64; 3],
     /// Riser's force on the vessel at this point (global; heave, surge,
     /// sway: z, x, y), N: the output the master hands the vessel, which
-    /// holds it over the step (§7.5).
+    /// holds it over the step (§7.8).
     pub force: [f64; 3],
     /// Riser's moment on the vessel about its reference point at this point
     /// (global, x, y, z), N m: `top_moment_*`, held alike.
@@ -492,7 +492,7 @@ pub struct InputHistory {
     end_angular_acceleration: [f64; 3],
     /// Per axis (heave, surge, sway): the vessel's mass with its added mass
     /// as the body that holds riser's force over each step integrates it
-    /// (the `vessel_mass_*` parameters; 0: unknown), kg (§7.5). A
+    /// (the `vessel_mass_*` parameters; 0: unknown), kg (§7.8). A
     /// parameter, not state: the instance sets it before each plan.
     pub mass: [f64; 3],
     /// The vessel's moments of inertia with their added inertia about its
@@ -607,7 +607,7 @@ impl InputHistory {
         (coef, n, span)
     }
 
-    /// The vessel's answer to riser's own load (docs/theory.md §7.5): the
+    /// The vessel's answer to riser's own load (docs/theory.md §7.8): the
     /// motion x_r of a free body whose acceleration over the step from each
     /// of the last `known` points is `acc(k)` (k = 1 the newest past point:
     /// riser's load there less its current one, over the mass), at rest at
@@ -850,7 +850,7 @@ impl InputHistory {
             used[i] = x;
             let (conditions, source) = self.conditions(i, modes[i], t, x);
             sources[i] = source;
-            // the samples less the vessel's answer to riser's own force (§7.5), and that answer's end
+            // the samples less the vessel's answer to riser's own force (§7.8), and that answer's end
             let (m, f) = (self.mass[i], inp.force[i]);
             let (xr, vr, er) = if m.is_finite() && m > 0.0 && f.is_finite() {
                 self.own_answer(self.count, t, h, |k| (self.past[k - 1].f[i] - f) / m)
@@ -904,7 +904,7 @@ impl InputHistory {
                 *d = left_jacobian(&phi).try_inverse().unwrap_or_else(M3::identity) * (r * w);
             }
         }
-        // the vessel's answer to riser's own moment (§7.5): the global angular
+        // the vessel's answer to riser's own moment (§7.8): the global angular
         // acceleration R I⁻¹ Rᵀ (M_k − M(t)), R the rotation now, I the inertia
         let own_rotation =
             self.inertia.iter().all(|i| i.is_finite() && *i > 0.0) && inp.moment.iter().all(|m| m.is_finite());
@@ -1842,7 +1842,7 @@ mod tests {
 
     #[test]
     fn a_free_body_that_holds_riser_s_load_is_followed_exactly_once_its_mass_and_inertia_are_known() {
-        // docs/theory.md §7.5: a body that holds riser's force and moment over
+        // docs/theory.md §7.8: a body that holds riser's force and moment over
         // each step (a fixed-step master) and nothing else moves on parabolas
         // with a kink of acceleration at every point, which no extrapolation of
         // its samples follows; with its mass and inertia the path takes its

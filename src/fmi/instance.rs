@@ -154,7 +154,7 @@ const COUPLING: &str = "coupling_inputs";
 
 /// The vessel's mass with its added mass per input axis (heave, surge,
 /// sway), for the path's account of the vessel's answer to riser's own
-/// force (input_path, docs/theory.md §7.5).
+/// force (input_path, docs/theory.md §7.8).
 const VESSEL_MASS: [&str; 3] = ["vessel_mass_heave", "vessel_mass_surge", "vessel_mass_sway"];
 
 /// The vessel's moments of inertia with their added inertia about its roll,
