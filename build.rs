@@ -20,7 +20,7 @@ struct Var {
 }
 
 /// (unit, [kg, m, s]) exponents of the SI base units.
-const UNITS: [(&str, [i32; 3]); 14] = [
+const UNITS: [(&str, [i32; 3]); 16] = [
     ("m", [0, 1, 0]),
     ("Pa", [1, -1, -2]),
     ("m/s", [0, 1, -1]),
@@ -35,6 +35,8 @@ const UNITS: [(&str, [i32; 3]); 14] = [
     ("kg/m3", [1, -3, 0]),
     ("Pa/m", [1, -2, -2]),
     ("Pa.s/m", [1, -2, -1]),
+    ("kg", [1, 0, 0]),
+    ("kg.m2", [1, 2, 0]),
 ];
 
 /// 64-bit FNV-1a with a seed.

@@ -40,7 +40,7 @@ fn errors(h: f64) -> ([f64; 3], [f64; 3]) {
     let n = (40.0 / h).round() as usize;
     for k in 0..n {
         let t = k as f64 * h;
-        let inp = VesselInputs { u: [heave(t)[0], 0.0, 0.0], v: [0.0; 3], angles: [0.0; 3], rates: [0.0; 3] };
+        let inp = VesselInputs { u: [heave(t)[0], 0.0, 0.0], ..Default::default() };
         let path = hist.plan(Coupling::Auto, &vessel, t, h, &inp, &from);
         if t >= 20.0 {
             for j in 1..=7 {

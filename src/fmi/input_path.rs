@@ -196,8 +196,9 @@ const VELOCITY_TAPS: usize = 5;
 const QUADRATURE: usize = 4;
 
 /// Numbers per past sample in [`InputHistory::to_values`]: t, u (3), v (3),
-/// the rotation (9), the angular velocity inputs (3).
-const SAMPLE_VALUES: usize = 19;
+/// the rotation (9), the angular velocity inputs (3), riser's force and
+/// moment on the vessel (3 + 3).
+const SAMPLE_VALUES: usize = 25;
 
 /// Numbers in [`InputHistory::to_values`].
 pub const HISTORY_VALUES: usize = PAST * SAMPLE_VALUES + 14;
@@ -217,6 +218,13 @@ pub struct VesselInputs {
     pub v: [f64; 3],
     pub angles: [f64; 3],
     pub rates: [f64; 3],
+    /// Riser's force on the vessel at this point (global; heave, surge,
+    /// sway: z, x, y), N: the output the master hands the vessel, which
+    /// holds it over the step (§7.8).
+    pub force: [f64; 3],
+    /// Riser's moment on the vessel about its reference point at this point
+    /// (global, x, y, z), N m: `top_moment_*`, held alike.
+    pub moment: [f64; 3],
 }
 
 /// Inputs of one communication point, axes in input order (heave, surge, sway).
@@ -234,6 +242,10 @@ pub struct Sample {
     pub rot: M3,
     /// Angular velocity inputs, vessel frame, rad/s.
     pub w: [f64; 3],
+    /// Riser's force on the vessel at this point (heave, surge, sway), N.
+    pub f: [f64; 3],
+    /// Riser's moment on the vessel at this point (global), N m.
+    pub m: [f64; 3],
 }
 
 /// Which inputs drive the hang-off (the `coupling_inputs` parameter).
@@ -478,6 +490,15 @@ pub struct InputHistory {
     angular_velocity_set: bool,
     /// The last path's angular acceleration at its end (global), rad/s².
     end_angular_acceleration: [f64; 3],
+    /// Per axis (heave, surge, sway): the vessel's mass with its added mass
+    /// as the body that holds riser's force over each step integrates it
+    /// (the `vessel_mass_*` parameters; 0: unknown), kg (§7.8). A
+    /// parameter, not state: the instance sets it before each plan.
+    pub mass: [f64; 3],
+    /// The vessel's moments of inertia with their added inertia about its
+    /// roll, pitch and yaw axes (vessel frame; the `vessel_inertia_*`
+    /// parameters; 0: unknown), kg m², alike.
+    pub inertia: [f64; 3],
 }
 
 impl InputHistory {
@@ -584,6 +605,39 @@ impl InputHistory {
             c
         });
         (coef, n, span)
+    }
+
+    /// The vessel's answer to riser's own load (docs/theory.md §7.8): the
+    /// motion x_r of a free body whose acceleration over the step from each
+    /// of the last `known` points is `acc(k)` (k = 1 the newest past point:
+    /// riser's load there less its current one, over the mass), at rest at
+    /// the oldest: x_r and v_r at the points (k = 0 at t, then the past ones
+    /// newest first), and its end state (x_r, h v_r, h² a_r) at t + h (the
+    /// current load less itself: a_r = 0). The load the body holds over
+    /// the step is known here (riser's own output at t), the body's answer
+    /// to it exactly, so only the samples less x_r are extrapolated; a
+    /// constant load's answer is a parabola, which every design reproduces
+    /// (the reference, the current load, changes nothing but the size of
+    /// the numbers).
+    #[allow(clippy::type_complexity)]
+    fn own_answer(
+        &self,
+        known: usize,
+        t: f64,
+        h: f64,
+        acc: impl Fn(usize) -> f64,
+    ) -> ([f64; TAPS], [f64; TAPS], [f64; 3]) {
+        let (mut xs, mut vs) = ([0.0; TAPS], [0.0; TAPS]);
+        let (mut x, mut v) = (0.0, 0.0);
+        for k in (1..=known).rev() {
+            let newer = if k == 1 { t } else { self.past[k - 2].t };
+            let (dt, a) = (newer - self.past[k - 1].t, acc(k));
+            x += v * dt + 0.5 * a * dt * dt;
+            v += a * dt;
+            xs[k - 1] = x;
+            vs[k - 1] = v;
+        }
+        (xs, vs, [x + v * h, h * v, 0.0])
     }
 
     /// The conditions (7.1) of axis `i` at time t from the displacement `u`
@@ -796,22 +850,30 @@ impl InputHistory {
             used[i] = x;
             let (conditions, source) = self.conditions(i, modes[i], t, x);
             sources[i] = source;
+            // the samples less the vessel's answer to riser's own force (§7.8), and that answer's end
+            let (m, f) = (self.mass[i], inp.force[i]);
+            let (xr, vr, er) = if m.is_finite() && m > 0.0 && f.is_finite() {
+                self.own_answer(self.count, t, h, |k| (self.past[k - 1].f[i] - f) / m)
+            } else {
+                ([0.0; TAPS], [0.0; TAPS], [0.0; 3])
+            };
+            let u_k = |k: usize| (if k == 0 { x } else { self.past[k - 1].u[i] }) - xr[k];
             let with_velocity = || {
-                self.fit_with_velocity(
-                    self.count,
-                    t,
-                    h,
-                    |k| if k == 0 { x } else { self.past[k - 1].u[i] },
-                    |k| if k == 0 { inp.v[i] } else { self.past[k - 1].v[i] },
-                )
+                self.fit_with_velocity(self.count, t, h, u_k, |k| {
+                    (if k == 0 { inp.v[i] } else { self.past[k - 1].v[i] }) - vr[k]
+                })
             };
             *e = if source == RateSource::Derivatives || conditions.iter().flatten().any(|c| c.order > 0) {
                 Self::predict(&conditions, h)
-            } else if let Some(e) = (modes[i] == Coupling::Both).then(with_velocity).flatten() {
-                sources[i] = RateSource::Both;
-                e
             } else {
-                self.fit(self.count, t, h, |k| if k == 0 { x } else { self.past[k - 1].u[i] })
+                let fitted = match (modes[i] == Coupling::Both).then(with_velocity).flatten() {
+                    Some(e) => {
+                        sources[i] = RateSource::Both;
+                        e
+                    }
+                    None => self.fit(self.count, t, h, u_k),
+                };
+                std::array::from_fn(|c| fitted[c] + er[c])
             };
         }
         // the rotation: its samples as rotation vectors from where it is
@@ -842,14 +904,32 @@ impl InputHistory {
                 *d = left_jacobian(&phi).try_inverse().unwrap_or_else(M3::identity) * (r * w);
             }
         }
+        // the vessel's answer to riser's own moment (§7.8): the global angular
+        // acceleration R I⁻¹ Rᵀ (M_k − M(t)), R the rotation now, I the inertia
+        let own_rotation =
+            self.inertia.iter().all(|i| i.is_finite() && *i > 0.0) && inp.moment.iter().all(|m| m.is_finite());
+        let alpha: [V3; PAST] = std::array::from_fn(|k| {
+            if !own_rotation || k >= known {
+                return V3::zeros();
+            }
+            let body = rot.transpose() * (V3::from(self.past[k].m) - V3::from(inp.moment));
+            rot * V3::new(body.x / self.inertia[0], body.y / self.inertia[1], body.z / self.inertia[2])
+        });
         let mut rotation_source = if mode == Coupling::Velocity { RateSource::Velocity } else { RateSource::History };
         for c in 0..3 {
-            let phi = |k: usize| if k == 0 { phi0[c] } else { phis[k - 1][c] };
-            let fitted = if with_velocity { self.fit_with_velocity(known, t, h, phi, |k| dphis[k][c]) } else { None };
+            let (xr, vr, er) = if own_rotation {
+                self.own_answer(known, t, h, |k| alpha[k - 1][c])
+            } else {
+                ([0.0; TAPS], [0.0; TAPS], [0.0; 3])
+            };
+            let phi = |k: usize| (if k == 0 { phi0[c] } else { phis[k - 1][c] }) - xr[k];
+            let fitted =
+                if with_velocity { self.fit_with_velocity(known, t, h, phi, |k| dphis[k][c] - vr[k]) } else { None };
             if fitted.is_some() {
                 rotation_source = RateSource::Both;
             }
-            end[3 + c] = fitted.unwrap_or_else(|| self.fit(known, t, h, phi));
+            let e = fitted.unwrap_or_else(|| self.fit(known, t, h, phi));
+            end[3 + c] = std::array::from_fn(|j| e[j] + er[j]);
         }
         let mut start = [[0.0; 3]; 6];
         for (i, &c) in COMPONENT.iter().enumerate() {
@@ -867,7 +947,7 @@ impl InputHistory {
     /// derivatives are used up.
     pub fn commit(&mut self, t: f64, inp: &VesselInputs, path: &Path) {
         self.past.copy_within(0..PAST - 1, 1);
-        self.past[0] = Sample { t, u: path.u, v: inp.v, rot: path.rot, w: inp.rates };
+        self.past[0] = Sample { t, u: path.u, v: inp.v, rot: path.rot, w: inp.rates, f: inp.force, m: inp.moment };
         self.count = (self.count + 1).min(PAST);
         self.pending = Derivatives::default();
         self.end_acceleration = path.end_acceleration();
@@ -884,6 +964,8 @@ impl InputHistory {
             out[o + 4..o + 7].copy_from_slice(&s.v);
             out[o + 7..o + 16].copy_from_slice(s.rot.as_slice());
             out[o + 16..o + 19].copy_from_slice(&s.w);
+            out[o + 19..o + 22].copy_from_slice(&s.f);
+            out[o + 22..o + 25].copy_from_slice(&s.m);
         }
         let o = PAST * SAMPLE_VALUES;
         out[o] = self.count as f64;
@@ -922,6 +1004,8 @@ impl InputHistory {
                 v: three(4),
                 rot: M3::from_column_slice(&x[o + 7..o + 16]),
                 w: three(16),
+                f: three(19),
+                m: three(22),
             };
         }
         let o = PAST * SAMPLE_VALUES;
@@ -1739,6 +1823,8 @@ mod tests {
                 v: [0.0, 0.0, -1.0],
                 angles: attitude(t),
                 rates: attitude_rates(t),
+                force: [-3e6 + 1e4 * t, 2e5, -4e4 * t],
+                moment: [1e6, -2e7 * t, 3e5],
             };
             hist.note_set(0);
             hist.note_set(6);
@@ -1752,5 +1838,76 @@ mod tests {
         let back = InputHistory::from_values(&hist.to_values()).unwrap();
         assert_eq!(back, hist);
         assert_eq!(back.rotation_mode(Coupling::Auto), Coupling::Both);
+    }
+
+    #[test]
+    fn a_free_body_that_holds_riser_s_load_is_followed_exactly_once_its_mass_and_inertia_are_known() {
+        // docs/theory.md §7.8: a body that holds riser's force and moment over
+        // each step (a fixed-step master) and nothing else moves on parabolas
+        // with a kink of acceleration at every point, which no extrapolation of
+        // its samples follows; with its mass and inertia the path takes its
+        // answer to riser's own load exactly and extrapolates the rest (here a
+        // constant drift), so each step's end is where the body is then, to
+        // round-off, whatever the load (here a chatter like a line's axial
+        // ringing). Translations by both couplings, a yaw about the fixed z axis.
+        let vessel = Vessel { offset: V3::zeros(), order: RotationOrder::Zyx };
+        let (mass, inertia) = ([1.7e7, 9.0e6, 1.5e7], [5e8, 1.1e10, 9e9]);
+        let load = |n: usize| {
+            let x = n as f64;
+            [1e5 * (7.3 * x).sin() - 2e4, 3e4 * (1.7 * x * x).cos() + 1e4, 5e4 * (2.9 * x).sin(), 4e6 * (5.1 * x).cos()]
+        };
+        for (h, both) in
+            [(0.05, false), (0.1, false), (0.1, true), (0.2, true), (0.25, true), (0.5, false), (0.5, true)]
+        {
+            let mut err = [0.0f64, 0.0];
+            for known in [false, true] {
+                let mut hist = InputHistory::new();
+                hist.mass = if known { mass } else { [0.0; 3] };
+                hist.inertia = if known { inertia } else { [0.0; 3] };
+                // the body: heave, surge, sway and yaw, their rates
+                let (mut x, mut v) = ([0.1, -0.2, 0.3, 0.01], [0.05, 0.2, -0.1, 0.002]);
+                for i in 0..3 {
+                    hist.note_set(i);
+                    if both {
+                        hist.note_set(3 + i);
+                    }
+                }
+                hist.note_set(8);
+                let inp = |x: &[f64; 4], v: &[f64; 4], f: [f64; 4]| VesselInputs {
+                    u: [x[0], x[1], x[2]],
+                    v: if both { [v[0], v[1], v[2]] } else { [0.0; 3] },
+                    angles: [0.0, 0.0, x[3]],
+                    rates: [0.0; 3],
+                    force: [f[0], f[1], f[2]],
+                    moment: [0.0, 0.0, f[3]],
+                };
+                let mut at = hist.start(Coupling::Auto, &vessel, &inp(&x, &v, load(0)));
+                for n in 0..80 {
+                    let t = n as f64 * h;
+                    let f = load(n);
+                    let now = inp(&x, &v, f);
+                    let path = hist.plan(Coupling::Auto, &vessel, t, h, &now, &at);
+                    hist.commit(t, &now, &path);
+                    at = path.at(t + h);
+                    for j in 0..4 {
+                        let a = f[j] / if j < 3 { mass[j] } else { inertia[2] };
+                        x[j] += v[j] * h + 0.5 * a * h * h;
+                        v[j] += a * h;
+                    }
+                    if n >= 20 {
+                        let d = at.displacement;
+                        let yaw = at.rotation[(1, 0)].atan2(at.rotation[(0, 0)]);
+                        let e = [d.z - x[0], d.x - x[1], d.y - x[2], yaw - x[3]];
+                        err[known as usize] = e.iter().fold(err[known as usize], |m, e| m.max(e.abs()));
+                    }
+                }
+            }
+            eprintln!(
+                "h {h} s, both {both}: the path's end off the body by {:.1e} m (the inputs alone {:.1e} m)",
+                err[1], err[0]
+            );
+            assert!(err[1] < 1e-10, "h {h} both {both}: {:e}", err[1]);
+            assert!(err[0] > 1e-6, "h {h} both {both}: {:e}", err[0]);
+        }
     }
 }

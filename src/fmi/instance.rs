@@ -152,6 +152,27 @@ const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 11;
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
 
+/// The vessel's mass with its added mass per input axis (heave, surge,
+/// sway), for the path's account of the vessel's answer to riser's own
+/// force (input_path, docs/theory.md §7.8).
+const VESSEL_MASS: [&str; 3] = ["vessel_mass_heave", "vessel_mass_surge", "vessel_mass_sway"];
+
+/// The vessel's moments of inertia with their added inertia about its roll,
+/// pitch and yaw axes (vessel frame), alike.
+const VESSEL_INERTIA: [&str; 3] = ["vessel_inertia_roll", "vessel_inertia_pitch", "vessel_inertia_yaw"];
+
+/// The largest `vessel_mass_*` taken, kg (a hundred times the largest ship's
+/// displacement).
+const MAX_VESSEL_MASS: f64 = 1e11;
+
+/// The largest `vessel_inertia_*` taken, kg m² (that mass at 1 km).
+const MAX_VESSEL_INERTIA: f64 = 1e17;
+
+/// Parameters of the FMU, not of the scene: never a scene override.
+fn fmu_only(name: &str) -> bool {
+    name == "scene" || name == COUPLING || VESSEL_MASS.contains(&name) || VESSEL_INERTIA.contains(&name)
+}
+
 /// The number of inputs.
 const N_INPUTS: usize = 12;
 
@@ -512,7 +533,7 @@ impl Instance {
         for (i, p) in self.params.iter().enumerate() {
             if let Some((v, true)) = p {
                 let n = VARIABLES[i].name;
-                if n == "scene" || n == COUPLING {
+                if fmu_only(n) {
                     continue;
                 }
                 let mut text = v.to_text();
@@ -726,6 +747,15 @@ impl Instance {
         }
     }
 
+    /// The `vessel_mass_*` (heave, surge, sway) or `vessel_inertia_*`
+    /// (roll, pitch, yaw) parameters (0 where unset).
+    fn vessel_inertia(&self, names: &[&str; 3]) -> [f64; 3] {
+        std::array::from_fn(|i| match super::vars::vr_of(names[i]).and_then(|vr| self.params[vr as usize].as_ref()) {
+            Some((Value::Real(x), _)) => *x,
+            _ => 0.0,
+        })
+    }
+
     /// Logs which inputs drive each axis when that is new (the first step,
     /// or the master starts setting another input): never a silent mix.
     fn log_modes(&mut self, coupling: Coupling) {
@@ -887,11 +917,15 @@ impl Instance {
     /// velocities, the angles, the angular velocities.
     fn split_inputs(&self) -> VesselInputs {
         let i = &self.inputs;
+        // riser's force on the vessel now: the top_force_* the master hands it
+        let (f, m) = self.outputs.as_ref().map_or((V3::zeros(), V3::zeros()), |o| (o.top_force, o.top_moment));
         VesselInputs {
             u: [i[0], i[1], i[2]],
             v: [i[3], i[4], i[5]],
             angles: [i[6], i[7], i[8]],
             rates: [i[9], i[10], i[11]],
+            force: [f.z, f.x, f.y],
+            moment: [m.x, m.y, m.z],
         }
     }
 
@@ -911,6 +945,8 @@ impl Instance {
         // where it is along a C1 path towards their extrapolation (input_path)
         let inp = self.split_inputs();
         let coupling = self.coupling();
+        self.history.mass = self.vessel_inertia(&VESSEL_MASS);
+        self.history.inertia = self.vessel_inertia(&VESSEL_INERTIA);
         let path = self.history.plan(coupling, &sim.vessel, now, h, &inp, &sim.state.hang_off);
         let vessel = sim.vessel;
         self.look_at_inputs(now, &inp, &vessel);
@@ -1221,7 +1257,7 @@ impl Instance {
     fn param_value(&mut self, vr: u32, v: &'static Variable) -> Result<Value, Status> {
         match &self.params[vr as usize] {
             Some((value, true)) => return Ok(value.clone()),
-            Some((value, false)) if v.name == "scene" || v.name == COUPLING => return Ok(value.clone()),
+            Some((value, false)) if fmu_only(v.name) => return Ok(value.clone()),
             None => return Err(self.fail(&format!("value reference {vr} has no value"))),
             _ => {}
         }
@@ -1513,6 +1549,24 @@ impl Instance {
                 return self.fail(&format!(
                     "{COUPLING} = '{text}': not one of {} (which inputs drive the hang-off)",
                     Coupling::NAMES.join(", ")
+                ));
+            }
+        } else if VESSEL_MASS.contains(&v.name) || VESSEL_INERTIA.contains(&v.name) {
+            let x = match value {
+                Value::Real(x) => x,
+                _ => f64::NAN,
+            };
+            let (max, what) = if VESSEL_MASS.contains(&v.name) {
+                (MAX_VESSEL_MASS, "kg (the vessel's mass with its added mass)")
+            } else {
+                (MAX_VESSEL_INERTIA, "kg m2 (the vessel's moment of inertia with its added inertia)")
+            };
+            if !(x.is_finite() && (0.0..=max).contains(&x)) {
+                return self.fail(&format!(
+                    "{} = {}: must be from 0 (unknown) to {} {what}",
+                    v.name,
+                    ranges::number(x),
+                    ranges::number(max)
                 ));
             }
         } else if v.name != "scene" {

@@ -4,8 +4,10 @@ chains and its steel catenary riser as one FMU; the vessel osp/vessel/Vessel6.py
 station-keeping springs removed (the chains hold it), trimmed for the lines' load at the start
 (`balance_initial_load`), in its 10 s wave (about 0.23 m of heave, 4 degrees of roll near its
 resonance, 0.9 degrees of pitch). libcosim's fixed-step algorithm: the vessel's pose and velocities
-to the system FMU, its resultant force and moment (global) to the vessel. Each communication
-step's window of the resultant against a finer run.
+to the system FMU, its resultant force and moment (global) to the vessel; riser given the vessel's
+mass and inertia (`vessel_mass_*`, `vessel_inertia_*`: the path takes the vessel's answer to
+riser's own load within each step, docs/theory.md §7.8, issue 53). Each communication step's
+window of the resultant against a finer run.
 
 (The OC3-Hywind spar's chains, docs/cases/oc3_hywind_mooring.toml, are not for this vessel: their
 fairleads 70 m below its reference point swing 8 m at its roll resonance, and the chains snatch
@@ -14,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from riser_tools.coupling_loop import build_vessel_fmu, fixed_step6
+from riser_tools.coupling_loop import build_vessel_fmu, fixed_step6, vessel6_inertia
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "docs" / "cases" / "moored_vessel.toml"
@@ -53,40 +55,58 @@ def compare(res, ref, start):
             for n in RESULTANT}
 
 
-def run(fmu, vessel, h, duration):
-    return fixed_step6(fmu, vessel, h, duration, vessel=VESSEL)
+def run(fmu, vessel, h, duration, own=True):
+    """libcosim's fixed step; riser given the vessel's mass and inertia (`own`: its answer to riser's
+    own load taken within each step, docs/theory.md §7.5) or not."""
+    return fixed_step6(fmu, vessel, h, duration, vessel=VESSEL, riser=vessel6_inertia(vessel, VESSEL) if own else None)
 
 
 def test_the_system_fmu_couples_both_ways_to_the_vessel_briefly(fmu_path, riser_bin, vessel6_fmu, tmp_path):
-    """100 s, half the file's elements, at 0.2 and 0.25 s against 0.05 s: the resultant's window
-    (60 to 100 s, the roll grown) within 1 % of its range (the force along x and z and the pitch
-    moment: those the wave moves most; measured 0.13 to 0.33 %). At 0.1 and 0.5 s the loop is
-    unstable: see the long test and docs/guide/systems.md."""
+    """100 s, half the file's elements, riser given the vessel's mass and inertia (docs/theory.md
+    §7.8): at 0.1, 0.2 and 0.25 s against 0.05 s the resultant's window (60 to 100 s, the roll
+    grown) within 1 % of its range (the force along x and z and the pitch moment: those the wave
+    moves most); at 0.5 s the chains' force bounded. Without the vessel's mass and inertia the
+    loop at 0.1 s rings the chains' axial mode (1.6 Hz) and grows (docs/coupling.md, issue 53)."""
     fmu = system_fmu(fmu_path, riser_bin, tmp_path, True)
     ref = run(fmu, vessel6_fmu, 0.05, 100.0)
+    late = ref["t"] >= 60.0
     # the vessel moves (its wave: about 0.23 m of heave) and the chains pull it back
-    assert np.ptp(ref["heave"][ref["t"] >= 60.0]) > 0.4
-    assert np.ptp(ref["top_force_x"][ref["t"] >= 60.0]) > 3e4
-    for h in (0.2, 0.25):
+    assert np.ptp(ref["heave"][late]) > 0.4
+    swing = np.ptp(ref["top_force_x"][late])
+    assert swing > 3e4
+    for h in (0.1, 0.2, 0.25):
         err = compare(run(fmu, vessel6_fmu, h, 100.0), ref, 60.0)
         print(f"h {h}: " + ", ".join(f"{k} {v:.2e}" for k, v in err.items()))
         for n in ("top_force_x", "top_force_z", "top_moment_y"):
             assert err[n] < 0.01, (h, n, err[n])
+    long = run(fmu, vessel6_fmu, 0.5, 100.0)
+    ratio = np.ptp(long["top_force_x"][long["t"] >= 60.0]) / swing
+    bare = run(fmu, vessel6_fmu, 0.1, 100.0, own=False)
+    grown = np.ptp(bare["top_force_x"][bare["t"] >= 80.0]) / swing
+    print(f"h 0.5: top_force_x swing {ratio:.3f} of the 0.05 s run's; h 0.1 without the vessel's inertia: {grown:.2f}")
+    assert abs(ratio - 1.0) < 0.05, ratio
+    assert grown > 2.0, grown
 
 
-# At 0.1 and 0.5 s the explicit exchange rings in surge: the chains' force at about 1.25 Hz grows
-# from tens of kN to hundreds within 100 s (measured on this scene and on its chains alone; stable at
-# 0.05, 0.2 and 0.25 s; one way, stable at every step). Co-simulation's stability with stiff lines
-# is issue 53's; these cases fail until it is solved (strict: they report when they pass).
-UNSTABLE = pytest.mark.xfail(strict=True, reason="explicit exchange unstable in surge at this step (issue 53)")
+# Issue 53: without the vessel's mass and inertia the explicit exchange at 0.1 and 0.5 s rings the
+# chains' axial mode (1.6 Hz; at 0.5 s seen aliased at 0.42 Hz) and grows from tens of kN to hundreds
+# within 100 s; with them (docs/theory.md §7.8) every step from 0.05 to 0.5 s is bounded
+# (docs/coupling.md, the stability map). At 0.5 s the resultant's window still misses 1 % in
+# top_force_z (the maximum 1.25 % of the range low): riser alone at 0.5 s driven by the 0.01 s run's
+# own motion misses by 2.1-2.3 %, so this is the input path's one-way accuracy at that step on these
+# chains, not the loop (strict: it reports when it passes).
+ONE_WAY_AT_LONG_STEPS = pytest.mark.xfail(
+    strict=True, reason="bounded, but top_force_z 1.25 % off: riser's one-way accuracy at 0.5 s on the chains")
 
 
 @pytest.mark.long
-@pytest.mark.parametrize("h", [0.05, pytest.param(0.1, marks=UNSTABLE), 0.2, pytest.param(0.5, marks=UNSTABLE)])
+@pytest.mark.parametrize("h", [0.05, 0.1, 0.2, pytest.param(0.5, marks=ONE_WAY_AT_LONG_STEPS)])
 def test_the_system_fmu_couples_both_ways_within_1_percent_of_a_0_01_s_run(fmu_path, riser_bin, vessel6_fmu,
                                                                           tmp_path_factory, h):
-    """Issue 49's evidence 6: 600 s, the file's meshes, each communication step against 0.01 s
-    (the internal step min(0.05, h)): the resultant's window (300 to 600 s) within 1 % of its range."""
+    """Issue 49's evidence 6 and issue 53's acceptance: 600 s, the file's meshes, riser given the
+    vessel's mass and inertia (§7.8), each communication step against 0.01 s (the internal step
+    min(0.05, h)): the resultant's window (300 to 600 s) within 1 % of its range. Measured: 0.05 s
+    0.10 %, 0.1 s 0.09 %, 0.2 s 0.18 %, 0.5 s 1.25 % (top_force_z; x 0.39 %, the pitch moment 0.79 %)."""
     d = tmp_path_factory.getbasetemp() / "system_coupling_long"
     d.mkdir(exist_ok=True)
     fmu = system_fmu(fmu_path, riser_bin, d, False)

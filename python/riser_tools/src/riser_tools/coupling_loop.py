@@ -464,3 +464,16 @@ def vessel6_defaults(vessel_fmu: str) -> dict:
 
     md = read_model_description(vessel_fmu)
     return {v.name: float(v.start) for v in md.modelVariables if v.causality == "parameter" and v.type == "Real"}
+
+
+def vessel6_inertia(vessel_fmu: str, vessel: dict | None = None) -> dict:
+    """riser's `vessel_mass_*` and `vessel_inertia_*` parameters for the Vessel6 FMU with the
+    parameters `vessel` (else its defaults): its mass plus added mass per axis and its moments of
+    inertia plus added inertia, as it integrates riser's held force and moment (docs/theory.md §7.5:
+    the hang-off's path then takes the vessel's answer to riser's own load within each step)."""
+    p = {**vessel6_defaults(vessel_fmu), **{k: x for k, x in (vessel or {}).items() if not isinstance(x, bool)}}
+    mass = {"heave": "33", "surge": "11", "sway": "22"}
+    inertia = {"roll": ("inertia_xx", "44"), "pitch": ("inertia_yy", "55"), "yaw": ("inertia_zz", "66")}
+    out = {f"vessel_mass_{k}": p["mass"] + p[f"added_mass_{i}"] for k, i in mass.items()}
+    out.update({f"vessel_inertia_{k}": p[n] + p[f"added_mass_{i}"] for k, (n, i) in inertia.items()})
+    return out

@@ -250,7 +250,7 @@ def moored_vessel(fmu_path: str, riser_bin: str, out: str | Path, duration: floa
     import time
     import tomllib
 
-    from ..coupling_loop import build_vessel_fmu, fixed_step6
+    from ..coupling_loop import build_vessel_fmu, fixed_step6, vessel6_inertia
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -266,8 +266,10 @@ def moored_vessel(fmu_path: str, riser_bin: str, out: str | Path, duration: floa
             raise RuntimeError(f"pythonfmu could not build osp/vessel/Vessel6.py:\n{e.stderr.decode(errors='replace')}"
                                ) from e
         w0 = time.perf_counter()
+        # riser given the vessel's mass and inertia: its answer to riser's own load within each step
+        # (docs/theory.md §7.8; without it the loop rings the chains at 0.1 and 0.5 s, issue 53)
         res = fixed_step6(str(system), vessel_fmu, h, duration, vessel=MOORED_VESSEL,
-                          extra=list(at_vessel.values()))
+                          riser=vessel6_inertia(vessel_fmu, MOORED_VESSEL), extra=list(at_vessel.values()))
         wall = time.perf_counter() - w0
     t = res["t"]
     t0 = min(60.0, 0.5 * duration)  # the roll near its resonance grows for about 50 s
