@@ -13,6 +13,7 @@ How each runs its cases, and why:
   the CLI itself (a crash, a hang under a timeout, the "riser: error" of a clean stop, NaN in
   the CSV), which an fmpy run in a worker cannot see; `cosim` feeds the FMU the displacement
   alone (no velocity inputs) at communication steps down to 0.01 s, against `riser run`;
+* `bench-cli`: this build's `riser run` against an earlier build's, interleaved;
 * riser-sweep itself: `bench-sweep` (its cost against a plain loop; the 48 cases are a spec).
 
 None of these grids is large: the longest (`study`, about 500 runs) is long because each run is,
@@ -43,6 +44,8 @@ COMMANDS = {
     "accuracy-search": ("riser_tools.studies.accuracy_search", "the still-water error model of the accuracy knob searched over its forms and constants on docs/accuracy_runs.csv (docs/theory.md §16.8)"),
     "accuracy-ref": ("riser_tools.studies.accuracy_ref", "the accuracy study's references at shorter steps: the references' floor (docs/accuracy.md)"),
     "bench-sweep": ("riser_tools.studies.bench_sweep", "riser-sweep against a plain loop (make bench-sweep)"),
+    "bench-cli": ("riser_tools.studies.bench_cli", "the command line against an earlier build, interleaved: wall time, "
+                                                 "instructions, the same bytes (docs/performance.md)"),
     "package-fmu": ("riser_tools.fmu", "package fmu/riser.fmu (make fmu)"),
     "interface-doc": ("riser_tools.interface_doc", "write or check docs/interface.md"),
     "fuzz": ("riser_tools.fuzz", "the long fuzz run of the FMU's C ABI (make fuzz)"),
