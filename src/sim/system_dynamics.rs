@@ -205,6 +205,10 @@ impl From<LineError> for SystemStepError {
 /// The most Newton iterations on the free points' positions in a step.
 pub const MAX_POINT_ITERATIONS: usize = 30;
 
+/// The most halvings of a step of the free points and their lines (as a
+/// line's own `max_halvings`, 6 by default: h/64).
+pub const MAX_POINT_HALVINGS: u32 = 6;
+
 /// A free point in a dynamic run (§17.7): a point mass with added mass,
 /// weight, buoyancy, drag and the seabed's contact, at the ends of its lines.
 #[derive(Debug, Clone)]
@@ -531,7 +535,7 @@ impl SystemRun {
         threads: usize,
     ) -> Result<(), SystemStepError> {
         if !self.points.is_empty() {
-            self.step_points(t, motion, threads)?;
+            self.step_points_split(t, motion, threads)?;
         }
         let free: Vec<(usize, &mut LineRun)> =
             self.lines.iter_mut().enumerate().filter(|(_, l)| !l.coupled()).collect();
@@ -544,10 +548,37 @@ impl SystemRun {
         Ok(())
     }
 
+    /// The free points and their lines to `t` in one step, split in halves
+    /// where it fails (a line's trial or the points' Newton), down to
+    /// 1/2^`MAX_POINT_HALVINGS` of it, as a single line splits its step
+    /// (§5.7); the error of the smallest sub-step if that fails too, the
+    /// state kept at the last converged sub-step.
+    fn step_points_split(
+        &mut self,
+        t: f64,
+        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
+        threads: usize,
+    ) -> Result<(), SystemStepError> {
+        let span = t - self.time;
+        let (mut sub, mut level) = (span, 0u32);
+        while self.time < t - 1e-12 * span {
+            let end = if self.time + sub >= t - 1e-12 * span { t } else { self.time + sub };
+            match self.step_points(end, motion, threads) {
+                Ok(()) => self.time = end,
+                Err(e) if level >= MAX_POINT_HALVINGS => return Err(e),
+                Err(_) => {
+                    level += 1;
+                    sub *= 0.5;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// One step of the free points and their lines to `t` (§17.7): Newton
-    /// on the points' end-of-step positions x⁺ (17.15), each line with an
+    /// on the points' end-of-step positions x⁺ (17.16), each line with an
     /// end at a point stepped from its start with its ends at x⁺ (a trial)
-    /// and giving its end reactions and its condensed step tangent (17.16).
+    /// and giving its end reactions and its condensed step tangent (17.15).
     fn step_points(
         &mut self,
         t: f64,
@@ -584,7 +615,7 @@ impl SystemRun {
                     }
                 }
             }
-            // (17.14) + Σ P_i, and its Jacobian with the lines' condensed tangents
+            // (17.14) + Σ P_i, and its Jacobian (17.16) with the lines' condensed tangents (17.15)
             let t_mid = t0 + 0.5 * h;
             let mut r = vec![V3::zeros(); np];
             let mut jac = DMatrix::<f64>::zeros(3 * np, 3 * np);

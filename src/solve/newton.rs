@@ -326,7 +326,7 @@ impl<M: StepEquations> Integrator<M> {
 
 impl<M: StepEquations> Integrator<M> {
     /// The step's tangent condensed on its fixed (prescribed) unknowns at the
-    /// converged step from `prev` to `cfg` (docs/theory.md §17.7, eq. 17.16):
+    /// converged step from `prev` to `cfg` (docs/theory.md §17.7, eq. 17.15):
     /// S = K_ff − K_fi K_ii⁻¹ K_if, the change of the supports' reactions
     /// (the fixed rows of the step residual) per unit move of the prescribed
     /// unknowns, the other unknowns re-solved; row-major, in the order of
