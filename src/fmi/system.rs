@@ -52,6 +52,9 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// first line's scene reads it (a master that sets every start value of
 /// the generic FMU sets the default scene's), else it is refused, named.
 pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<(Scene, VesselEnd)>, String> {
+    if let Some(m) = crate::sim::system_dynamics::free_points_refused(sys, "the FMU") {
+        return Err(m);
+    }
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }

@@ -160,6 +160,29 @@ impl Engine {
         with_integrator!(self, i => i.invalidate_tangent())
     }
 
+    /// See [`Integrator::condensed_fixed_tangent`].
+    pub fn condensed_fixed_tangent(
+        &mut self,
+        prev: &State,
+        cfg: &crate::model::RodConfig,
+        h: f64,
+        target: HangOff,
+    ) -> Result<Vec<f64>, crate::math::band::LinearSolveError> {
+        with_integrator!(self, i => i.condensed_fixed_tangent(prev, cfg, h, target))
+    }
+
+    /// Moves the cable's anchor end to `m` over the next step (None: held);
+    /// false for the rod, whose anchor cannot move.
+    pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) -> bool {
+        match self {
+            Engine::Cable(i) => {
+                i.model.anchor_motion = m;
+                true
+            }
+            Engine::Rod(_) => false,
+        }
+    }
+
     /// See [`Integrator::impose_hang_off`].
     pub fn impose_hang_off(&self, state: &mut State, motion: HangOff) {
         with_integrator!(self, i => i.impose_hang_off(state, motion))
@@ -284,6 +307,20 @@ impl Simulation {
     /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
         let statics = solve_scene(scene)?;
+        let mut integrator = Engine::from_scene(scene)?;
+        integrator.set_static_frame(&statics.solution.config);
+        let sea = integrator.sea().cloned();
+        let state = State::at_rest(statics.solution.config.clone(), 0.0);
+        let initial_energy = integrator.outputs(&state).total_energy;
+        let static_loads = scene_static_loads(scene);
+        let vessel = Vessel::of_scene(scene);
+        Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea, vessel })
+    }
+
+    /// [`Simulation::from_scene`] from a static state `statics` of the scene
+    /// solved elsewhere (a system's line at its free points' equilibrium,
+    /// docs/theory.md §17.4).
+    pub fn from_statics(scene: &Scene, statics: StaticReport) -> Result<Self, RiserError> {
         let mut integrator = Engine::from_scene(scene)?;
         integrator.set_static_frame(&statics.solution.config);
         let sea = integrator.sea().cloned();

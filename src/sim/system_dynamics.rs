@@ -10,15 +10,37 @@
 //! The lines are stepped on threads ([`SystemRun::for_each_line`]): a line's
 //! arithmetic is the same on any thread and no line reads another's state,
 //! so the bits are the same on any number of threads.
+//!
+//! Free points (joints, clump weights, buoys) are point masses coupled to
+//! the ends of their lines by the same midpoint scheme (§17.7): at each
+//! step, Newton on their end-of-step positions, each line attached stepped
+//! with its end there and giving its end reaction and its step tangent
+//! condensed on its ends ([`SystemRun::advance_to`]).
 
 use super::Simulation;
 use super::error::RiserError;
+use super::system::{POINT_CONTACT_AREA, solve_system};
 use super::vessel::{VesselLoads, VesselMotion};
-use crate::math::V3;
-use crate::model::{HangOff, Outputs};
-use crate::scene::system::{PointKind, SystemScene, VesselEnd};
+use crate::loads::current::Current;
+use crate::loads::waves::Ramp;
+use crate::math::{M3, V3};
+use crate::model::cable::AnchorMotion;
+use crate::model::{HangOff, Outputs, State};
+use crate::scene::system::{PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
+use nalgebra::{DMatrix, DVector};
 use std::sync::Mutex;
+
+/// Where a line's end is held in a dynamic run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndAt {
+    /// On the vessel, moved by its motion.
+    Vessel,
+    /// At a fixed point.
+    Fixed,
+    /// At the `k`-th free point of the run ([`SystemRun::points`]).
+    Free(usize),
+}
 
 /// One line of a system in a dynamic run.
 pub struct LineRun {
@@ -28,6 +50,21 @@ pub struct LineRun {
     /// The single-line scene it is (its frame at its vessel point at rest).
     pub scene: Scene,
     pub sim: Simulation,
+    /// What holds its hang-off (node 0) and its anchor (its last node).
+    pub hang_off_at: EndAt,
+    pub anchor_at: EndAt,
+    /// Its frame's origin, global: its hang-off at rest, m.
+    pub origin: V3,
+}
+
+/// A trial step of a line with a free end (§17.7): its state at the end of
+/// the step, the reactions of its supports on it at its hang-off and its
+/// anchor (the end rows of its midpoint equations, N), and its step tangent
+/// condensed on its two ends (6×6 row-major: [hang-off; anchor], N/m).
+struct Trial {
+    state: State,
+    reaction: [V3; 2],
+    condensed: Vec<f64>,
 }
 
 impl LineRun {
@@ -55,6 +92,56 @@ impl LineRun {
         self.sim.advance_to(t, &hang_off)
     }
 
+    /// True if its hang-off is on the vessel: its force on its hang-off is a
+    /// load on the vessel (a free point's lines pull the point instead).
+    pub fn on_vessel(&self) -> bool {
+        self.hang_off_at == EndAt::Vessel
+    }
+
+    /// True if an end is at a free point: it steps with the points (§17.7).
+    pub fn coupled(&self) -> bool {
+        matches!(self.hang_off_at, EndAt::Free(_)) || matches!(self.anchor_at, EndAt::Free(_))
+    }
+
+    /// Steps the line from `prev` to `t` with its free ends at the points'
+    /// end-of-step positions `x1` and velocities `v1` (global), its vessel
+    /// end on `motion` (§17.7): a trial, the line's own state untouched.
+    fn trial(
+        &mut self,
+        prev: &State,
+        t: f64,
+        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
+        x1: &[V3],
+        v1: &[V3],
+    ) -> Result<Trial, RiserError> {
+        let h = t - prev.time;
+        let vessel = self.sim.vessel;
+        let origin = self.origin;
+        let at_point = |k: usize| HangOff::translation(x1[k] - origin, v1[k]);
+        let hang_off = match self.hang_off_at {
+            EndAt::Free(k) => at_point(k),
+            _ => vessel.hang_off(&motion(t)),
+        };
+        let anchor = match self.anchor_at {
+            EndAt::Free(k) => Some(AnchorMotion { position: x1[k] - origin, velocity: v1[k] }),
+            _ => None,
+        };
+        if !self.sim.integrator.set_anchor_motion(anchor) && anchor.is_some() {
+            return Err(RiserError::Unsupported(format!("line '{}': a rod's anchor at a free point", self.name)));
+        }
+        let free_hang_off = matches!(self.hang_off_at, EndAt::Free(_));
+        let target = |s: f64| if free_hang_off { hang_off } else { vessel.hang_off(&motion(s)) };
+        let mut state = prev.clone();
+        self.sim.integrator.step(&mut state, h, &target)?;
+        state.time = t;
+        let condensed = self
+            .sim
+            .integrator
+            .condensed_fixed_tangent(prev, &state.config, h, hang_off)
+            .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
+        Ok(Trial { reaction: state.mid_reaction, state, condensed })
+    }
+
     /// What a step of the line costs, roughly (the order the lines are handed
     /// to threads in: the dearest first): the rod's node carries six unknowns
     /// and its Gauss points the sections' work, the cable's three.
@@ -80,19 +167,224 @@ impl std::fmt::Display for LineError {
     }
 }
 
-/// A system set up for a dynamic run, every line in its static equilibrium
-/// at the neutral pose.
-pub struct SystemRun {
-    pub lines: Vec<LineRun>,
+/// Why a step of a system failed: a line, or the free points' Newton.
+#[derive(Debug)]
+pub enum SystemStepError {
+    Line(LineError),
+    /// The free points' positions did not balance their lines within
+    /// `iterations` Newton iterations; `residual` the largest point's net
+    /// force relative to its scale; the state kept at `time`.
+    Points {
+        time: f64,
+        iterations: usize,
+        residual: f64,
+        point: String,
+    },
 }
 
-/// Why a system cannot be run in this version, or None.
+impl std::fmt::Display for SystemStepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SystemStepError::Line(e) => e.fmt(f),
+            SystemStepError::Points { time, iterations, residual, point } => write!(
+                f,
+                "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
+                 iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is \
+                 kept at t = {time:.6} s (try a smaller time_step)"
+            ),
+        }
+    }
+}
+
+impl From<LineError> for SystemStepError {
+    fn from(e: LineError) -> Self {
+        SystemStepError::Line(e)
+    }
+}
+
+/// The most Newton iterations on the free points' positions in a step.
+pub const MAX_POINT_ITERATIONS: usize = 30;
+
+/// The most halvings of a step of the free points and their lines (as a
+/// line's own `max_halvings`, 6 by default: h/64).
+pub const MAX_POINT_HALVINGS: u32 = 6;
+
+/// A free point in a dynamic run (§17.7): a point mass with added mass,
+/// weight, buoyancy, drag and the seabed's contact, at the ends of its lines.
+#[derive(Debug, Clone)]
+pub struct FreePointRun {
+    pub name: String,
+    /// Mass m and added mass m_a = C_a ρ V, kg.
+    pub mass: f64,
+    pub added_mass: f64,
+    /// Displaced volume V, m³, and drag area C_d A, m².
+    pub volume: f64,
+    pub cd_area: f64,
+    /// Position and velocity at the run's time (global), m and m/s.
+    pub position: V3,
+    pub velocity: V3,
+    /// Where the statics put it, m.
+    pub static_position: V3,
+    /// Mean velocities Δx/h of the last two steps (the predictor's), m/s.
+    mean_vel: [V3; 2],
+    /// Work of the water (drag, added mass) on it since the start, J.
+    pub work_hydro: f64,
+    /// Work of its lines on it since the start, J: the minus of the work
+    /// of its ends on the lines (their `work_top` or `work_anchor`), so
+    /// internal to the system.
+    pub work_lines: f64,
+    /// Its energy ½ m v² + U at the start, J (17.13).
+    pub initial_energy: f64,
+    water_density: f64,
+    gravity: f64,
+    surface_z: f64,
+    /// The seabed: its height at x = 0, tan of its slope, the contact spring k_b A_p (N/m).
+    bed: Option<(f64, f64, f64)>,
+    /// The current (as its lines see it: a depth profile from the surface
+    /// in the frame of the line at `current_frame_z`, `linear_s` at arc
+    /// length `current_s` of that line), and its ramp from the start.
+    current: Current,
+    current_frame_z: f64,
+    current_s: f64,
+    current_ramp: Ramp,
+}
+
+impl FreePointRun {
+    /// Potential energy U(x) = m g z + U_b(z) + U_c(x), J (17.13): weight,
+    /// buoyancy below the water surface U_b = −ρ g V min(z, z_s), the
+    /// seabed's contact U_c = ½ k_p ((h(x) − z)⁺)².
+    pub fn potential(&self, x: V3) -> f64 {
+        let ub = -self.water_density * self.gravity * self.volume * x.z.min(self.surface_z);
+        let uc = self.bed.map_or(0.0, |(z0, t, kp)| 0.5 * kp * (z0 + t * x.x - x.z).max(0.0).powi(2));
+        self.mass * self.gravity * x.z + ub + uc
+    }
+
+    /// ½ m |v|² + U(x), J (the added mass's kinetic energy is the water's: §5.4).
+    pub fn energy(&self) -> f64 {
+        0.5 * self.mass * self.velocity.norm_squared() + self.potential(self.position)
+    }
+
+    /// E − E(0) − W_hydro − W_lines, J: the point's part of the system's
+    /// energy balance (17.17).
+    pub fn energy_balance_residual(&self) -> f64 {
+        self.energy() - self.initial_energy - self.work_hydro - self.work_lines
+    }
+
+    /// The point's own rows of the step (17.14) at the end-of-step position
+    /// `x1` from the start of the step (`self`), step `h`, midpoint time
+    /// `t_mid`: the inertia less the weight, buoyancy, contact and water, its
+    /// derivative with respect to x1 (the contact's and the drag's at the
+    /// midpoint: a quasi-Newton), and the water's force (drag, added mass), N.
+    fn own_rows(&self, x1: V3, h: f64, t_mid: f64) -> (V3, M3, V3) {
+        let (x0, v0) = (self.position, self.velocity);
+        let dx = x1 - x0;
+        let v1 = dx * (2.0 / h) - v0;
+        let dv = (v1 - v0) / h;
+        let mut r = dv * self.mass;
+        let mut k = M3::identity() * ((self.mass + self.added_mass) * 2.0 / (h * h));
+        // weight (linear: exact)
+        r.z += self.mass * self.gravity;
+        // buoyancy: the discrete gradient of U_b (a step in its slope at z_s)
+        let rho_g_v = self.water_density * self.gravity * self.volume;
+        let ub = |z: f64| -rho_g_v * z.min(self.surface_z);
+        let fb = if (x1.z - x0.z).abs() > 0.0 && (x0.z.max(x1.z) > self.surface_z) {
+            -(ub(x1.z) - ub(x0.z)) / (x1.z - x0.z)
+        } else if x0.z.max(x1.z) <= self.surface_z {
+            rho_g_v
+        } else {
+            0.0
+        };
+        r.z -= fb;
+        // the seabed: U_c of the penetration p = h(x) − z, linear in x (a
+        // discrete gradient in p, along ∇p = (tan, 0, −1))
+        if let Some((z0, t, kp)) = self.bed {
+            let p = |x: V3| z0 + t * x.x - x.z;
+            let (p0, p1) = (p(x0), p(x1));
+            if p0 > 0.0 || p1 > 0.0 {
+                let uc = |p: f64| 0.5 * kp * p.max(0.0).powi(2);
+                let slope = if (p1 - p0).abs() > 1e-12 {
+                    (uc(p1) - uc(p0)) / (p1 - p0)
+                } else {
+                    kp * (0.5 * (p0 + p1)).max(0.0)
+                };
+                let grad = V3::new(t, 0.0, -1.0);
+                // f_c = −slope ∇p
+                r += grad * slope;
+                if 0.5 * (p0 + p1) > 0.0 {
+                    k += grad * grad.transpose() * (0.5 * kp);
+                }
+            }
+        }
+        // water: drag on the velocity relative to the current at the
+        // midpoint, v½ = Δx/h, and the added mass's inertia (§5.4)
+        let xm = (x0 + x1) * 0.5;
+        let u = self.current.velocity(self.current_s, xm.z - self.current_frame_z).0 * self.current_ramp.at(t_mid).0;
+        let w = u - dx / h;
+        let c = 0.5 * self.water_density * self.cd_area;
+        let wn = w.norm();
+        let f_water = w * (c * wn) - dv * self.added_mass;
+        if c > 0.0 && wn > 0.0 {
+            k += (M3::identity() * wn + w * w.transpose() / wn) * (c / h);
+        }
+        r -= f_water;
+        (r, k, f_water)
+    }
+}
+
+/// A system set up for a dynamic run, every line in its static equilibrium
+/// at the neutral pose (and the free points in theirs, at rest).
+pub struct SystemRun {
+    pub lines: Vec<LineRun>,
+    /// The free points, in the scene's order.
+    pub points: Vec<FreePointRun>,
+    /// The run's time, s.
+    pub time: f64,
+    /// Newton iterations on the free points' positions since the start.
+    pub point_iterations: u64,
+    /// The lines' Newton iterations in the free points' trials, every trial's.
+    pub trial_iterations: u64,
+}
+
+/// Why a system cannot be run in this version, or None: a rod line at a
+/// free point (its anchor end cannot move), free points in waves.
 pub fn unsupported(sys: &SystemScene) -> Option<String> {
+    let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
+    if free.is_empty() {
+        return None;
+    }
+    if sys.waves.is_some() {
+        return Some(format!(
+            "free point(s) {}: a free point in waves (their kinematics on the point) is not yet in this version; \
+             run it in still water with a current (docs/guide/systems.md)",
+            free.join(", ")
+        ));
+    }
+    let rods: Vec<&str> = sys
+        .lines
+        .iter()
+        .filter(|l| {
+            let at_free = [&l.from, &l.to].iter().any(|p| sys.point(p).is_some_and(|p| p.kind == PointKind::Free));
+            at_free && sys.line_type(&l.line_type).is_some_and(|t| t.model == Model::Rod)
+        })
+        .map(|l| l.name.as_str())
+        .collect();
+    (!rods.is_empty()).then(|| {
+        format!(
+            "line(s) {} at a free point are rods: a rod's end at a free point is not yet in the dynamics (give \
+             its line type model = \"cable\"; docs/guide/systems.md)",
+            rods.join(", ")
+        )
+    })
+}
+
+/// Why `what` (the FMU, the modes) cannot take a system with free points
+/// in this version, or None: their dynamics is `riser run`'s.
+pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
     let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
     (!free.is_empty()).then(|| {
         format!(
-            "free point(s) {}: the dynamics of a system with free points (joints, clump weights, buoys) is not yet \
-             in this version; `riser statics` solves it (docs/guide/systems.md)",
+            "free point(s) {}: {what} of a system with free points (joints, clump weights, buoys) is not yet in \
+             this version; `riser run` runs its dynamics and `riser statics` solves it (docs/guide/systems.md)",
             free.join(", ")
         )
     })
@@ -100,28 +392,122 @@ pub fn unsupported(sys: &SystemScene) -> Option<String> {
 
 impl SystemRun {
     /// Each line's single-line run from its statics at the neutral pose (the
-    /// lines' statics as `riser statics SYSTEM` solves them, §17.1).
+    /// lines' statics as `riser statics SYSTEM` solves them, §17.1); with
+    /// free points, the system's statics (§17.4): the points in equilibrium
+    /// at rest, each line with a free end from its state there.
     pub fn new(sys: &SystemScene) -> Result<Self, String> {
         if let Some(m) = unsupported(sys) {
             return Err(m);
         }
+        let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
+        let statics = if free.is_empty() { None } else { Some(solve_system(sys, &[0.0; 6], false)?) };
+        let at = |p: &PointSpec| match p.kind {
+            PointKind::Vessel => EndAt::Vessel,
+            PointKind::Fixed => EndAt::Fixed,
+            PointKind::Free => EndAt::Free(free.iter().position(|f| f.name == p.name).expect("a free point")),
+        };
         let mut lines = Vec::with_capacity(sys.lines.len());
         for (i, l) in sys.lines.iter().enumerate() {
-            let (vessel_end, vp, _) = sys.ends(i);
-            // at the neutral pose the vessel point is at ρ
-            let scene = sys.line_scene(i, V3::from(vp.position));
-            let sim = Simulation::from_scene(&scene).map_err(|e| format!("line '{}': {e}", l.name))?;
-            lines.push(LineRun { name: l.name.clone(), vessel_end, scene, sim });
+            let (vessel_end, vp, ap) = sys.ends(i);
+            let (hang_off_at, anchor_at) = (at(vp), at(ap));
+            let coupled = matches!(hang_off_at, EndAt::Free(_)) || matches!(anchor_at, EndAt::Free(_));
+            let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
+            let (scene, sim, origin) = match (&statics, coupled) {
+                (Some(st), true) => {
+                    // its state at the free points' equilibrium
+                    let ls = &st.lines[i];
+                    let mut sim = Simulation::from_statics(&ls.scene, ls.report.clone()).map_err(|e| named(&e))?;
+                    // a failed trial is the points' step's to split, not the line's
+                    sim.integrator.options_mut().max_halvings = 0;
+                    (ls.scene.clone(), sim, ls.fairlead)
+                }
+                _ => {
+                    // at the neutral pose the vessel point is at ρ
+                    let scene = sys.line_scene(i, V3::from(vp.position));
+                    let sim = Simulation::from_scene(&scene).map_err(|e| named(&e))?;
+                    (scene, sim, V3::from(vp.position))
+                }
+            };
+            lines.push(LineRun { name: l.name.clone(), vessel_end, scene, sim, hang_off_at, anchor_at, origin });
         }
-        Ok(SystemRun { lines })
+        let mut points = Vec::with_capacity(free.len());
+        for (k, p) in free.iter().enumerate() {
+            let st = &statics.as_ref().expect("free points have statics").points[k];
+            let env = &sys.environment;
+            // the current as the first line at the point sees it
+            let l = lines
+                .iter()
+                .find(|l| l.hang_off_at == EndAt::Free(k) || l.anchor_at == EndAt::Free(k))
+                .expect("a free point has a line");
+            let current_s = if l.hang_off_at == EndAt::Free(k) { 0.0 } else { l.scene.line.length };
+            let bed = sys.seabed.as_ref().map(|b| (b.z, b.slope.to_radians().tan(), b.stiffness * POINT_CONTACT_AREA));
+            let mut point = FreePointRun {
+                name: p.name.clone(),
+                mass: p.mass(),
+                added_mass: p.ca() * env.water_density * p.volume(),
+                volume: p.volume(),
+                cd_area: p.cd_area(),
+                position: st.position,
+                velocity: V3::zeros(),
+                static_position: st.position,
+                mean_vel: [V3::zeros(); 2],
+                work_hydro: 0.0,
+                work_lines: 0.0,
+                initial_energy: 0.0,
+                water_density: env.water_density,
+                gravity: env.gravity,
+                surface_z: env.water_surface_z,
+                bed,
+                current: crate::loads::current(&l.scene),
+                current_frame_z: l.origin.z,
+                current_s,
+                current_ramp: crate::loads::current_ramp(&l.scene),
+            };
+            point.initial_energy = point.energy();
+            points.push(point);
+        }
+        Ok(SystemRun { lines, points, time: 0.0, point_iterations: 0, trial_iterations: 0 })
     }
 
     /// Puts every line's hang-off on the vessel's motion `m` at t = 0 (each
-    /// line's [`Simulation::start`]).
+    /// line's [`Simulation::start`]; a free point's lines at the point, at
+    /// rest) and takes the points' energy reference there.
     pub fn start(&mut self, m: &VesselMotion) {
+        let points = &self.points;
         for l in &mut self.lines {
-            let h = l.sim.vessel.hang_off(m);
+            let h = match l.hang_off_at {
+                EndAt::Free(k) => HangOff::translation(points[k].position - l.origin, points[k].velocity),
+                _ => l.sim.vessel.hang_off(m),
+            };
             l.sim.start(h);
+        }
+        let time = self.lines.first().map_or(0.0, |l| l.sim.state.time);
+        self.time = time;
+        for p in &mut self.points {
+            p.current_ramp.start = time;
+            p.initial_energy = p.energy();
+        }
+    }
+
+    /// Gives free point `k` the velocity `v` (m/s) and its lines' ends with
+    /// it, and takes the energy references again (a kick to start a free
+    /// oscillation from; the lines' other nodes keep theirs).
+    pub fn set_point_velocity(&mut self, k: usize, v: V3) {
+        self.points[k].velocity = v;
+        for l in &mut self.lines {
+            let s = &mut l.sim.state;
+            if l.hang_off_at == EndAt::Free(k) {
+                s.vel[0] = v;
+                s.hang_off.velocity = v;
+            }
+            if l.anchor_at == EndAt::Free(k) {
+                let n = s.vel.len() - 1;
+                s.vel[n] = v;
+            }
+            l.sim.initial_energy = l.sim.integrator.outputs(&l.sim.state).total_energy;
+        }
+        for p in &mut self.points {
+            p.initial_energy = p.energy();
         }
     }
 
@@ -130,56 +516,194 @@ impl SystemRun {
     /// order. One thread: in order on this one, nothing spawned.
     pub fn for_each_line<R: Send>(&mut self, threads: usize, f: &(dyn Fn(&mut LineRun) -> R + Sync)) -> Vec<R> {
         let n = self.lines.len();
-        let threads = threads.clamp(1, n.max(1));
-        if threads == 1 {
-            return self.lines.iter_mut().map(f).collect();
-        }
-        let mut queue: Vec<(usize, &mut LineRun)> = self.lines.iter_mut().enumerate().collect();
-        queue.sort_by_key(|(i, l)| (std::cmp::Reverse(l.cost()), *i));
-        let queue = Mutex::new(queue.into_iter());
-        let work = || {
-            let mut done = Vec::new();
-            loop {
-                let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
-                let Some((i, line)) = next else { break };
-                done.push((i, f(line)));
-            }
-            done
-        };
+        let all = on_threads(self.lines.iter_mut().enumerate().collect(), threads, &|_, l| f(l));
         let mut results: Vec<Option<R>> = (0..n).map(|_| None).collect();
-        std::thread::scope(|s| {
-            let others: Vec<_> = (1..threads).map(|_| s.spawn(work)).collect();
-            let mut all = work();
-            for h in others {
-                // a panic in a line's thread is this thread's (the FMU's boundary catches it)
-                all.extend(h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
-            }
-            for (i, r) in all {
-                results[i] = Some(r);
-            }
-        });
+        for (i, r) in all {
+            results[i] = Some(r);
+        }
         results.into_iter().map(|r| r.expect("every line is taken from the queue once")).collect()
     }
 
     /// Advances every line to `t` (s) with the vessel on `motion`, on up to
-    /// `threads` threads; the first failed line (in the system's order) named.
+    /// `threads` threads; the first failed line (in the system's order)
+    /// named. With free points, the points and their lines first (§17.7),
+    /// then the other lines.
     pub fn advance_to(
         &mut self,
         t: f64,
         motion: &(dyn Fn(f64) -> VesselMotion + Sync),
         threads: usize,
-    ) -> Result<(), LineError> {
-        let results = self.for_each_line(threads, &|l: &mut LineRun| l.advance_to(t, motion));
-        for (l, r) in self.lines.iter().zip(results) {
-            r.map_err(|error| LineError { line: l.name.clone(), error })?;
+    ) -> Result<(), SystemStepError> {
+        if !self.points.is_empty() {
+            self.step_points_split(t, motion, threads)?;
+        }
+        let free: Vec<(usize, &mut LineRun)> =
+            self.lines.iter_mut().enumerate().filter(|(_, l)| !l.coupled()).collect();
+        let mut results = on_threads(free, threads, &|_, l: &mut LineRun| l.advance_to(t, motion));
+        results.sort_by_key(|(i, _)| *i);
+        for (i, r) in results {
+            r.map_err(|error| LineError { line: self.lines[i].name.clone(), error })?;
+        }
+        self.time = t;
+        Ok(())
+    }
+
+    /// The free points and their lines to `t` in one step, split in halves
+    /// where it fails (a line's trial or the points' Newton), down to
+    /// 1/2^`MAX_POINT_HALVINGS` of it, as a single line splits its step
+    /// (§5.7); the error of the smallest sub-step if that fails too, the
+    /// state kept at the last converged sub-step.
+    fn step_points_split(
+        &mut self,
+        t: f64,
+        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
+        threads: usize,
+    ) -> Result<(), SystemStepError> {
+        let span = t - self.time;
+        let (mut sub, mut level) = (span, 0u32);
+        while self.time < t - 1e-12 * span {
+            let end = if self.time + sub >= t - 1e-12 * span { t } else { self.time + sub };
+            match self.step_points(end, motion, threads) {
+                Ok(()) => self.time = end,
+                Err(e) if level >= MAX_POINT_HALVINGS => return Err(e),
+                Err(_) => {
+                    level += 1;
+                    sub *= 0.5;
+                }
+            }
         }
         Ok(())
+    }
+
+    /// One step of the free points and their lines to `t` (§17.7): Newton
+    /// on the points' end-of-step positions x⁺ (17.16), each line with an
+    /// end at a point stepped from its start with its ends at x⁺ (a trial)
+    /// and giving its end reactions and its condensed step tangent (17.15).
+    fn step_points(
+        &mut self,
+        t: f64,
+        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
+        threads: usize,
+    ) -> Result<(), SystemStepError> {
+        let t0 = self.time;
+        let h = t - t0;
+        let tol = self.lines.iter().find(|l| l.coupled()).map_or(1e-8, |l| l.sim.integrator.options().newton_tolerance);
+        let prev: Vec<Option<State>> = self.lines.iter().map(|l| l.coupled().then(|| l.sim.state.clone())).collect();
+        let np = self.points.len();
+        // the predictor: the quadratic of the cable's (§5.7)
+        let mut x1: Vec<V3> =
+            self.points.iter().map(|p| p.position + (p.mean_vel[0] * 2.0 - p.mean_vel[1]) * h).collect();
+        let mut worst = (0.0, 0);
+        for it in 0..=MAX_POINT_ITERATIONS {
+            // v⁺ = 2 (x⁺ − x⁻)/h − v⁻ (5.1's update)
+            let v1: Vec<V3> =
+                self.points.iter().zip(&x1).map(|(p, x)| (x - p.position) * (2.0 / h) - p.velocity).collect();
+            let coupled: Vec<(usize, &mut LineRun)> =
+                self.lines.iter_mut().enumerate().filter(|(_, l)| l.coupled()).collect();
+            let (xr, vr, pr) = (&x1, &v1, &prev);
+            let mut trials = on_threads(coupled, threads, &|i, l: &mut LineRun| {
+                let start = pr[i].as_ref().expect("a coupled line's start");
+                l.trial(start, t, motion, xr, vr)
+            });
+            trials.sort_by_key(|(i, _)| *i);
+            let mut ok = Vec::with_capacity(trials.len());
+            for (i, r) in trials {
+                match r {
+                    Ok(tr) => ok.push((i, tr)),
+                    Err(error) => {
+                        return Err(LineError { line: self.lines[i].name.clone(), error }.into());
+                    }
+                }
+            }
+            // (17.14) + Σ P_i, and its Jacobian (17.16) with the lines' condensed tangents (17.15)
+            let t_mid = t0 + 0.5 * h;
+            let mut r = vec![V3::zeros(); np];
+            let mut jac = DMatrix::<f64>::zeros(3 * np, 3 * np);
+            let mut scale = vec![0.0; np];
+            let mut f_water = vec![V3::zeros(); np];
+            for (k, p) in self.points.iter().enumerate() {
+                let (rk, kk, fw) = p.own_rows(x1[k], h, t_mid);
+                r[k] = rk;
+                f_water[k] = fw;
+                jac.fixed_view_mut::<3, 3>(3 * k, 3 * k).copy_from(&kk);
+                scale[k] = p.gravity * (p.mass + p.water_density * p.volume) + fw.norm();
+            }
+            for (i, tr) in &ok {
+                let l = &self.lines[*i];
+                let ends = [l.hang_off_at, l.anchor_at];
+                for (ea, a) in ends.iter().enumerate() {
+                    let EndAt::Free(ka) = *a else { continue };
+                    r[ka] += tr.reaction[ea];
+                    scale[ka] += tr.reaction[ea].norm();
+                    for (eb, b) in ends.iter().enumerate() {
+                        let EndAt::Free(kb) = *b else { continue };
+                        for (ra, ca) in (0..3).map(|c| (3 * ea + c, 3 * ka + c)) {
+                            for (rb, cb) in (0..3).map(|c| (3 * eb + c, 3 * kb + c)) {
+                                jac[(ca, cb)] += tr.condensed[ra * 6 + rb];
+                            }
+                        }
+                    }
+                }
+            }
+            worst = (0.0, 0);
+            for k in 0..np {
+                let rel = r[k].norm() / scale[k].max(f64::MIN_POSITIVE);
+                if rel > worst.0 || rel.is_nan() {
+                    worst = (rel, k);
+                }
+            }
+            self.trial_iterations += ok.iter().map(|(_, tr)| tr.state.newton_iterations).sum::<u64>()
+                - ok.iter().map(|(i, _)| prev[*i].as_ref().map_or(0, |s| s.newton_iterations)).sum::<u64>();
+            if worst.0 <= tol {
+                // converged: the lines' trials and the points' step are the step
+                let mut reactions = vec![V3::zeros(); np];
+                for (i, tr) in ok {
+                    let l = &mut self.lines[i];
+                    for (e, a) in [l.hang_off_at, l.anchor_at].iter().enumerate() {
+                        if let EndAt::Free(k) = *a {
+                            reactions[k] += tr.reaction[e];
+                        }
+                    }
+                    l.sim.state = tr.state;
+                }
+                for (k, p) in self.points.iter_mut().enumerate() {
+                    let dx = x1[k] - p.position;
+                    // the lines pull the point by −Σ P_i; the water's work over the step (§5.4)
+                    p.work_lines -= dx.dot(&reactions[k]);
+                    p.work_hydro += dx.dot(&f_water[k]);
+                    p.mean_vel = [dx / h, p.mean_vel[0]];
+                    p.velocity = v1[k];
+                    p.position = x1[k];
+                }
+                self.point_iterations += it as u64;
+                return Ok(());
+            }
+            if it == MAX_POINT_ITERATIONS {
+                break;
+            }
+            let rhs = DVector::from_iterator(3 * np, r.iter().flat_map(|v| [-v.x, -v.y, -v.z]));
+            let Some(dx) = jac.lu().solve(&rhs) else { break };
+            for (k, x) in x1.iter_mut().enumerate() {
+                *x += V3::new(dx[3 * k], dx[3 * k + 1], dx[3 * k + 2]);
+            }
+        }
+        // the lines' own states were never touched
+        for l in &mut self.lines {
+            let _ = l.sim.integrator.set_anchor_motion(None);
+        }
+        Err(SystemStepError::Points {
+            time: t0,
+            iterations: MAX_POINT_ITERATIONS,
+            residual: worst.0,
+            point: self.points[worst.1].name.clone(),
+        })
     }
 
     /// The lines' loads on the vessel of their outputs `outputs` (one per
     /// line, in order), summed (17.11): the force and its moment about the
     /// reference point with the lines' end moments, global and in the
-    /// vessel frame.
+    /// vessel frame. (Every line's: for a system without free points; else
+    /// [`SystemRun::resultant_on_vessel`].)
     pub fn resultant(outputs: &[Outputs]) -> VesselLoads {
         let mut sum = VesselLoads {
             force: V3::zeros(),
@@ -196,14 +720,113 @@ impl SystemRun {
         sum
     }
 
+    /// [`SystemRun::resultant`] of the lines whose hang-off is on the vessel
+    /// (a line hung from a free point pulls the point, not the vessel).
+    pub fn resultant_on_vessel(&self, outputs: &[Outputs]) -> VesselLoads {
+        let on: Vec<Outputs> = self.lines.iter().zip(outputs).filter(|(l, _)| l.on_vessel()).map(|(_, o)| *o).collect();
+        Self::resultant(&on)
+    }
+
     /// Every line's outputs now.
     pub fn outputs(&self) -> Vec<Outputs> {
         self.lines.iter().map(|l| l.sim.outputs()).collect()
     }
+
+    /// The system's energy balance now (17.17).
+    pub fn energy_balance(&self) -> SystemBalance {
+        let mut b = SystemBalance::default();
+        for l in &self.lines {
+            let o = l.sim.outputs();
+            b.energy += o.total_energy;
+            b.initial_energy += l.sim.initial_energy;
+            if l.on_vessel() {
+                b.work_vessel += o.work_top;
+            }
+            b.work_water += o.work_hydro;
+            b.work_seabed += o.work_seabed;
+            // a cable's anchor at a free point: its work is internal
+            if !matches!(l.anchor_at, EndAt::Free(_)) {
+                b.work_anchor += o.work_anchor;
+            }
+            b.dissipated += o.dissipated_energy + o.algorithmic_dissipation;
+        }
+        for p in &self.points {
+            b.energy += p.energy();
+            b.initial_energy += p.initial_energy;
+            b.work_water += p.work_hydro;
+        }
+        b.residual =
+            b.energy - b.initial_energy - b.work_vessel - b.work_water - b.work_seabed - b.work_anchor + b.dissipated;
+        b
+    }
+}
+
+/// The terms of a system's energy balance (17.17), J: its energy (the
+/// lines' and the free points'), at the start, the work of the vessel, the
+/// water, the seabed and the anchors' twist on it, what the damping
+/// dissipated, and E − E0 − W + D. The works of the free points on their
+/// lines and of the lines on them cancel and are in none.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SystemBalance {
+    pub energy: f64,
+    pub initial_energy: f64,
+    pub work_vessel: f64,
+    pub work_water: f64,
+    pub work_seabed: f64,
+    pub work_anchor: f64,
+    pub dissipated: f64,
+    pub residual: f64,
+}
+
+impl SystemBalance {
+    /// The energy the system exchanged, J: |W_vessel| + |W_water| + |W_seabed| + |W_anchor| + D.
+    pub fn exchanged(&self) -> f64 {
+        self.work_vessel.abs()
+            + self.work_water.abs()
+            + self.work_seabed.abs()
+            + self.work_anchor.abs()
+            + self.dissipated
+    }
+}
+
+/// `f` on each (index, line) of `items`, on up to `threads` threads (this
+/// one among them), the dearest lines first; the results with their
+/// indices, in no order. One thread: in order on this one, nothing spawned.
+fn on_threads<'a, R: Send>(
+    items: Vec<(usize, &'a mut LineRun)>,
+    threads: usize,
+    f: &(dyn Fn(usize, &mut LineRun) -> R + Sync),
+) -> Vec<(usize, R)> {
+    let threads = threads.clamp(1, items.len().max(1));
+    if threads == 1 {
+        return items.into_iter().map(|(i, l)| (i, f(i, l))).collect();
+    }
+    let mut queue = items;
+    queue.sort_by_key(|(i, l)| (std::cmp::Reverse(l.cost()), *i));
+    let queue = Mutex::new(queue.into_iter());
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
+            let Some((i, line)) = next else { break };
+            done.push((i, f(i, line)));
+        }
+        done
+    };
+    std::thread::scope(|s| {
+        let others: Vec<_> = (1..threads).map(|_| s.spawn(work)).collect();
+        let mut all = work();
+        for h in others {
+            // a panic in a line's thread is this thread's (the FMU's boundary catches it)
+            all.extend(h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
+        }
+        all
+    })
 }
 
 /// The system's energy balance of its lines' outputs `outputs` against their
-/// energies at the start `e0` (17.12): the sum of the lines' residuals, J.
+/// energies at the start `e0` (17.12): the sum of the lines' residuals, J
+/// (without free points; with them, [`SystemRun::energy_balance`]).
 pub fn energy_balance_residual(outputs: &[Outputs], e0: &[f64]) -> f64 {
     outputs.iter().zip(e0).map(|(o, e)| o.energy_balance_residual(*e)).sum()
 }

@@ -16,6 +16,26 @@ compared.
   all three cases; every entry within the codes' mesh-to-mesh change or 2 % of the quantity's
   largest magnitude (the issue's acceptance), and in the cases with drag within the tighter
   bound TOL_DRAG measured there.
+
+A free point (issue 49, point 2): docs/cases/clump_weight_mooring.toml, a 10 t clump (C_dA 1.4
+m^2, C_a 1) between an anchor chain of 300 m and a fairlead chain of 260 m, the chain with
+MoorDyn's OC3 hydrodynamics, the clump a MoorDyn Free point with the same mass, volume, CdA and
+Ca (the conventions are the same: weight and buoyancy rho g V of the whole volume, drag
+1/2 rho CdA |u - v| (u - v), added mass Ca rho V), under the same surge and heave:
+
+* short (unmarked, about 4 s): 20 elements a line, 60 s, ramp 12 s, window 30-60 s. Measured:
+  the clump's position windows within 0.010 m (of a 29 m vertical range), the tensions' and
+  the resultant's means within 2.3e-4 of the largest tension, their extremes within 1.9e-2
+  (the upper chain's and F_x's peaks, 17 kN of 918 kN: the first snap loads after the short
+  ramp, where the codes' damping of the axial waves differs, riser's rho_infinity 0.8 against
+  MoorDyn's BA = -0.05); held to CLUMP_POS_SHORT and CLUMP_TOL_SHORT.
+* long (`long`): 26 and 52 elements, 300 s, ramp 100 s, window 150-300 s. Measured at 52: the
+  clump within 0.005 m (0.026 m at 26), the means within 3.3e-4 and the peaks within 4.6e-4 of
+  the largest tension; the least-pull statistics (the tensions' minima, the resultant's
+  smallest magnitude) are not alike: they fall when the clump reaches the seabed once a surge
+  period (riser's clump 7 cm into it, its contact spring k_b x 1 m^2 carrying it, so the
+  lower chain slackens further; MoorDyn-C's point has no seabed contact): up to 5.1e-2 of the
+  largest tension, not within either code's mesh change; reported, not held.
 """
 
 from __future__ import annotations
@@ -35,6 +55,11 @@ SHORT_WINDOW = (30.0, 60.0)
 TOL_SHORT_MEASURED = 1.8e-3
 TOL_SHORT = 5.0e-3
 TOL_DRAG = 5.0e-3
+CLUMP_POS_SHORT = 0.02          # m (measured 0.010)
+CLUMP_TOL_SHORT = 2.5e-2        # of the largest tension (measured 1.9e-2; means 2.3e-4)
+CLUMP_MEAN_SHORT = 1.0e-3
+CLUMP_POS_LONG = 0.05           # m (measured 0.026 at 26 elements, 0.005 at 52)
+CLUMP_TOL_LONG = 2.0e-2         # the issue's 2 % (measured 4.6e-4 at 52, 1.1e-3 at 26)
 
 
 def test_the_input_file_has_the_scenes_lines_points_and_seabed(tmp_path):
@@ -77,3 +102,48 @@ def test_the_600_s_comparison_is_within_the_discretisation(riser_bin, tmp_path):
         if case != "bare":
             worst = max(abs(r["rel"]) for r in rows)
             assert worst <= TOL_DRAG, (case, worst)
+
+
+def _clump_checks(rows, pos_tol, tol, mean_tol=None, skip_least_pull=False):
+    """Every row within its bound: positions in m, tensions and forces relative to the largest
+    tension; with `skip_least_pull`, a quantity's statistic of the smaller magnitude (a
+    tension's minimum, a pulling force's maximum) is left out (the slack moments at the clump's
+    seabed contact, see the docstring), and returned."""
+    tension = max(r["scale"] for r in rows if ".tension" in r["quantity"])
+    left = []
+    by_q: dict[str, dict[str, dict]] = {}
+    for r in rows:
+        by_q.setdefault(r["quantity"], {})[r["stat"]] = r
+    for q, st in by_q.items():
+        if q.split(".")[-1] in ("x", "y", "z"):
+            for r in st.values():
+                assert abs(r["diff"]) <= pos_tol, f"{q} {r['stat']}: {r['riser']:.4f} against {r['md']:.4f} m"
+            continue
+        least = min(("min", "max"), key=lambda k: abs(st[k]["md"]))
+        for k, r in st.items():
+            if skip_least_pull and k == least:
+                left.append(r)
+                continue
+            bound = mean_tol if (mean_tol is not None and k == "mean") else tol
+            assert abs(r["diff"]) <= bound * tension, f"{q} {k}: {r['diff'] / tension:.2e} of the largest tension"
+    return left
+
+
+def test_a_free_point_agrees_with_moordyn_short(riser_bin, tmp_path):
+    p = study.clump_pair(riser_bin, tmp_path, 20, motions=SHORT_MOTIONS, duration=60.0, window=SHORT_WINDOW,
+                         threads=2)
+    rows = study.clump_rows(p, SHORT_WINDOW)
+    _clump_checks(rows, CLUMP_POS_SHORT, CLUMP_TOL_SHORT, CLUMP_MEAN_SHORT)
+    assert p.riser_json["points"][0]["name"] == "clump"
+
+
+@pytest.mark.long
+def test_a_free_point_agrees_with_moordyn_over_300_s(riser_bin, tmp_path):
+    for n in study.CLUMP_MESHES:
+        p = study.clump_pair(riser_bin, tmp_path, n, threads=2)
+        rows = study.clump_rows(p)
+        left = _clump_checks(rows, CLUMP_POS_LONG, CLUMP_TOL_LONG, skip_least_pull=True)
+        # the least-pull moments are the clump's landings on the seabed: riser's clump is in it
+        z_min = p.riser["clump.z"][p.riser["t"] >= study.CLUMP_WINDOW[0]].min()
+        assert z_min < p.system.seabed_z, z_min
+        assert left, "the least-pull statistics are reported"

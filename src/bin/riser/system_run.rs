@@ -5,7 +5,7 @@
 
 use riser::math::V3;
 use riser::scene::system::SystemScene;
-use riser::sim::system_dynamics::{LineRun, SystemRun};
+use riser::sim::system_dynamics::{EndAt, LineRun, SystemRun};
 use std::io::Write;
 use std::path::Path;
 
@@ -44,9 +44,29 @@ fn sample(l: &LineRun, e0: f64) -> Sample {
         min_tension: o.min_tension,
         touchdown_s: if o.touchdown_s < l.scene.line.length { o.touchdown_s } else { f64::NAN },
         balance: o.energy_balance_residual(e0),
-        exchanged: o.work_top.abs() + o.work_hydro.abs() + o.work_anchor.abs() + o.work_seabed.abs(),
+        // a free point's work on its line is internal to the system (§17.7)
+        exchanged: if l.on_vessel() { o.work_top.abs() } else { 0.0 }
+            + o.work_hydro.abs()
+            + if matches!(l.anchor_at, EndAt::Free(_)) { 0.0 } else { o.work_anchor.abs() }
+            + o.work_seabed.abs(),
         held: o.kinetic_energy.abs() + o.strain_energy.abs() + o.potential_energy.abs(),
     }
+}
+
+/// What a free point keeps at each output time.
+#[derive(Clone, Copy)]
+struct PointSample {
+    position: V3,
+    /// Its part of the energy balance (17.17) and the water's work on it, J.
+    balance: f64,
+    work_hydro: f64,
+}
+
+fn point_samples(run: &SystemRun) -> Vec<PointSample> {
+    run.points
+        .iter()
+        .map(|p| PointSample { position: p.position, balance: p.energy_balance_residual(), work_hydro: p.work_hydro })
+        .collect()
 }
 
 /// `riser run` of a system file.
@@ -96,24 +116,49 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     let steps_done = std::sync::atomic::AtomicU64::new(0);
     let total = n_steps * run.lines.len() as u64;
     let solve_start = std::time::Instant::now();
-    let per_line = run.for_each_line(threads, &|l: &mut LineRun| {
-        // the energy reference: the line's energy at the start
-        let e = l.sim.initial_energy;
-        let mut samples = Vec::with_capacity(targets.len() + 1);
-        samples.push(sample(l, e));
-        for &t in &targets {
-            if let Err(err) = l.advance_to(t, &motion) {
-                return (samples, Some(format!("line '{}': {err}", l.name)));
-            }
+    // with free points the lines at them step together, a step at a time
+    // (§17.7); without, a thread runs a line through the whole run
+    let mut per_point: Vec<Vec<PointSample>> = Vec::new();
+    let per_line = if run.points.is_empty() {
+        run.for_each_line(threads, &|l: &mut LineRun| {
+            // the energy reference: the line's energy at the start
+            let e = l.sim.initial_energy;
+            let mut samples = Vec::with_capacity(targets.len() + 1);
             samples.push(sample(l, e));
-            let done = steps_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            // the bar is drawn by whichever thread finds it free
+            for &t in &targets {
+                if let Err(err) = l.advance_to(t, &motion) {
+                    return (samples, Some(format!("line '{}': {err}", l.name)));
+                }
+                samples.push(sample(l, e));
+                let done = steps_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                // the bar is drawn by whichever thread finds it free
+                if let Ok(mut p) = progress.try_lock() {
+                    p.update(done as f64 / total as f64 * duration, duration, done);
+                }
+            }
+            (samples, None)
+        })
+    } else {
+        let e0: Vec<f64> = run.lines.iter().map(|l| l.sim.initial_energy).collect();
+        let mut samples: Vec<Vec<Sample>> = run.lines.iter().zip(&e0).map(|(l, e)| vec![sample(l, *e)]).collect();
+        per_point.push(point_samples(&run));
+        let mut failure = None;
+        for (k, &t) in targets.iter().enumerate() {
+            if let Err(err) = run.advance_to(t, &motion, threads) {
+                failure = Some(err.to_string());
+                break;
+            }
+            for ((l, e), s) in run.lines.iter().zip(&e0).zip(samples.iter_mut()) {
+                s.push(sample(l, *e));
+            }
+            per_point.push(point_samples(&run));
+            let done = (k as u64 + 1) * run.lines.len() as u64;
             if let Ok(mut p) = progress.try_lock() {
                 p.update(done as f64 / total as f64 * duration, duration, done);
             }
         }
-        (samples, None)
-    });
+        samples.into_iter().map(|s| (s, failure.clone())).collect::<Vec<_>>()
+    };
     progress.lock().unwrap_or_else(|p| p.into_inner()).finish();
     let solve_wall = solve_start.elapsed().as_secs_f64();
     // a failed line ends the system's record at its last good time
@@ -121,15 +166,31 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     let n_kept = per_line.iter().map(|(s, _)| s.len()).min().unwrap_or(0);
     let series: Vec<&[Sample]> = per_line.iter().map(|(s, _)| &s[..n_kept]).collect();
     let times: Vec<f64> = series[0].iter().map(|s| s.t).collect();
+    // the loads on the vessel: of the lines hung from it (§17.7)
     let sum = |f: &dyn Fn(&Sample) -> V3| -> Vec<V3> {
-        (0..n_kept).map(|k| series.iter().map(|s| f(&s[k])).fold(V3::zeros(), |a, b| a + b)).collect()
+        (0..n_kept)
+            .map(|k| {
+                run.lines
+                    .iter()
+                    .zip(&series)
+                    .filter(|(l, _)| l.on_vessel())
+                    .map(|(_, s)| f(&s[k]))
+                    .fold(V3::zeros(), |a, b| a + b)
+            })
+            .collect()
+    };
+    let point_sum = |k: usize, f: &dyn Fn(&PointSample) -> f64| -> f64 {
+        per_point.get(k).map_or(0.0, |ps| ps.iter().map(f).sum())
     };
     let force = sum(&|s| s.top_force);
     let moment = sum(&|s| s.top_moment);
     let force_vessel = sum(&|s| s.vessel_force);
     let moment_vessel = sum(&|s| s.vessel_moment);
-    let balance: Vec<f64> = (0..n_kept).map(|k| series.iter().map(|s| s[k].balance).sum()).collect();
-    let exchanged = (0..n_kept).map(|k| series.iter().map(|s| s[k].exchanged).sum::<f64>()).fold(0.0, f64::max);
+    let balance: Vec<f64> =
+        (0..n_kept).map(|k| series.iter().map(|s| s[k].balance).sum::<f64>() + point_sum(k, &|p| p.balance)).collect();
+    let exchanged = (0..n_kept)
+        .map(|k| series.iter().map(|s| s[k].exchanged).sum::<f64>() + point_sum(k, &|p| p.work_hydro.abs()))
+        .fold(0.0, f64::max);
     let held = (0..n_kept).map(|k| series.iter().map(|s| s[k].held).sum::<f64>()).fold(0.0, f64::max);
     let balance_max = balance.iter().map(|b| b.abs()).fold(0.0, f64::max);
     let balance_scale = exchanged.max(riser::sim::report::ENERGY_RESOLUTION * held);
@@ -176,10 +237,22 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
         }
         rows.push((l, from, to, min_tension, td));
     }
+    // each free point's position over the steady window
+    let point_rows: Vec<(String, V3, [[f64; 3]; 3])> = run
+        .points
+        .iter()
+        .enumerate()
+        .map(|(j, p)| {
+            let axis =
+                |c: usize| window_of(&(0..n_kept).map(|k| (times[k], per_point[k][j].position[c])).collect::<Vec<_>>());
+            (p.name.clone(), p.static_position, [axis(0), axis(1), axis(2)])
+        })
+        .collect();
     crate::warn_all(&warnings);
     let simulated = times.last().copied().unwrap_or(0.0);
     if let Some(dir) = &out {
-        write_csv(dir, &run, &series, &times, [&force, &moment, &force_vessel, &moment_vessel], &balance, &motion)
+        let loads = [&force[..], &moment[..], &force_vessel[..], &moment_vessel[..]];
+        write_csv(dir, &run, &series, &per_point[..n_kept.min(per_point.len())], &times, loads, &balance, &motion)
             .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
     }
     let wall = wall0.elapsed().as_secs_f64();
@@ -222,6 +295,15 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
             },
             "energy_balance_residual": balance_max,
             "energy_balance_relative": if balance_scale > 0.0 { balance_max / balance_scale } else { 0.0 },
+            "points": point_rows.iter().map(|(name, st, w)| serde_json::json!({
+                "name": name,
+                "static_position": [st.x, st.y, st.z],
+                "x": w[0].map(finite),
+                "y": w[1].map(finite),
+                "z": w[2].map(finite),
+            })).collect::<Vec<_>>(),
+            "point_iterations": run.point_iterations,
+            "trial_newton_iterations": run.trial_iterations,
             "threads": threads,
             "steps": steps,
             "newton_iterations": iterations,
@@ -265,7 +347,25 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
                 kn(*min_tension)
             );
         }
-        outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged (all lines)", balance_max, exchanged);
+        for (name, st, w) in &point_rows {
+            outln!(
+                "    point {name:<11} x {:.3} / {:.3} / {:.3} m, y {:.3} / {:.3} / {:.3} m, z {:.3} / {:.3} / {:.3} m \
+                 (static ({:.3}, {:.3}, {:.3}) m)",
+                w[0][0],
+                w[0][1],
+                w[0][2],
+                w[1][0],
+                w[1][1],
+                w[1][2],
+                w[2][0],
+                w[2][1],
+                w[2][2],
+                st.x,
+                st.y,
+                st.z
+            );
+        }
+        outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged (the system)", balance_max, exchanged);
         outln!(
             "  {steps} steps over {} lines on {threads} thread(s), {:.2} Newton iterations/step; {:.2} s wall, {:.0}x \
              real time",
@@ -290,11 +390,14 @@ fn finite(v: f64) -> Option<f64> {
 
 /// timeseries.csv of a system: t, the resultants (global and vessel frame),
 /// the vessel's motion, the energy balance residual, and per line
-/// `LINE.tension_from`, `LINE.tension_to`, `LINE.min_tension`.
+/// `LINE.tension_from`, `LINE.tension_to`, `LINE.min_tension`, and per free
+/// point `POINT.x`, `POINT.y`, `POINT.z`.
+#[allow(clippy::too_many_arguments)]
 fn write_csv(
     dir: &Path,
     run: &SystemRun,
     series: &[&[Sample]],
+    points: &[Vec<PointSample>],
     times: &[f64],
     loads: [&[V3]; 4],
     balance: &[f64],
@@ -312,6 +415,9 @@ fn write_csv(
     for l in &run.lines {
         write!(f, ",{0}.tension_from,{0}.tension_to,{0}.min_tension", l.name)?;
     }
+    for p in &run.points {
+        write!(f, ",{0}.x,{0}.y,{0}.z", p.name)?;
+    }
     writeln!(f)?;
     for (k, t) in times.iter().enumerate() {
         write!(f, "{t}")?;
@@ -324,6 +430,9 @@ fn write_csv(
         write!(f, ",{}", balance[k])?;
         for s in series {
             write!(f, ",{},{},{}", s[k].tension_from, s[k].tension_to, s[k].min_tension)?;
+        }
+        for p in points.get(k).into_iter().flatten() {
+            write!(f, ",{},{},{}", p.position.x, p.position.y, p.position.z)?;
         }
         writeln!(f)?;
     }
@@ -340,7 +449,7 @@ pub fn model_description(path: &str) -> Result<(), String> {
         ));
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
-    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
+    if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the FMU") {
         return Err(m);
     }
     let name = std::path::Path::new(path).file_name().and_then(|n| n.to_str()).unwrap_or(path);
@@ -392,7 +501,7 @@ pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(),
         return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
-    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
+    if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the modes") {
         return Err(m);
     }
     let t0 = std::time::Instant::now();

@@ -224,6 +224,18 @@ pub struct CableModel {
     pub sea: Option<crate::loads::waves::Sea>,
     /// The current's growth from the run's start (docs/theory.md §5.11).
     pub current_ramp: crate::loads::waves::Ramp,
+    /// Where the anchor end (S = L) is at the end of the next step and its
+    /// velocity there (None: held where it is, at rest). A system's free
+    /// point moves it (docs/theory.md §17.7); its work is `work_anchor`.
+    pub anchor_motion: Option<AnchorMotion>,
+}
+
+/// A prescribed position (m, the line's frame) and velocity (m/s) of the
+/// cable's anchor end at the end of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnchorMotion {
+    pub position: V3,
+    pub velocity: V3,
 }
 
 /// The segment mass matrix ρ̄ l/12 [[5, 1], [1, 5]] (6.4), kg.
@@ -247,6 +259,7 @@ impl CableModel {
             f_grav,
             sea: None,
             current_ramp: crate::loads::waves::Ramp::NONE,
+            anchor_motion: None,
         }
     }
 
@@ -275,7 +288,7 @@ impl CableModel {
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
         let current_ramp = crate::loads::current_ramp(scene);
-        CableModel { cable, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp }
+        CableModel { cable, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp, anchor_motion: None }
     }
 
     /// Largest mass per length with the added mass, kg/m.

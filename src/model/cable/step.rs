@@ -140,6 +140,9 @@ impl StepEquations for CableModel {
         if self.cable.ends_fixed[0] {
             trial.config.x[0] = origin + target.displacement;
         }
+        if let (true, Some(m)) = (self.cable.ends_fixed[1], self.anchor_motion) {
+            trial.config.x[n] = m.position;
+        }
         if let (Some(sea), Some(water)) = (&self.sea, ws.water.as_mut()) {
             // the waves at the predicted midpoint's Gauss points at t_n + h/2 (§13.6)
             let (x0, x1) = (&prev.config.x, &trial.config.x);
@@ -189,7 +192,7 @@ impl StepEquations for CableModel {
             ws.vnew[0] = target.velocity;
         }
         if cable.ends_fixed[1] {
-            ws.vnew[n] = V3::zeros();
+            ws.vnew[n] = self.anchor_motion.map_or(V3::zeros(), |m| m.velocity);
         }
         let k_inertia = 2.0 / (h * h);
         let fluid_active = !self.fluid.is_inert_in(ws.water.is_some());
@@ -381,6 +384,13 @@ impl StepEquations for CableModel {
         let vbar0 = 0.5 * (state.vel[0] + trial.vel[0]);
         trial.work_top += dx0.dot(&ws.reaction[0]) + (vbar0 * h - dx0).dot(&ws.end_inertia[0]);
         trial.work_hydro += w_hydro + ws.surface_wave_work;
+        if let (true, Some(_)) = (self.cable.ends_fixed[1], self.anchor_motion) {
+            // a moving anchor's work, as the hang-off's (§5.5, §17.7)
+            let n = self.cable.n_el;
+            let dxn = x1[n] - x0[n];
+            let vbar = 0.5 * (state.vel[n] + trial.vel[n]);
+            trial.work_anchor += dxn.dot(&ws.reaction[1]) + (vbar * h - dxn).dot(&ws.end_inertia[1]);
+        }
         if !ws.seabed.is_empty() {
             trial.work_seabed += (0..=self.cable.n_el).map(|a| (x1[a] - x0[a]).dot(&node(&ws.seabed, a))).sum::<f64>();
         }

@@ -14,7 +14,12 @@ What the scene becomes in MoorDyn's input file:
 * one BODY "Coupled" at the vessel's reference point (the system's origin), with no mass,
   volume, drag or added mass of its own: MoorDyn moves it as it is told (6 DOF);
 * each `[[point]]` a POINT: `fixed` -> Fixed at its global position, `vessel` -> attached to
-  the body ("Body1") at its vessel-frame position; `free` is refused (not in this driver);
+  the body ("Body1") at its vessel-frame position; `free` -> Free at its initial position with
+  its Mass = `mass`, Volume = `volume`, CdA = `cd_area`, Ca = `ca`. The conventions are
+  riser's (docs/theory.md 17.7): MoorDyn-C's point has weight and buoyancy rho g V (always the
+  whole volume: riser's only below the surface, so the points must stay submerged), drag
+  1/2 rho CdA |u - v| (u - v) and added mass Ca rho V; it has no seabed contact (riser's point
+  has: keep the points clear of the seabed to compare);
 * each `[[line]]` a LINE from its `from` point (MoorDyn's end A, node 0) to its `to` point
   (end B, node N), `length`, `nseg` segments (the caller's, not the scene's n_elements);
 * OPTIONS: dtM, g, rho = `water_density`, WtrDpth = `water_surface_z` - `[seabed] z` (a flat
@@ -74,6 +79,10 @@ class Point:
     name: str
     kind: str
     position: tuple[float, float, float]
+    mass: float = 0.0
+    volume: float = 0.0
+    cd_area: float = 0.0
+    ca: float = 0.0
 
 
 @dataclass
@@ -112,9 +121,14 @@ class System:
     def line_type(self, line: SystemLine) -> LineType:
         return self.line_types[line.type]
 
-    def vessel_end(self, line: SystemLine) -> str:
-        """'from' or 'to': which end of `line` is on the vessel."""
-        return "to" if self.points[line.end].kind == "vessel" else "from"
+    def vessel_end(self, line: SystemLine) -> str | None:
+        """'from' or 'to': which end of `line` is on the vessel (None: neither)."""
+        if self.points[line.end].kind == "vessel":
+            return "to"
+        return "from" if self.points[line.start].kind == "vessel" else None
+
+    def free_points(self) -> list[str]:
+        return [p.name for p in self.points.values() if p.kind == "free"]
 
     def segment_dt(self, nseg: int) -> float:
         """The shortest axial-wave crossing of a segment, l / c, s: the explicit scheme's scale."""
@@ -147,9 +161,10 @@ def load(path: str | Path, overrides: Mapping[str, Mapping[str, float]] | None =
                                float(t.get("ca_normal", 0.0)))
     points = {}
     for p in d.get("point", []):
-        if p["kind"] not in ("fixed", "vessel"):
-            raise CaseError(f"point.{p['name']}.kind = {p['kind']!r}: this driver takes fixed and vessel points")
-        points[p["name"]] = Point(p["name"], p["kind"], tuple(float(x) for x in p["position"]))
+        if p["kind"] not in ("fixed", "vessel", "free"):
+            raise CaseError(f"point.{p['name']}.kind = {p['kind']!r}: expected fixed, vessel or free")
+        points[p["name"]] = Point(p["name"], p["kind"], tuple(float(x) for x in p["position"]),
+                                  *(float(p.get(k, 0.0)) for k in ("mass", "volume", "cd_area", "ca")))
     lines = []
     for ln in d.get("line", []):
         if ln["type"] not in types:
@@ -196,9 +211,10 @@ def input_text(system: System, nseg: int, dtm: float, ba: float | None = None, s
     ids = {name: i + 1 for i, name in enumerate(system.points)}
     pts = []
     for p in system.points.values():
-        att = "Fixed" if p.kind == "fixed" else "Body1"
+        att = {"fixed": "Fixed", "vessel": "Body1", "free": "Free"}[p.kind]
         x, y, z = p.position
-        pts.append(f"{ids[p.name]:<4} {att:<8} {x!r}  {y!r}  {z!r}  0  0  0  0")
+        pts.append(f"{ids[p.name]:<4} {att:<8} {x!r}  {y!r}  {z!r}  {p.mass!r}  {p.volume!r}  {p.cd_area!r}  "
+                   f"{p.ca!r}")
     lns = [f"{i + 1:<4} {ln.type:<10} {ids[ln.start]:<4} {ids[ln.end]:<4} {ln.length!r}  {nseg}  -"
            for i, ln in enumerate(system.lines)]
     opts: dict[str, Any] = {"dtM": repr(dtm), "g": system.g, "rho": system.rho, "WtrDpth": system.depth,
@@ -283,6 +299,9 @@ class SystemRunResult:
         """A column by riser's timeseries.csv name: `top_force_x|y|z`, `LINE.tension_from|to`."""
         if name.startswith("top_force_"):
             return self.force[:, "xyz".index(name[-1])]
+        if name.split(".")[0] in self.extra.get("points", {}):
+            point, axis = name.split(".")
+            return self.extra["points"][point][:, "xyz".index(axis)]
         line, what = name.split(".")
         return self.tension[line][what.removeprefix("tension_")]
 
@@ -397,6 +416,17 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
     input_path = Path(input_path)
     names = [ln.name for ln in system.lines]
     ten = {n: {"from": np.full(nout + 1, np.nan), "to": np.full(nout + 1, np.nan)} for n in names}
+    # a free point's position, and each line's end forces at a free point (their node's inertia
+    # taken off after the run, with the point's acceleration from its recorded positions)
+    ids = {name: i + 1 for i, name in enumerate(system.points)}
+    free = system.free_points()
+    pos = {p: np.full((nout + 1, 3), np.nan) for p in free}
+    at_free: list[tuple[str, str, int, str]] = []       # (line, 'from'|'to', node, point)
+    for ln in system.lines:
+        for end, p in (("from", ln.start), ("to", ln.end)):
+            if p in free:
+                at_free.append((ln.name, end, 0 if end == "from" else nseg, p))
+    end_force = {(ln, end): np.full((nout + 1, 3), np.nan) for ln, end, _, _ in at_free}
     force = np.full((nout + 1, 3), np.nan)
     body = np.full((nout + 1, 6), np.nan)
     ok, t_fail = True, float("nan")
@@ -407,6 +437,7 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
         handles = [md.GetLine(s, i + 1) for i in range(len(names))]
         masses = [(np.array(md.GetLineNodeM(h, 0)), np.array(md.GetLineNodeM(h, nseg))) for h in handles]
         vessel_end = [system.vessel_end(ln) for ln in system.lines]
+        point_handles = {p: md.GetPoint(s, ids[p]) for p in free}
         md.Init(s, xs[0], [0.0] * 6)
         if sea is not None:
             md.ExternalWaveKinInit(s)
@@ -420,11 +451,16 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
                 if ve == "to":
                     fn = fn - mn @ acc[j]
                     total += fn
-                else:
+                elif ve == "from":
                     f0 = f0 - m0 @ acc[j]
                     total += f0
                 ten[ln]["from"][j] = np.linalg.norm(f0)
                 ten[ln]["to"][j] = np.linalg.norm(fn)
+                for end, f in (("from", f0), ("to", fn)):
+                    if (ln, end) in end_force:
+                        end_force[(ln, end)][j] = f
+            for p, h in point_handles.items():
+                pos[p][j] = md.GetPointPos(h)
             force[j] = total
             body[j] = f6
             return bool(np.all(np.abs(total) < blow_up))
@@ -449,8 +485,16 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
         except RuntimeError:
             ok, t_fail = False, ts[min(i + 1, ncalls)]
         wall = time.perf_counter() - t0
+        node_mass = {(ln, end): np.array(md.GetLineNodeM(handles[names.index(ln)], node))
+                     for ln, end, node, _ in at_free}
         md.Close(s)
-    return SystemRunResult(tout, ten, force, body, ok, t_fail, wall, ic_time, dtm, nseg, steps, input_path)
+    # the force of a line's end node on its free point: the node's net force less its inertia
+    # M a, a the point's acceleration (central differences of the recorded positions)
+    for ln, end, _, p in at_free:
+        a = np.gradient(np.gradient(pos[p], sample, axis=0), sample, axis=0)
+        ten[ln][end] = np.linalg.norm(end_force[(ln, end)] - a @ node_mass[(ln, end)].T, axis=1)
+    return SystemRunResult(tout, ten, force, body, ok, t_fail, wall, ic_time, dtm, nseg, steps, input_path,
+                           extra={"points": pos})
 
 
 def window(t: np.ndarray, y: np.ndarray, w0: float, w1: float) -> tuple[float, float, float]:
@@ -471,8 +515,13 @@ def riser_series(csv: str | Path) -> dict[str, np.ndarray]:
 
 
 def quantities(system: System) -> list[str]:
-    """The compared columns: each line's vessel-end tension, the resultant's x and z."""
-    return [f"{ln.name}.tension_{system.vessel_end(ln)}" for ln in system.lines] + ["top_force_x", "top_force_z"]
+    """The compared columns: each line's vessel-end tension (both ends' of a line without one),
+    the resultant's x and z, and each free point's x, y, z."""
+    q = []
+    for ln in system.lines:
+        ve = system.vessel_end(ln)
+        q += [f"{ln.name}.tension_{e}" for e in ((ve,) if ve else ("from", "to"))]
+    return q + ["top_force_x", "top_force_z"] + [f"{p}.{a}" for p in system.free_points() for a in "xyz"]
 
 
 def edit_scene(text: str, n_elements: int | None = None, time_step: float | None = None,

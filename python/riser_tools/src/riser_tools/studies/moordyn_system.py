@@ -162,6 +162,60 @@ def compare(coarse: Pair, fine: Pair, window: tuple[float, float] = WINDOW) -> l
     return rows
 
 
+# ----------------------------------------------------------------------------- a free point
+CLUMP = ROOT / "docs" / "cases" / "clump_weight_mooring.toml"
+CLUMP_DURATION = 300.0
+CLUMP_WINDOW = (150.0, 300.0)
+CLUMP_MESHES = (26, 52)
+
+
+def dtm_clump(nseg: int) -> float:
+    """MoorDyn's internal step for the clump weight's chains (260 m the shorter): below a quarter
+    of a segment's l / c (0.029 s / n), a whole fraction of the 0.01 s call."""
+    return CALL / math.ceil(CALL / (0.025 / nseg))
+
+
+def clump_pair(bin_: str, out: Path, n: int, motions: tuple[Motion, ...] = MOTIONS,
+               duration: float = CLUMP_DURATION, window: tuple[float, float] = CLUMP_WINDOW,
+               ba: float = BA, threads: int | None = None) -> Pair:
+    """Both codes on docs/cases/clump_weight_mooring.toml (issue 49, point 2) at `n` elements
+    (segments) a line, the chain with MoorDyn's OC3 hydrodynamics (`HYDRO`) and the clump with
+    its own drag area and added mass (the case's `cd_area`, `ca`; MoorDyn's Free point)."""
+    d = out / f"clump_{n}"
+    d.mkdir(parents=True, exist_ok=True)
+    scene = d / "scene.toml"
+    scene.write_text(ms.edit_scene(CLUMP.read_text(), n_elements=n, line_type=HYDRO))
+    t0 = time.perf_counter()
+    series, summary = ms.run_riser(bin_, scene, d / "riser", motions, duration, threads=threads, window=window)
+    riser_wall = time.perf_counter() - t0
+    system = ms.load(scene)
+    dtm = dtm_clump(n)
+    inp = ms.write_input(d / "moordyn" / "lines.txt", system, n, dtm, ba=ba, options=MD_OPTIONS)
+    md = ms.run(inp, system, n, ms.VesselMotion(motions), duration, dtm, SAMPLE,
+                coupling=int(round(CALL / dtm)))
+    if not md.ok:
+        raise RuntimeError(f"MoorDyn on the clump weight at {n} segments stopped at t = {md.t_fail} s")
+    return Pair("clump", n, series, summary, riser_wall, md, system)
+
+
+def clump_rows(pair: Pair, window: tuple[float, float] = CLUMP_WINDOW) -> list[dict[str, Any]]:
+    """Per compared quantity and statistic: both codes, their difference, relative to the
+    quantity's scale (a tension's: the largest tension in the window; the clump's position's:
+    its motion's range, the largest of x, y, z, with the difference in m too)."""
+    w = pair.windows(window)
+    tension = max(max(abs(v) for v in m) for q, (_, m) in w.items() if ".tension" in q)
+    moved = max(m[2] - m[0] for q, (_, m) in w.items() if q.split(".")[-1] in "xyz" and "." in q
+                and not q.startswith("top_force"))
+    rows = []
+    for q, (r, m) in w.items():
+        is_pos = "." in q and q.split(".")[-1] in ("x", "y", "z")
+        scale = moved if is_pos else (tension if ".tension" in q else max(abs(m[0]), abs(m[2])))
+        for st, a, b in zip(STATS, r, m):
+            rows.append({"quantity": q, "stat": st, "riser": a, "md": b, "diff": a - b, "scale": scale,
+                         "rel": (a - b) / scale if scale > 0 else 0.0})
+    return rows
+
+
 # ----------------------------------------------------------------------------- the page
 def _kn(v: float) -> str:
     return f"{v / 1e3:.1f}"
