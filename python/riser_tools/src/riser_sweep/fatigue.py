@@ -422,13 +422,6 @@ def _check_with_riser(spec: FatigueSpec) -> None:
     values, the curve, the wall; the static touchdown), and each state's sea on the RAO table."""
     with tempfile.TemporaryDirectory(prefix="riser-fatigue-check-") as d:
         _write_files(d, spec.job(spec.states[0])["files"])
-        args = spec.args(spec.states[0])
-        i = args.index("--duration")
-        args[i + 1] = "0.5"
-        p = subprocess.run([spec.binary, "run", spec.scene, *args], capture_output=True, text=True, cwd=d)
-        if p.returncode != 0:
-            raise SpecError(f"riser refuses the run: {p.stderr.strip().removeprefix('riser: error: ')}")
-        spec.static_touchdown_s = json.loads(p.stdout)["statics"].get("touchdown_s")
         for st in spec.states:
             sets = [f"{k}={_text(v)}" for k, v in sorted(spec.parameters.items()) if k.startswith("wave_")]
             sets += st.sets()
@@ -440,6 +433,13 @@ def _check_with_riser(spec: FatigueSpec) -> None:
             if p.returncode != 0:
                 raise ScatterError(f"fatigue.scatter: {spec.scatter} row {st.row} (line {st.line}): "
                                    f"{p.stderr.strip().removeprefix('riser: error: ')}")
+        args = spec.args(spec.states[0])
+        i = args.index("--duration")
+        args[i + 1] = "0.5"
+        p = subprocess.run([spec.binary, "run", spec.scene, *args], capture_output=True, text=True, cwd=d)
+        if p.returncode != 0:
+            raise SpecError(f"riser refuses the run: {p.stderr.strip().removeprefix('riser: error: ')}")
+        spec.static_touchdown_s = json.loads(p.stdout)["statics"].get("touchdown_s")
 
 
 # ---- one sea state on a worker --------------------------------------------------------------------
