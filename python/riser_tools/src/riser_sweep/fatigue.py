@@ -658,8 +658,7 @@ def run_fatigue_sweep(spec: FatigueSpec, out_dir: str | Path, scheduler: str | N
             run = uuid.uuid4().hex[:8]
             by_key: dict[str, SeaState] = {}
             futures = []
-            # the longest-running first (the sea's ramp and Tp end the same run; more damage, more Newton):
-            # submission order only, the combination is in the file's order
+            # submitted in the file's order; they complete in any, and the combination is in the file's order
             for st in todo:
                 key = f"riser-state-{st.row}-{run}"
                 by_key[key] = st
