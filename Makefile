@@ -151,7 +151,7 @@ test: lint doc rust-test fmu-test
 CHECK_DIR := out/check
 check: lint rust-test venv check-fmu
 	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
-		$(PY) -m pytest -q -m "not long" tests/python -k "not fuzz and not sweep"
+		$(PY) -m pytest -q -m "not long" tests/python -k "not fuzz and not sweep and not scatter"
 
 # The FMU of the fasttest build: the library and the CLI as `cargo test`
 # builds them (its cdylib stays in deps/), not `cargo build`'s, which would

@@ -90,6 +90,9 @@ displacement and velocity, the angles and the angular velocity) carry the
 vessel's motion on its RAOs in the case's sea, computed on the client by
 ``riser waves`` (riser_sweep.raos; the riser binary from $RISER_BIN, the
 PATH or target/release/riser); the harmonic heave, surge and sway add to it.
+
+A spec with a ``[fatigue]`` table is another kind: fatigue over a scatter
+diagram, each sea state a ``riser run --fatigue`` (riser_sweep.fatigue).
 """
 
 from __future__ import annotations
@@ -362,6 +365,9 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
     except tomllib.TOMLDecodeError as e:
         raise SpecError(f"{path}: not valid TOML: {e}") from None
     base = path.resolve().parent
+    if "fatigue" in raw:
+        raise SpecError("[fatigue]: a fatigue sweep over a scatter diagram; riser-sweep runs it, from Python "
+                        "riser_sweep.fatigue.load_fatigue_spec and run_fatigue_sweep")
     _unknown("", raw, TOP_LEVEL)
 
     if fmu is not None:
