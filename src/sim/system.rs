@@ -6,7 +6,7 @@
 //! clump weights, buoys) are put in equilibrium by Newton on their positions
 //! (§17.4), each line re-solved with its ends where they are (MoorPy's
 //! nested approach), the Jacobian the lines' two-end stiffnesses
-//! ([`end_stiffness6`]); the stiffness on the vessel is then the free
+//! ([`crate::solve::eigen::end_stiffness6`]); the stiffness on the vessel is then the free
 //! points' condensed one (17.8, 17.9).
 //!
 //! Pose: [surge, sway, heave, roll, pitch, yaw] (m, rad), the reference
@@ -149,7 +149,7 @@ fn line_stiffness(scene: &Scene, rep: &StaticReport) -> Result<M3, String> {
 
 /// The two-end translation stiffness of a line's static state (17.6):
 /// [δR_h; δR_a] = S [δx_h; δx_a], R the supports' forces on the line at its
-/// hang-off and its anchor, N/m ([`end_stiffness6`]).
+/// hang-off and its anchor, N/m ([`crate::solve::eigen::end_stiffness6`]).
 pub fn line_end_stiffness(scene: &Scene, rep: &StaticReport) -> Result<M6, String> {
     line_end_stiffness_shifted(scene, rep, 0.0)
 }
