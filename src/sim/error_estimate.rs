@@ -35,6 +35,10 @@
 //! user's run's (the same motion, mesh and step; a longer window's extremes
 //! come from more cycles of the same response).
 //!
+//! The quantities ([`Quantity`]): the top tension's max, min, range and
+//! time mean, the touchdown's extremes on a seabed, the largest stress
+//! range on a line with stresses.
+//!
 //! The extremes of the top tension are the peaks of the parabola through
 //! the largest (smallest) sample and its neighbours ([`peak`]): a sampled
 //! extreme is off the true one by up to ½|q''|(Δt/2)², a sampling error
@@ -68,12 +72,26 @@ pub enum Quantity {
     TopTensionRange,
     /// The top tension's time mean over the window (trapezoid rule), N.
     TopTensionMean,
+    /// The largest arc length of the touchdown over the window, m (a line on a seabed).
+    TouchdownMax,
+    /// The smallest arc length of the touchdown over the window, m.
+    TouchdownMin,
+    /// The largest outer-fibre stress range over the line and the window,
+    /// Pa (a line with stresses: docs/theory.md §12.2).
+    StressRange,
 }
 
 impl Quantity {
     /// Every quantity, in the order of [`ErrorEstimate::estimates`].
-    pub const ALL: [Quantity; 4] =
-        [Quantity::TopTensionMax, Quantity::TopTensionMin, Quantity::TopTensionRange, Quantity::TopTensionMean];
+    pub const ALL: [Quantity; 7] = [
+        Quantity::TopTensionMax,
+        Quantity::TopTensionMin,
+        Quantity::TopTensionRange,
+        Quantity::TopTensionMean,
+        Quantity::TouchdownMax,
+        Quantity::TouchdownMin,
+        Quantity::StressRange,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -81,6 +99,9 @@ impl Quantity {
             Quantity::TopTensionMin => "top_tension_min",
             Quantity::TopTensionRange => "top_tension_range",
             Quantity::TopTensionMean => "top_tension_mean",
+            Quantity::TouchdownMax => "touchdown_max",
+            Quantity::TouchdownMin => "touchdown_min",
+            Quantity::StressRange => "stress_range",
         }
     }
 
@@ -92,7 +113,26 @@ impl Quantity {
         })
     }
 
-    fn index(self) -> usize {
+    /// Whether `scene` has the quantity: the touchdown's on a seabed, the
+    /// stress range on a line with stresses.
+    pub fn applies(self, scene: &Scene) -> bool {
+        match self {
+            Quantity::TouchdownMax | Quantity::TouchdownMin => scene.seabed.is_some(),
+            Quantity::StressRange => super::design::Design::new(scene).has_stresses(),
+            _ => true,
+        }
+    }
+
+    /// Its unit.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Quantity::TouchdownMax | Quantity::TouchdownMin => "m",
+            Quantity::StressRange => "Pa",
+            _ => "N",
+        }
+    }
+
+    pub fn index(self) -> usize {
         Quantity::ALL.iter().position(|q| *q == self).unwrap_or(0)
     }
 }
@@ -271,38 +311,16 @@ pub struct RunSpec<'a> {
 pub struct Pilot {
     pub n_elements: usize,
     pub time_step: f64,
-    /// The quantities, in [`Quantity::ALL`]'s order.
-    pub values: [f64; 4],
+    /// The quantities, in [`Quantity::ALL`]'s order (NaN: not of this
+    /// scene, or the touchdown off the seabed in the window).
+    pub values: [f64; 7],
     pub wall_s: f64,
 }
 
-/// The top tension's (t, T) over `plan`'s run of `scene` at `n_elements`
-/// and `time_step`, the rest of the numerics the scene's.
-pub fn top_tension_series(
-    scene: &Scene,
-    spec: &RunSpec,
-    plan: &PilotPlan,
-    n_elements: usize,
-    time_step: f64,
-) -> Result<Vec<(f64, f64)>, RiserError> {
-    let mut scene = scene.clone();
-    scene.analysis.n_elements = n_elements;
-    scene.analysis.time_step = time_step;
-    let mut sim = Simulation::from_scene(&scene)?;
-    sim.integrator.options_mut().max_tangent_age = spec.max_tangent_age;
-    sim.start((spec.motion)(0.0));
-    let n = super::internal_steps(plan.duration, time_step).map_err(RiserError::Unsupported)?;
-    let mut series = Vec::with_capacity(n as usize + 1);
-    series.push((0.0, sim.integrator.top_force(&sim.state).norm()));
-    for k in 1..=n {
-        let t = super::internal_step_end(0.0, plan.duration, time_step, k, n);
-        sim.advance_to(t, spec.motion)?;
-        series.push((t, sim.integrator.top_force(&sim.state).norm()));
-    }
-    Ok(series)
-}
-
-/// One pilot: [`top_tension_series`] and its quantities over the plan's window.
+/// One pilot: `plan`'s run of `scene` at `n_elements` and `time_step`, the
+/// rest of the numerics the scene's, and its quantities over the plan's
+/// window: the top tension's at every step, the touchdown's and the stress
+/// range's where the scene has them.
 pub fn run_pilot(
     scene: &Scene,
     spec: &RunSpec,
@@ -311,10 +329,53 @@ pub fn run_pilot(
     time_step: f64,
 ) -> Result<Pilot, RiserError> {
     let start = std::time::Instant::now();
-    let series = top_tension_series(scene, spec, plan, n_elements, time_step)?;
-    let (max, min) = (peak(&series, plan.window, true), peak(&series, plan.window, false));
-    let mean = time_mean(&series, plan.window);
-    Ok(Pilot { n_elements, time_step, values: [max, min, max - min, mean], wall_s: start.elapsed().as_secs_f64() })
+    let mut scene = scene.clone();
+    scene.analysis.n_elements = n_elements;
+    scene.analysis.time_step = time_step;
+    let mut sim = Simulation::from_scene(&scene)?;
+    sim.integrator.options_mut().max_tangent_age = spec.max_tangent_age;
+    sim.start((spec.motion)(0.0));
+    let n = super::internal_steps(plan.duration, time_step).map_err(RiserError::Unsupported)?;
+    let design = super::design::Design::new(&scene);
+    let (on_seabed, stresses) = (Quantity::TouchdownMax.applies(&scene), design.has_stresses());
+    let length = scene.line.length;
+    let (w0, w1) = plan.window;
+    let eps = 1e-9 * w1.abs().max(1.0);
+    let mut tension = Vec::with_capacity(n as usize + 1);
+    let mut touchdown = Vec::new();
+    let mut stress = super::design::StressRange::default();
+    let mut record = |sim: &Simulation, t: f64| {
+        tension.push((t, sim.integrator.top_force(&sim.state).norm()));
+        if t < w0 - eps || t > w1 + eps {
+            return;
+        }
+        if on_seabed {
+            let s = sim.integrator.outputs(&sim.state).touchdown_s;
+            touchdown.push((t, if s < length { s } else { f64::NAN }));
+        }
+        if stresses {
+            let points = sim.integrator.line_points(&sim.state);
+            stress.add(&design, &points, sim.state.config.x[0].z);
+        }
+    };
+    record(&sim, 0.0);
+    for k in 1..=n {
+        let t = super::internal_step_end(0.0, plan.duration, time_step, k, n);
+        sim.advance_to(t, spec.motion)?;
+        record(&sim, t);
+    }
+    let (max, min) = (peak(&tension, plan.window, true), peak(&tension, plan.window, false));
+    let mean = time_mean(&tension, plan.window);
+    // the touchdown off the seabed at a step of the window: no extreme
+    let lifted = touchdown.is_empty() || touchdown.iter().any(|(_, s)| s.is_nan());
+    let td = |max| if lifted { f64::NAN } else { peak(&touchdown, plan.window, max) };
+    let range = stress.largest().map_or(f64::NAN, |r| r.0);
+    Ok(Pilot {
+        n_elements,
+        time_step,
+        values: [max, min, max - min, mean, td(true), td(false), range],
+        wall_s: start.elapsed().as_secs_f64(),
+    })
 }
 
 /// The estimate of one quantity (16.15), (16.16).
@@ -374,9 +435,10 @@ impl Estimate {
             None => t.class.name().to_string(),
         };
         let mut s = format!(
-            "error estimate of {}: {:.6e} at your numerics, {:.6e} extrapolated, error {:.3e} ({:.2e} relative; \
-             mesh {:.2e}, {}; step {:.2e}, {})",
+            "error estimate of {} ({}): {:.6e} at your numerics, {:.6e} extrapolated, error {:.3e} ({:.2e} \
+             relative; mesh {:.2e}, {}; step {:.2e}, {})",
             self.quantity.name(),
+            self.quantity.unit(),
             self.value,
             self.extrapolated,
             self.error.abs(),
@@ -403,15 +465,18 @@ pub struct ErrorEstimate {
     pub time_step: f64,
     /// (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4), (4n, Δt/4).
     pub pilots: Vec<Pilot>,
-    /// In [`Quantity::ALL`]'s order.
+    /// The quantities of the scene, in [`Quantity::ALL`]'s order.
     pub estimates: Vec<Estimate>,
+    /// Quantities of the scene not estimated, and why.
+    pub notes: Vec<String>,
     /// The pilots' wall time, s (on their threads: the elapsed time).
     pub wall_s: f64,
 }
 
 impl ErrorEstimate {
-    pub fn of(&self, q: Quantity) -> &Estimate {
-        &self.estimates[q.index()]
+    /// The estimate of `q` (None: not of this scene, or not estimated: [`ErrorEstimate::notes`]).
+    pub fn of(&self, q: Quantity) -> Option<&Estimate> {
+        self.estimates.iter().find(|e| e.quantity == q)
     }
 }
 
@@ -459,14 +524,28 @@ pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<E
         .into_iter()
         .collect::<Option<Vec<_>>>()
         .ok_or_else(|| RiserError::Unsupported("an error estimate's pilot thread stopped".to_string()))?;
-    let estimates = Quantity::ALL
-        .into_iter()
-        .map(|q| {
-            let v = |i: usize| pilots[i].values[q.index()];
-            Estimate::of(q, [v(2), v(3), v(4)], [v(0), v(1), v(2)])
-        })
-        .collect();
-    Ok(ErrorEstimate { plan, n_elements: n, time_step: dt, pilots, estimates, wall_s: start.elapsed().as_secs_f64() })
+    let mut estimates = Vec::new();
+    let mut notes = Vec::new();
+    for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene)) {
+        let v = |i: usize| pilots[i].values[q.index()];
+        if (0..pilots.len()).all(|i| v(i).is_finite()) {
+            estimates.push(Estimate::of(q, [v(2), v(3), v(4)], [v(0), v(1), v(2)]));
+        } else {
+            notes.push(format!(
+                "{}: not estimated, a pilot has none over the window (the line off the seabed at a step of it)",
+                q.name()
+            ));
+        }
+    }
+    Ok(ErrorEstimate {
+        plan,
+        n_elements: n,
+        time_step: dt,
+        pilots,
+        estimates,
+        notes,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
 }
 
 #[cfg(test)]

@@ -288,7 +288,8 @@ struct RunCli {
     #[arg(long)]
     estimate_error: bool,
     /// The quantity --estimate-error reports first: top_tension_max (default),
-    /// top_tension_min, top_tension_range, top_tension_mean, or all (every one is in the JSON).
+    /// top_tension_min, top_tension_range, top_tension_mean, touchdown_max, touchdown_min (on a
+    /// seabed), stress_range (a line with stresses), or all (every one is in the JSON).
     #[arg(long, value_name = "NAME", requires = "estimate_error", default_value = "top_tension_max")]
     error_quantity: String,
 }
@@ -799,9 +800,14 @@ fn error_estimate_json(
             "notes": q.notes,
         })
     };
-    let first = e.of(headline.unwrap_or(Quantity::TopTensionMax));
-    let mut v = one(first);
+    // the headline checked applicable before the run; not estimated: the quantity and why
+    let asked = headline.unwrap_or(Quantity::TopTensionMax);
+    let mut v = match e.of(asked) {
+        Some(first) => one(first),
+        None => serde_json::json!({"quantity": asked.name(), "value": null, "estimate": null}),
+    };
     if let Some(o) = v.as_object_mut() {
+        o.insert("not_estimated".into(), e.notes.clone().into());
         o.insert("quantities".into(), e.estimates.iter().map(one).collect::<Vec<_>>().into());
         o.insert("pilot_window".into(), serde_json::json!([e.plan.window.0, e.plan.window.1]));
         o.insert("pilot_duration".into(), e.plan.duration.into());
@@ -812,7 +818,7 @@ fn error_estimate_json(
                 .map(|p| {
                     let mut values = serde_json::Map::new();
                     for q in Quantity::ALL {
-                        values.insert(q.name().into(), p.values[Quantity::ALL.iter().position(|x| *x == q).unwrap_or(0)].into());
+                        values.insert(q.name().into(), finite(p.values[q.index()]).into());
                     }
                     serde_json::json!({"n_elements": p.n_elements, "time_step": p.time_step, "values": values, "wall_s": p.wall_s})
                 })
@@ -844,6 +850,9 @@ fn error_estimate_text(
         if headline.is_none_or(|h| h == q.quantity) {
             outln!("    {}", q.summary());
         }
+    }
+    for n in &e.notes {
+        outln!("    {n}");
     }
 }
 
@@ -1090,6 +1099,19 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         ));
     }
     let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
+    if let Some(Some(q)) = estimate_error
+        && !q.applies(&scene)
+    {
+        return Err(format!(
+            "--error-quantity {}: this scene has none ({})",
+            q.name(),
+            if q == riser::sim::error_estimate::Quantity::StressRange {
+                "no stresses: no wall and not a homogeneous tube"
+            } else {
+                "no seabed, no touchdown"
+            }
+        ));
+    }
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
     if fatigue_asked.is_some() && !riser::sim::design::Design::new(&scene).has_stresses() {
