@@ -37,7 +37,8 @@
 //!
 //! The quantities ([`Quantity`]): the top tension's max, min, range and
 //! time mean, the touchdown's extremes on a seabed, the largest stress
-//! range on a line with stresses.
+//! range on a line with stresses, and with the run's fatigue Miner's
+//! damage over the window at the worst point and fibre.
 //!
 //! The extremes of the top tension are the peaks of the parabola through
 //! the largest (smallest) sample and its neighbours ([`peak`]): a sampled
@@ -79,11 +80,14 @@ pub enum Quantity {
     /// The largest outer-fibre stress range over the line and the window,
     /// Pa (a line with stresses: docs/theory.md §12.2).
     StressRange,
+    /// Miner's damage over the window at the worst point and fibre (the
+    /// run's fatigue, [`RunSpec::fatigue`]; docs/theory.md §12.5).
+    FatigueDamage,
 }
 
 impl Quantity {
     /// Every quantity, in the order of [`ErrorEstimate::estimates`].
-    pub const ALL: [Quantity; 7] = [
+    pub const ALL: [Quantity; 8] = [
         Quantity::TopTensionMax,
         Quantity::TopTensionMin,
         Quantity::TopTensionRange,
@@ -91,6 +95,7 @@ impl Quantity {
         Quantity::TouchdownMax,
         Quantity::TouchdownMin,
         Quantity::StressRange,
+        Quantity::FatigueDamage,
     ];
 
     pub fn name(self) -> &'static str {
@@ -102,6 +107,7 @@ impl Quantity {
             Quantity::TouchdownMax => "touchdown_max",
             Quantity::TouchdownMin => "touchdown_min",
             Quantity::StressRange => "stress_range",
+            Quantity::FatigueDamage => "fatigue_damage",
         }
     }
 
@@ -114,11 +120,13 @@ impl Quantity {
     }
 
     /// Whether `scene` has the quantity: the touchdown's on a seabed, the
-    /// stress range on a line with stresses.
-    pub fn applies(self, scene: &Scene) -> bool {
+    /// stress range on a line with stresses, the fatigue damage on one whose
+    /// run asks for fatigue (`fatigue`).
+    pub fn applies(self, scene: &Scene, fatigue: bool) -> bool {
         match self {
             Quantity::TouchdownMax | Quantity::TouchdownMin => scene.seabed.is_some(),
             Quantity::StressRange => super::design::Design::new(scene).has_stresses(),
+            Quantity::FatigueDamage => fatigue && super::design::Design::new(scene).has_stresses(),
             _ => true,
         }
     }
@@ -128,6 +136,7 @@ impl Quantity {
         match self {
             Quantity::TouchdownMax | Quantity::TouchdownMin => "m",
             Quantity::StressRange => "Pa",
+            Quantity::FatigueDamage => "-",
             _ => "N",
         }
     }
@@ -304,6 +313,8 @@ pub struct RunSpec<'a> {
     pub period: Option<f64>,
     /// Steps a factorised Newton tangent may be reused for (the run's).
     pub max_tangent_age: u32,
+    /// The run's fatigue (its curve, SCF, DFF), for [`Quantity::FatigueDamage`].
+    pub fatigue: Option<super::fatigue::FatigueSpec>,
 }
 
 /// One pilot run and its quantities.
@@ -313,7 +324,7 @@ pub struct Pilot {
     pub time_step: f64,
     /// The quantities, in [`Quantity::ALL`]'s order (NaN: not of this
     /// scene, or the touchdown off the seabed in the window).
-    pub values: [f64; 7],
+    pub values: [f64; 8],
     pub wall_s: f64,
 }
 
@@ -337,7 +348,13 @@ pub fn run_pilot(
     sim.start((spec.motion)(0.0));
     let n = super::internal_steps(plan.duration, time_step).map_err(RiserError::Unsupported)?;
     let design = super::design::Design::new(&scene);
-    let (on_seabed, stresses) = (Quantity::TouchdownMax.applies(&scene), design.has_stresses());
+    let (on_seabed, stresses) = (scene.seabed.is_some(), design.has_stresses());
+    let mut fatigue = match (&spec.fatigue, stresses) {
+        (Some(f), true) => {
+            super::fatigue::FatigueTracker::new(f.clone(), &design, &sim.integrator.line_points(&sim.state))
+        }
+        _ => None,
+    };
     let length = scene.line.length;
     let (w0, w1) = plan.window;
     let eps = 1e-9 * w1.abs().max(1.0);
@@ -356,6 +373,9 @@ pub fn run_pilot(
         if stresses {
             let points = sim.integrator.line_points(&sim.state);
             stress.add(&design, &points, sim.state.config.x[0].z);
+            if let Some(f) = fatigue.as_mut() {
+                f.add(&design, &points, sim.state.config.x[0].z);
+            }
         }
     };
     record(&sim, 0.0);
@@ -370,10 +390,14 @@ pub fn run_pilot(
     let lifted = touchdown.is_empty() || touchdown.iter().any(|(_, s)| s.is_nan());
     let td = |max| if lifted { f64::NAN } else { peak(&touchdown, plan.window, max) };
     let range = stress.largest().map_or(f64::NAN, |r| r.0);
+    let damage = fatigue.as_mut().and_then(|f| {
+        f.finish();
+        f.worst()
+    });
     Ok(Pilot {
         n_elements,
         time_step,
-        values: [max, min, max - min, mean, td(true), td(false), range],
+        values: [max, min, max - min, mean, td(true), td(false), range, damage.map_or(f64::NAN, |w| w.damage)],
         wall_s: start.elapsed().as_secs_f64(),
     })
 }
@@ -526,7 +550,7 @@ pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<E
         .ok_or_else(|| RiserError::Unsupported("an error estimate's pilot thread stopped".to_string()))?;
     let mut estimates = Vec::new();
     let mut notes = Vec::new();
-    for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene)) {
+    for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene, spec.fatigue.is_some())) {
         let v = |i: usize| pilots[i].values[q.index()];
         if (0..pilots.len()).all(|i| v(i).is_finite()) {
             estimates.push(Estimate::of(q, [v(2), v(3), v(4)], [v(0), v(1), v(2)]));

@@ -289,7 +289,7 @@ struct RunCli {
     estimate_error: bool,
     /// The quantity --estimate-error reports first: top_tension_max (default),
     /// top_tension_min, top_tension_range, top_tension_mean, touchdown_max, touchdown_min (on a
-    /// seabed), stress_range (a line with stresses), or all (every one is in the JSON).
+    /// seabed), stress_range (a line with stresses), fatigue_damage (with --fatigue), or all (every one is in the JSON).
     #[arg(long, value_name = "NAME", requires = "estimate_error", default_value = "top_tension_max")]
     error_quantity: String,
 }
@@ -1100,15 +1100,16 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     }
     let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
     if let Some(Some(q)) = estimate_error
-        && !q.applies(&scene)
+        && !q.applies(&scene, fatigue_asked.is_some())
     {
+        use riser::sim::error_estimate::Quantity;
         return Err(format!(
-            "--error-quantity {}: this scene has none ({})",
+            "--error-quantity {}: this run has none ({})",
             q.name(),
-            if q == riser::sim::error_estimate::Quantity::StressRange {
-                "no stresses: no wall and not a homogeneous tube"
-            } else {
-                "no seabed, no touchdown"
+            match q {
+                Quantity::StressRange => "no stresses: no wall and not a homogeneous tube",
+                Quantity::FatigueDamage => "give --fatigue CURVE, on a line with stresses",
+                _ => "no seabed, no touchdown",
             }
         ));
     }
@@ -1208,7 +1209,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     // the fatigue's counters and the record of one point, allocated here, not in the steps
     let dt = sim.integrator.options().time_step;
     let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
-    let (mut fatigue, mut fatigue_record) = match fatigue_asked {
+    let (mut fatigue, mut fatigue_record) = match fatigue_asked.clone() {
         Some(spec) => {
             let points = sim.integrator.line_points(&sim.state);
             let record = fatigue_series.map(|s| {
@@ -1358,6 +1359,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 window: (w0, w1),
                 period: slowest,
                 max_tangent_age,
+                fatigue: fatigue_asked.clone(),
             };
             let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
             let e = riser::sim::error_estimate::estimate_error(&scene, &spec, threads).map_err(|e| e.to_string())?;
