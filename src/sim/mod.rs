@@ -6,6 +6,7 @@
 pub mod accuracy;
 pub mod design;
 pub mod error;
+pub mod error_estimate;
 pub mod fatigue;
 pub mod modes;
 pub mod report;

@@ -281,6 +281,17 @@ struct RunCli {
     /// the point of the line nearest arc length S (m) at every output time of the steady window.
     #[arg(long, value_name = "S", requires = "fatigue")]
     fatigue_series: Option<f64>,
+    /// Measure the error of this run's numerics on its own motion and sea (issue 51,
+    /// docs/guide/accuracy.md): five short pilots (three periods of the slowest forcing) at
+    /// n, 2n, 4n elements and dt, dt/2, dt/4, the observed orders and Richardson's
+    /// extrapolation; adds error_estimate to --json and a line to the text.
+    #[arg(long)]
+    estimate_error: bool,
+    /// The quantity --estimate-error reports first: top_tension_max (default),
+    /// top_tension_min, top_tension_range, top_tension_mean, touchdown_max, touchdown_min (on a
+    /// seabed), stress_range (a line with stresses), fatigue_damage (with --fatigue), or all (every one is in the JSON).
+    #[arg(long, value_name = "NAME", requires = "estimate_error", default_value = "top_tension_max")]
+    error_quantity: String,
 }
 
 /// The vessel's harmonic motions asked for: (amplitude m or rad, period s) each.
@@ -682,6 +693,8 @@ struct RunArgs {
     fatigue: Option<riser::sim::fatigue::FatigueSpec>,
     /// --fatigue-series: the arc length of the point whose stresses are written, m.
     fatigue_series: Option<f64>,
+    /// --estimate-error: the quantity reported first (None: all), or no estimate.
+    estimate_error: Option<Option<riser::sim::error_estimate::Quantity>>,
 }
 
 /// The fatigue asked for on the command line: the curve by name, the SCF
@@ -736,6 +749,110 @@ fn fatigue_add(
         let dirs = riser::sim::fatigue::fibre_directions();
         let p = &points[r.point];
         r.rows.push((t, dirs.map(|(c, s)| design.fibre_stress_cs(p, c, s, top_z).unwrap_or(0.0))));
+    }
+}
+
+/// The JSON of `--estimate-error` (issue 51): the `headline` quantity's
+/// estimate (None: top_tension_max first), every quantity's in `quantities`,
+/// the pilots.
+fn error_estimate_json(
+    e: &riser::sim::error_estimate::ErrorEstimate,
+    headline: Option<riser::sim::error_estimate::Quantity>,
+) -> serde_json::Value {
+    use riser::sim::error_estimate::{Estimate, Quantity, Triplet};
+    let finite = |v: f64| v.is_finite().then_some(v);
+    let triplet = |t: &Triplet, levels: serde_json::Value, fixed: (&str, serde_json::Value)| {
+        let mut v = serde_json::json!({
+            "levels": levels,
+            "values": t.values,
+            "order": t.order.and_then(finite),
+            "ratio": t.ratio.and_then(finite),
+            "class": t.class.name(),
+            "extrapolated": t.extrapolated,
+            "error": t.error,
+        });
+        if let Some(o) = v.as_object_mut() {
+            o.insert(fixed.0.into(), fixed.1);
+        }
+        v
+    };
+    let (n, dt) = (e.n_elements, e.time_step);
+    let one = |q: &Estimate| {
+        serde_json::json!({
+            "quantity": q.quantity.name(),
+            "value": q.value,
+            "extrapolated": q.extrapolated,
+            "estimate": {
+                "absolute": q.error.abs(),
+                "signed": q.error,
+                "relative": finite(q.relative),
+                "bound": q.bound,
+                "gci": q.gci,
+                "gci_safety_factor": if q.notes.is_empty() {
+                    riser::sim::error_estimate::GCI_SAFETY
+                } else {
+                    riser::sim::error_estimate::GCI_SAFETY_UNCONVERGED
+                },
+            },
+            "mesh": triplet(&q.mesh, serde_json::json!([n, 2 * n, 4 * n]), ("time_step", (dt / 4.0).into())),
+            "step": triplet(&q.step, serde_json::json!([dt, dt / 2.0, dt / 4.0]), ("n_elements", n.into())),
+            "monotone": q.notes.is_empty(),
+            "notes": q.notes,
+        })
+    };
+    // the headline checked applicable before the run; not estimated: the quantity and why
+    let asked = headline.unwrap_or(Quantity::TopTensionMax);
+    let mut v = match e.of(asked) {
+        Some(first) => one(first),
+        None => serde_json::json!({"quantity": asked.name(), "value": null, "estimate": null}),
+    };
+    if let Some(o) = v.as_object_mut() {
+        o.insert("not_estimated".into(), e.notes.clone().into());
+        o.insert("quantities".into(), e.estimates.iter().map(one).collect::<Vec<_>>().into());
+        o.insert("pilot_window".into(), serde_json::json!([e.plan.window.0, e.plan.window.1]));
+        o.insert("pilot_duration".into(), e.plan.duration.into());
+        o.insert(
+            "pilots".into(),
+            e.pilots
+                .iter()
+                .map(|p| {
+                    let mut values = serde_json::Map::new();
+                    for q in Quantity::ALL {
+                        values.insert(q.name().into(), finite(p.values[q.index()]).into());
+                    }
+                    serde_json::json!({"n_elements": p.n_elements, "time_step": p.time_step, "values": values, "wall_s": p.wall_s})
+                })
+                .collect::<Vec<_>>()
+                .into(),
+        );
+        o.insert("pilots_wall_s".into(), e.wall_s.into());
+    }
+    v
+}
+
+/// The text of `--estimate-error`: a line per quantity asked for (None: all).
+fn error_estimate_text(
+    e: &riser::sim::error_estimate::ErrorEstimate,
+    headline: Option<riser::sim::error_estimate::Quantity>,
+) {
+    let (w0, w1) = e.plan.window;
+    outln!(
+        "  error estimate: 5 pilots at {n}, {}, {} elements and time steps {dt}, {}, {} s over {w0} to {w1} s{}",
+        2 * e.n_elements,
+        4 * e.n_elements,
+        e.time_step / 2.0,
+        e.time_step / 4.0,
+        if e.plan.cut { " (the window cut to 3 periods)" } else { "" },
+        n = e.n_elements,
+        dt = e.time_step,
+    );
+    for q in &e.estimates {
+        if headline.is_none_or(|h| h == q.quantity) {
+            outln!("    {}", q.summary());
+        }
+    }
+    for n in &e.notes {
+        outln!("    {n}");
     }
 }
 
@@ -940,6 +1057,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         out,
         fatigue: fatigue_asked,
         fatigue_series,
+        estimate_error,
     } = args;
     check_run_times(&motions, ramp, heave_until, duration, window)?;
     let mut scene = load(scene, set).map_err(|e| e.to_string())?;
@@ -981,6 +1099,20 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         ));
     }
     let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
+    if let Some(Some(q)) = estimate_error
+        && !q.applies(&scene, fatigue_asked.is_some())
+    {
+        use riser::sim::error_estimate::Quantity;
+        return Err(format!(
+            "--error-quantity {}: this run has none ({})",
+            q.name(),
+            match q {
+                Quantity::StressRange => "no stresses: no wall and not a homogeneous tube",
+                Quantity::FatigueDamage => "give --fatigue CURVE, on a line with stresses",
+                _ => "no seabed, no touchdown",
+            }
+        ));
+    }
     // refused before the statics: a duration of more steps than a call may take
     riser::sim::internal_steps(duration, scene.analysis.time_step).map_err(|m| format!("--duration {m}"))?;
     if fatigue_asked.is_some() && !riser::sim::design::Design::new(&scene).has_stresses() {
@@ -1077,7 +1209,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     // the fatigue's counters and the record of one point, allocated here, not in the steps
     let dt = sim.integrator.options().time_step;
     let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
-    let (mut fatigue, mut fatigue_record) = match fatigue_asked {
+    let (mut fatigue, mut fatigue_record) = match fatigue_asked.clone() {
         Some(spec) => {
             let points = sim.integrator.line_points(&sim.state);
             let record = fatigue_series.map(|s| {
@@ -1217,6 +1349,24 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let balance = series.iter().map(|o| o.energy_balance_residual(e0).abs()).fold(0.0, f64::max);
     let st = &sim.state;
     let simulated = st.time;
+    // the error of these numerics on this run's own motion and sea (issue 51)
+    let estimate = match estimate_error {
+        Some(headline) => {
+            let slowest =
+                [(period > 0.0).then_some(period), sea.map(|(_, p)| p)].into_iter().flatten().reduce(f64::max);
+            let spec = riser::sim::error_estimate::RunSpec {
+                motion: &motion_fn,
+                window: (w0, w1),
+                period: slowest,
+                max_tangent_age,
+                fatigue: fatigue_asked.clone(),
+            };
+            let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+            let e = riser::sim::error_estimate::estimate_error(&scene, &spec, threads).map_err(|e| e.to_string())?;
+            Some((e, headline))
+        }
+        None => None,
+    };
     if let Some(dir) = &out {
         write_run_csv(dir, &series, &motion_rows, &shapes)
             .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
@@ -1303,6 +1453,10 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             "solve_wall_time": solve_wall,
             "real_time_factor": simulated / solve_wall.max(1e-12),
         });
+        let mut v = v;
+        if let (Some((e, headline)), Some(o)) = (&estimate, v.as_object_mut()) {
+            o.insert("error_estimate".into(), error_estimate_json(e, *headline));
+        }
         outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
@@ -1418,6 +1572,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             kn(whole_min_tension)
         );
         outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
+        if let Some((e, headline)) = &estimate {
+            error_estimate_text(e, *headline);
+        }
         outln!(
             "  {} steps, {:.2} Newton iterations/step, {} split steps; {:.2} s wall, {:.0}x real time",
             st.steps,
@@ -1600,14 +1757,24 @@ fn main() -> ExitCode {
                 scf,
                 dff,
                 fatigue_series,
+                estimate_error,
+                error_quantity,
             } = *r;
             let motions = Motions { heave, surge, sway, roll, pitch, yaw };
             let is_system = riser::scene::system::is_system_source(&scene);
-            match fatigue_spec(fatigue, scf, dff) {
-                Ok(_) if threads.is_some() && !is_system => {
+            let quantity = match error_quantity.as_str() {
+                "all" => Ok(None),
+                name => riser::sim::error_estimate::Quantity::parse(name).map(Some),
+            };
+            match (fatigue_spec(fatigue, scf, dff), quantity) {
+                (_, Err(m)) => Err(format!("--error-quantity: {m}")),
+                (Ok(_), _) if estimate_error && is_system => {
+                    Err("--estimate-error: a single line in this version, not a system of lines ([[line]])".to_string())
+                }
+                (Ok(_), _) if threads.is_some() && !is_system => {
                     Err("--threads: only for a system of lines ([[line]]); a single line runs on one".to_string())
                 }
-                Ok(fatigue) => {
+                (Ok(fatigue), Ok(quantity)) => {
                     let args = RunArgs {
                         motions,
                         raos,
@@ -1621,10 +1788,11 @@ fn main() -> ExitCode {
                         out,
                         fatigue,
                         fatigue_series,
+                        estimate_error: estimate_error.then_some(quantity),
                     };
                     if is_system { system_run::run(&scene, &set, args, threads) } else { run(&scene, &set, args) }
                 }
-                Err(m) => Err(m),
+                (Err(m), _) => Err(m),
             }
         }
         Command::Rainflow { file } => rainflow_command(&file),
