@@ -307,15 +307,7 @@ impl Simulation {
     /// Solves the scene's statics and prepares the integrator of the scene's
     /// line model with the scene's time step and Newton tolerance.
     pub fn from_scene(scene: &Scene) -> Result<Self, RiserError> {
-        let statics = solve_scene(scene)?;
-        let mut integrator = Engine::from_scene(scene)?;
-        integrator.set_static_frame(&statics.solution.config);
-        let sea = integrator.sea().cloned();
-        let state = State::at_rest(statics.solution.config.clone(), 0.0);
-        let initial_energy = integrator.outputs(&state).total_energy;
-        let static_loads = scene_static_loads(scene);
-        let vessel = Vessel::of_scene(scene);
-        Ok(Simulation { integrator, state, statics, initial_energy, static_loads, sea, vessel })
+        Simulation::from_statics(scene, solve_scene(scene)?)
     }
 
     /// [`Simulation::from_scene`] from a static state `statics` of the scene
