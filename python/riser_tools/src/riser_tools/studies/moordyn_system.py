@@ -169,33 +169,36 @@ CLUMP_WINDOW = (150.0, 300.0)
 CLUMP_MESHES = (26, 52)
 
 
-def dtm_clump(nseg: int) -> float:
-    """MoorDyn's internal step for the clump weight's chains (260 m the shorter): below a quarter
-    of a segment's l / c (0.029 s / n), a whole fraction of the 0.01 s call."""
-    return CALL / math.ceil(CALL / (0.025 / nseg))
+def dtm_clump(nseg: int, shortest: float = 260.0) -> float:
+    """MoorDyn's internal step for chains whose shortest line is `shortest` m (the clump
+    weight's: 260 m) in `nseg` segments: below a quarter of a segment's l / c (l / c = 0.029 s / n
+    at 260 m), a whole fraction of the 0.01 s call."""
+    return CALL / math.ceil(CALL / (0.025 * shortest / 260.0 / nseg))
 
 
 def clump_pair(bin_: str, out: Path, n: int, motions: tuple[Motion, ...] = MOTIONS,
                duration: float = CLUMP_DURATION, window: tuple[float, float] = CLUMP_WINDOW,
-               ba: float = BA, threads: int | None = None) -> Pair:
-    """Both codes on docs/cases/clump_weight_mooring.toml (issue 49, point 2) at `n` elements
-    (segments) a line, the chain with MoorDyn's OC3 hydrodynamics (`HYDRO`) and the clump with
-    its own drag area and added mass (the case's `cd_area`, `ca`; MoorDyn's Free point)."""
-    d = out / f"clump_{n}"
+               ba: float = BA, threads: int | None = None, case: Path = CLUMP) -> Pair:
+    """Both codes on a case with free points (default docs/cases/clump_weight_mooring.toml;
+    issue 49, point 2) at `n` elements (segments) a line, the lines with MoorDyn's OC3
+    hydrodynamics (`HYDRO`) and each free point with its own drag area and added mass (the
+    case's `cd_area`, `ca`; MoorDyn's Free point)."""
+    name = case.stem.replace("_mooring", "")
+    d = out / f"{name}_{n}"
     d.mkdir(parents=True, exist_ok=True)
     scene = d / "scene.toml"
-    scene.write_text(ms.edit_scene(CLUMP.read_text(), n_elements=n, line_type=HYDRO))
+    scene.write_text(ms.edit_scene(case.read_text(), n_elements=n, line_type=HYDRO))
     t0 = time.perf_counter()
     series, summary = ms.run_riser(bin_, scene, d / "riser", motions, duration, threads=threads, window=window)
     riser_wall = time.perf_counter() - t0
     system = ms.load(scene)
-    dtm = dtm_clump(n)
+    dtm = dtm_clump(n, min(line.length for line in system.lines))
     inp = ms.write_input(d / "moordyn" / "lines.txt", system, n, dtm, ba=ba, options=MD_OPTIONS)
     md = ms.run(inp, system, n, ms.VesselMotion(motions), duration, dtm, SAMPLE,
                 coupling=int(round(CALL / dtm)))
     if not md.ok:
-        raise RuntimeError(f"MoorDyn on the clump weight at {n} segments stopped at t = {md.t_fail} s")
-    return Pair("clump", n, series, summary, riser_wall, md, system)
+        raise RuntimeError(f"MoorDyn on {case.name} at {n} segments stopped at t = {md.t_fail} s")
+    return Pair(name, n, series, summary, riser_wall, md, system)
 
 
 def clump_rows(pair: Pair, window: tuple[float, float] = CLUMP_WINDOW) -> list[dict[str, Any]]:
