@@ -192,6 +192,10 @@ def clump_pair(bin_: str, out: Path, n: int, motions: tuple[Motion, ...] = MOTIO
     series, summary = ms.run_riser(bin_, scene, d / "riser", motions, duration, threads=threads, window=window)
     riser_wall = time.perf_counter() - t0
     system = ms.load(scene)
+    # MoorDyn's Free points start where riser's statics put them (at the scene's start position
+    # MoorDyn's buoy swings 12 m in its first minute: its own start, not the physics)
+    for pt in summary.get("points", []):
+        system.points[pt["name"]].position = tuple(pt["static_position"])
     dtm = dtm_clump(n, min(line.length for line in system.lines))
     inp = ms.write_input(d / "moordyn" / "lines.txt", system, n, dtm, ba=ba, options=MD_OPTIONS)
     md = ms.run(inp, system, n, ms.VesselMotion(motions), duration, dtm, SAMPLE,
