@@ -342,6 +342,41 @@ impl BandedSystem {
         }
     }
 
+    /// The Schur complement S = K_dd − K_di K_ii⁻¹ K_id on the unknowns
+    /// `driven` (each among `fixed`, sorted), the unknowns not in `fixed`
+    /// the interior i (the other fixed ones held): the change of the driven
+    /// rows' residuals per unit move of the driven unknowns with the interior
+    /// re-solved; row-major, `driven.len()` square. Leaves the matrix with
+    /// `fixed` constrained and factorised (a Newton iteration may go on with
+    /// it). Allocates: for stiffness reports and systems' ends, not a step.
+    pub fn schur_complement(&mut self, driven: &[usize], fixed: &[usize]) -> Result<Vec<f64>, LinearSolveError> {
+        let (n, nd) = (self.n, driven.len());
+        let interior = |k: usize| fixed.binary_search(&k).is_err();
+        let mut s = vec![0.0; nd * nd];
+        for (a, &i) in driven.iter().enumerate() {
+            for (b, &j) in driven.iter().enumerate() {
+                s[a * nd + b] = self.get(i, j);
+            }
+        }
+        // K_di (the driven rows on the interior) and the right-hand sides K_id e_b
+        let rows: Vec<Vec<f64>> =
+            driven.iter().map(|&i| (0..n).map(|k| if interior(k) { self.get(i, k) } else { 0.0 }).collect()).collect();
+        let mut cols: Vec<Vec<f64>> =
+            driven.iter().map(|&j| (0..n).map(|k| if interior(k) { self.get(k, j) } else { 0.0 }).collect()).collect();
+        for &i in fixed {
+            self.constrain(i);
+        }
+        self.factorize()?;
+        for (b, y) in cols.iter_mut().enumerate() {
+            // y = K_ii⁻¹ K_id e_b (the fixed rows' right-hand sides zero: y_f = 0)
+            self.solve_in_place(y)?;
+            for (a, row) in rows.iter().enumerate() {
+                s[a * nd + b] -= row.iter().zip(y.iter()).map(|(k, y)| k * y).sum::<f64>();
+            }
+        }
+        Ok(s)
+    }
+
     /// Factorises the current values (LU with partial pivoting).
     pub fn factorize(&mut self) -> Result<(), LinearSolveError> {
         if self.values.iter().any(|v| !v.is_finite()) {

@@ -344,33 +344,14 @@ pub fn end_stiffness6_shifted<L: Linearized>(line: &L, cfg: &RodConfig, shift: f
     let mut sys = line.new_system().map_err(EigenError::Linear)?;
     let mut r = vec![0.0; n];
     line.static_tangent(cfg, &mut r, &mut sys);
-    let mut s = M6::zeros();
-    for (i, &bi) in driven.iter().enumerate() {
-        for (j, &bj) in driven.iter().enumerate() {
-            s[(i, j)] = sys.get(bi, bj);
-        }
-    }
-    let rows: Vec<Vec<f64>> = driven.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
-    let cols: Vec<Vec<f64>> =
-        driven.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
-    if !s.iter().chain(rows.iter().flatten()).all(|v| v.is_finite()) {
-        return Err(EigenError::NotFinite);
-    }
     if shift != 0.0 {
         for i in (0..n).filter(|&i| !is_fixed(i)) {
             sys.add(i, i, shift);
         }
     }
-    for &i in &fixed {
-        sys.constrain(i);
-    }
-    sys.factorize().map_err(EigenError::Linear)?;
-    for (j, mut dq) in cols.into_iter().enumerate() {
-        // K_ii Δq = −K_ie e_j
-        sys.solve_in_place(&mut dq).map_err(EigenError::Linear)?;
-        for (i, row) in rows.iter().enumerate() {
-            s[(i, j)] += (0..n).filter(|&k| !is_fixed(k)).map(|k| row[k] * dq[k]).sum::<f64>();
-        }
-    }
+    let s = M6::from_row_slice(&sys.schur_complement(&driven, &fixed).map_err(|e| match e {
+        LinearSolveError::NonFinite => EigenError::NotFinite,
+        e => EigenError::Linear(e),
+    })?);
     if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
 }

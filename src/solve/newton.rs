@@ -345,36 +345,10 @@ impl<M: StepEquations> Integrator<M> {
         self.factor_h = f64::NAN;
         self.model.assemble(&mut self.ws, &mut self.lin, prev, cfg, h, target, eta, true);
         let lin = &mut self.lin;
-        let (n, fixed) = (lin.r.len(), lin.fixed.clone());
-        let nf = fixed.len();
-        // K_ff and the columns K_·f before the constraints replace them
-        let mut s = vec![0.0; nf * nf];
-        let mut cols: Vec<Vec<f64>> = Vec::with_capacity(nf);
-        for (b, &j) in fixed.iter().enumerate() {
-            for (a, &i) in fixed.iter().enumerate() {
-                s[a * nf + b] = lin.sys.get(i, j);
-            }
-            cols.push((0..n).map(|i| lin.sys.get(i, j)).collect());
-        }
-        let rows: Vec<Vec<f64>> = fixed.iter().map(|&i| (0..n).map(|j| lin.sys.get(i, j)).collect()).collect();
-        for &i in &fixed {
-            lin.sys.constrain(i);
-        }
-        lin.sys.factorize()?;
+        let s = lin.sys.schur_complement(&lin.fixed, &lin.fixed)?;
         self.factor_h = h;
         self.factor_age = 0;
         self.factorizations += 1;
-        for (b, col) in cols.iter_mut().enumerate() {
-            // y = K_ii⁻¹ K_if e_b (the fixed rows' right-hand side zero: y_f = 0)
-            for &i in &fixed {
-                col[i] = 0.0;
-            }
-            lin.sys.solve_in_place(col)?;
-            for (a, row) in rows.iter().enumerate() {
-                let ky: f64 = row.iter().zip(col.iter()).map(|(k, y)| k * y).sum();
-                s[a * nf + b] -= ky;
-            }
-        }
         Ok(s)
     }
 }
