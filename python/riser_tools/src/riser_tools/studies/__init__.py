@@ -46,6 +46,8 @@ COMMANDS = {
     "bench-sweep": ("riser_tools.studies.bench_sweep", "riser-sweep against a plain loop (make bench-sweep)"),
     "bench-cli": ("riser_tools.studies.bench_cli", "the command line against an earlier build, interleaved: wall time, "
                                                  "instructions, the same bytes (docs/performance.md)"),
+    "bench-fmu": ("riser_tools.studies.bench_fmu", "the FMU against an earlier build's through fmpy, interleaved: wall "
+                                                 "time, top_tension bit for bit (docs/performance.md)"),
     "package-fmu": ("riser_tools.fmu", "package fmu/riser.fmu (make fmu)"),
     "interface-doc": ("riser_tools.interface_doc", "write or check docs/interface.md"),
     "fuzz": ("riser_tools.fuzz", "the long fuzz run of the FMU's C ABI (make fuzz)"),

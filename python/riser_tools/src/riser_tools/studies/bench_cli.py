@@ -12,7 +12,7 @@ instructions each run retires under valgrind's callgrind (`Collected`, one run e
 whatever the machine's load, where the wall time of a busy machine is not).
 
 Usage: riser-tools bench-cli --old OLD_BIN --new NEW_BIN [--elements 5,10,60] [--duration 60]
-       [--repeat 5] [--instructions]
+       [--repeat 5] [--instructions] [--set time_step=0.2 ...]
 Prints a Markdown table (the section of docs/performance.md).
 """
 
@@ -29,8 +29,12 @@ import time
 from pathlib import Path
 
 
+SETS: list[str] = []  # --set NAME=VALUE of the command line (e.g. time_step=0.2), for every run
+
+
 def run_args(n: int, duration: float, out: Path) -> list[str]:
-    return ["run", "catenary", "--set", f"n_elements={n}", "--heave", "2.5,10", "--duration", str(duration),
+    sets = [a for kv in SETS for a in ("--set", kv)]
+    return ["run", "catenary", "--set", f"n_elements={n}", *sets, "--heave", "2.5,10", "--duration", str(duration),
             "--out", str(out)]
 
 
@@ -74,7 +78,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--duration", type=float, default=60.0, help="simulated seconds a run (default 60)")
     p.add_argument("--repeat", type=int, default=5, help="rounds of each (default 5)")
     p.add_argument("--instructions", action="store_true", help="also count instructions under callgrind")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter of every run (e.g. time_step=0.2), repeatable")
     a = p.parse_args(argv)
+    SETS[:] = a.set
     meshes = [int(x) for x in a.elements.split(",")]
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
