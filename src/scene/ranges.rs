@@ -75,6 +75,7 @@ mod tests {
                 "wave_file",
                 "wave_stretching",
                 "rotation_order",
+                "accuracy_quantity",
             ];
             assert!(non_numeric.contains(&name) || of_parameter(name).is_some(), "{name} has no range");
         }

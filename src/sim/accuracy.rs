@@ -46,6 +46,13 @@ pub const MAX_ROUNDS: usize = 3;
 pub const MAX_ELEMENTS: usize = 2000;
 /// The shortest step a choice takes, s (the scene's range).
 pub const MIN_STEP: f64 = 1e-4;
+/// The work of a round of pilots beyond the first at most, element-steps
+/// (the five pilots' elements times their steps): about 100 s of one core
+/// on the catenary (4 µs an element-step). A round beyond it is not run;
+/// the choice of the rounds before is kept and the output says so. The
+/// first round, about the scene's numerics, always runs (it is
+/// `--estimate-error`'s).
+pub const MAX_ROUND_WORK: f64 = 2.5e7;
 /// The step ladder's ratio, 2^{1/4}: steps Δt₀ 2^{−k/4}, rounded to three
 /// significant digits.
 const STEP_RATIO: f64 = 1.189_207_115_002_721;
@@ -450,16 +457,31 @@ pub fn choose(
     let mut best: Option<Pick> = None;
     let cost = |(n, dt): (usize, f64)| n as f64 / dt;
     loop {
+        let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period).duration;
+        let work: f64 = super::error_estimate::pilot_levels(base.0, base.1)
+            .iter()
+            .map(|&(n, dt)| n as f64 * (duration / dt).ceil())
+            .sum();
+        if !rounds.is_empty() && work > MAX_ROUND_WORK && best.is_some() {
+            notes.push(format!(
+                "round {} of pilots about {} elements at {} s ({work:.2e} element-steps) is beyond the bound of \
+                 {MAX_ROUND_WORK:.1e}: the choice of the rounds before kept",
+                rounds.len() + 1,
+                base.0,
+                base.1
+            ));
+            break;
+        }
         let mut pilot_scene = scene.clone();
         pilot_scene.analysis.n_elements = base.0;
         pilot_scene.analysis.time_step = base.1;
         pilot_scene.analysis.newton_tolerance = tolerance;
         progress(&format!(
-            "accuracy {target:e}: round {} of pilots about {} elements, time_step {} s (5 runs of {:.0} s)",
+            "accuracy {target:e}: round {} of pilots about {} elements, time_step {} s (5 runs of {duration:.0} s, \
+             {work:.2e} element-steps)",
             rounds.len() + 1,
             base.0,
             base.1,
-            super::error_estimate::PilotPlan::new(spec.window, spec.period).duration
         ));
         let round = match estimate_error(&pilot_scene, spec, threads) {
             Ok(r) => r,
