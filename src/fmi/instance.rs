@@ -1451,20 +1451,10 @@ impl Instance {
         if scene.analysis.accuracy == 0.0 {
             return Ok(scene);
         }
-        let design = crate::sim::accuracy::DesignRun::of(&scene).map_err(|e| e.to_string())?;
-        let heave = design.heave;
-        let motion = move |t: f64| heave.at(t);
-        let spec = crate::sim::error_estimate::RunSpec {
-            motion: &motion,
-            window: design.window,
-            period: Some(design.period),
-            max_tangent_age: crate::model::DynamicOptions::default().max_tangent_age,
-            fatigue: None,
-        };
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
         let mut said = Vec::new();
         let result =
-            crate::sim::accuracy::apply(scene, &spec, pinned, threads, &mut |m: &str| said.push(m.to_string()));
+            crate::sim::accuracy::DesignRun::apply(scene, pinned, threads, &mut |m: &str| said.push(m.to_string()));
         for m in said {
             self.log(Status::Ok, Category::Events, &m);
         }

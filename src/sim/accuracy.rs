@@ -603,6 +603,30 @@ pub struct DesignRun {
 }
 
 impl DesignRun {
+    /// [`apply`] on the design run of `scene` (the scene itself, None,
+    /// where it has no `accuracy`).
+    pub fn apply(
+        scene: Scene,
+        pinned: Pinned,
+        threads: usize,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<(Scene, Option<Choice>), RiserError> {
+        if scene.analysis.accuracy == 0.0 {
+            return Ok((scene, None));
+        }
+        let design = DesignRun::of(&scene)?;
+        let heave = design.heave;
+        let motion = move |t: f64| heave.at(t);
+        let spec = RunSpec {
+            motion: &motion,
+            window: design.window,
+            period: Some(design.period),
+            max_tangent_age: crate::model::DynamicOptions::default().max_tangent_age,
+            fatigue: None,
+        };
+        apply(scene, &spec, pinned, threads, progress)
+    }
+
     pub fn of(scene: &Scene) -> Result<DesignRun, RiserError> {
         let a = scene.analysis.accuracy_motion_amplitude.unwrap_or(crate::scene::DESIGN_MOTION_AMPLITUDE);
         let t = scene.analysis.accuracy_motion_period.unwrap_or(crate::scene::DESIGN_MOTION_PERIOD);

@@ -355,20 +355,25 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
     }
 }
 
-/// The scene with the numerics its `accuracy` chooses on the run `spec`
-/// (docs/theory.md §16.12: pilots of the scene's own motion and sea; the
-/// scene itself when it has none), the numerics given by `--set` kept; the
-/// rounds of pilots and the choice are printed on stderr.
+/// The scene with the numerics its `accuracy` chooses (docs/theory.md
+/// §16.12: pilots of the run `spec`, the scene's own motion and sea; None:
+/// the design motion, as the FMU chooses, for `riser statics`), the
+/// numerics given by `--set` kept; the rounds of pilots and the choice are
+/// printed on stderr.
 fn choose_numerics(
     scene: Scene,
     set: &[String],
-    spec: &riser::sim::error_estimate::RunSpec,
+    spec: Option<&riser::sim::error_estimate::RunSpec>,
 ) -> Result<(Scene, Option<riser::sim::accuracy::Choice>), String> {
     use riser::sim::accuracy;
     let pinned = accuracy::Pinned::of_names(set.iter().map(|s| s.as_str()));
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut progress = |m: &str| eprintln!("riser: {m}");
-    let (scene, choice) = accuracy::apply(scene, spec, pinned, threads, &mut progress).map_err(|e| e.to_string())?;
+    let (scene, choice) = match spec {
+        Some(spec) => accuracy::apply(scene, spec, pinned, threads, &mut progress),
+        None => accuracy::DesignRun::apply(scene, pinned, threads, &mut progress),
+    }
+    .map_err(|e| e.to_string())?;
     if let Some(c) = &choice {
         eprintln!("riser: {}", c.describe());
         for n in &c.notes {
@@ -379,25 +384,6 @@ fn choose_numerics(
         }
     }
     Ok((scene, choice))
-}
-
-/// `riser statics` with `accuracy`: the numerics for the design motion
-/// (the motion is not known), as the FMU chooses them.
-fn choose_for_design(scene: Scene, set: &[String]) -> Result<(Scene, Option<riser::sim::accuracy::Choice>), String> {
-    if scene.analysis.accuracy == 0.0 {
-        return Ok((scene, None));
-    }
-    let design = riser::sim::accuracy::DesignRun::of(&scene).map_err(|e| e.to_string())?;
-    let heave = design.heave;
-    let motion = move |t: f64| heave.at(t);
-    let spec = riser::sim::error_estimate::RunSpec {
-        motion: &motion,
-        window: design.window,
-        period: Some(design.period),
-        max_tangent_age: riser::model::DynamicOptions::default().max_tangent_age,
-        fatigue: None,
-    };
-    choose_numerics(scene, set, &spec)
 }
 
 /// The choice of `accuracy` under the JSON key `accuracy` (null when unset):
@@ -579,7 +565,7 @@ fn warn_all(warnings: &[String]) {
 
 fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene, set).map_err(|e| e.to_string())?;
-    let (scene, choice) = choose_for_design(scene, set)?;
+    let (scene, choice) = choose_numerics(scene, set, None)?;
     let t0 = std::time::Instant::now();
     let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
@@ -1120,17 +1106,16 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let current_grown = riser::loads::current_ramp(&scene).duration;
     let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
     let slowest = [(period > 0.0).then_some(period), sea.map(|(_, p)| p)].into_iter().flatten().reduce(f64::max);
-    // `accuracy`: the numerics measured on this run's own motion and sea (§16.12)
-    let (scene, choice) = {
-        let spec = riser::sim::error_estimate::RunSpec {
-            motion: &motion_fn,
-            window: (w0, w1),
-            period: slowest,
-            max_tangent_age,
-            fatigue: fatigue_asked.clone(),
-        };
-        choose_numerics(scene, set, &spec)?
+    // this run as its pilots repeat it: `accuracy` measures the numerics on
+    // it (§16.12), --estimate-error the numerics run (§16.11)
+    let pilot_spec = riser::sim::error_estimate::RunSpec {
+        motion: &motion_fn,
+        window: (w0, w1),
+        period: slowest,
+        max_tangent_age,
+        fatigue: fatigue_asked.clone(),
     };
+    let (scene, choice) = choose_numerics(scene, set, Some(&pilot_spec))?;
     if let Some(Some(q)) = estimate_error
         && !q.applies(&scene, fatigue_asked.is_some())
     {
@@ -1350,15 +1335,9 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     // the error of these numerics on this run's own motion and sea (issue 51)
     let estimate = match estimate_error {
         Some(headline) => {
-            let spec = riser::sim::error_estimate::RunSpec {
-                motion: &motion_fn,
-                window: (w0, w1),
-                period: slowest,
-                max_tangent_age,
-                fatigue: fatigue_asked.clone(),
-            };
+            let spec = &pilot_spec;
             let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-            let e = riser::sim::error_estimate::estimate_error(&scene, &spec, threads).map_err(|e| e.to_string())?;
+            let e = riser::sim::error_estimate::estimate_error(&scene, spec, threads).map_err(|e| e.to_string())?;
             Some((e, headline))
         }
         None => None,
