@@ -4,13 +4,16 @@
 //! outputs, `top_tension`, `shape[k]`, … are that line's); the others are
 //! [`OtherLine`]s moved by the same vessel path at their own vessel
 //! points; the loads on the vessel and the energies are the system's sums
-//! (17.11, 17.12).
+//! (17.11, 17.12). Free points (joints, clump weights, buoys) step with the
+//! lines at them by the command line's stepper ([`FreePoints`], §17.7), the
+//! lines handed to it one at a time ([`FmuLines`]), allocating nothing.
 
 use super::vars::{Kind, Variable};
 use crate::model::{Outputs, State};
 use crate::scene::Scene;
 use crate::scene::system::{SystemScene, VesselEnd};
 use crate::sim::Simulation;
+use crate::sim::system_dynamics::{FreePoints, LineSet};
 
 /// A line of the system beyond its first, in a run.
 pub struct OtherLine {
@@ -51,10 +54,13 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// [`SYSTEM_WIDE`] applied to every line; any other must read as the
 /// first line's scene reads it (a master that sets every start value of
 /// the generic FMU sets the default scene's), else it is refused, named.
-pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<(Scene, VesselEnd)>, String> {
-    if let Some(m) = crate::sim::system_dynamics::free_points_refused(sys, "the FMU") {
-        return Err(m);
-    }
+/// With free points, also the system with [`SYSTEM_WIDE`]'s values set
+/// (its lines' scenes then come from its statics, §17.4: those here, at
+/// the points' initial positions, read its parameters back).
+pub fn line_scenes(
+    sys: &SystemScene,
+    sets: &[(&'static Variable, String)],
+) -> Result<(Vec<(Scene, VesselEnd)>, Option<SystemScene>), String> {
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }
@@ -88,7 +94,90 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
             SYSTEM_WIDE.join(", ")
         ));
     }
-    Ok(scenes)
+    let free = sys.points.iter().any(|p| p.kind == crate::scene::system::PointKind::Free);
+    let system = free.then(|| {
+        // the first line's scene carries the master's values (the lines' scenes copy the system's)
+        let set = &scenes[0].0;
+        let mut s = sys.clone();
+        s.analysis.time_step = set.analysis.time_step;
+        s.analysis.newton_tolerance = set.analysis.newton_tolerance;
+        s.analysis.structural_damping = set.analysis.structural_damping;
+        s.analysis.rho_infinity = set.analysis.rho_infinity;
+        s.analysis.static_current = set.analysis.static_current;
+        s.current.ramp = set.current.ramp;
+        s
+    });
+    Ok((scenes, system))
+}
+
+/// A system's lines as its free points' stepper reaches them in the FMU:
+/// the instance's line (the first) and its others, one at a time.
+pub struct FmuLines<'a> {
+    pub first: &'a mut Simulation,
+    pub first_name: &'a str,
+    pub others: &'a mut [OtherLine],
+}
+
+impl LineSet for FmuLines<'_> {
+    fn sim(&mut self, i: usize) -> &mut Simulation {
+        if i == 0 { self.first } else { &mut self.others[i - 1].sim }
+    }
+
+    fn name(&self, i: usize) -> &str {
+        if i == 0 { self.first_name } else { &self.others[i - 1].name }
+    }
+}
+
+/// The outputs of a system of the first line `first`, the others `others`
+/// and the free points `free`: the single-line outputs the first line's;
+/// without free points, every line's loads on the vessel and energies
+/// summed ([`add_line`], 17.11, 17.12); with them, the loads of the lines
+/// whose hang-off is on the vessel, and the system's energies and works as
+/// its balance counts them (17.17): the points' energies and the water's
+/// work on them added, the works of the points on their lines (a hang-off
+/// or a cable's anchor at a point) internal and left out.
+pub fn system_outputs(first: &Simulation, others: &[OtherLine], free: Option<&FreePoints>) -> Outputs {
+    let mut sum = first.outputs();
+    let Some(free) = free else {
+        for o in others {
+            add_line(&mut sum, &o.sim.outputs());
+        }
+        return sum;
+    };
+    let lines = std::iter::once(sum).chain(others.iter().map(|o| o.sim.outputs()));
+    let mut total = sum;
+    clear_sums(&mut total);
+    for (mut o, ends) in lines.zip(&free.ends) {
+        if !ends.on_vessel() {
+            o.top_force = crate::math::V3::zeros();
+            o.top_moment = crate::math::V3::zeros();
+            o.vessel_force = crate::math::V3::zeros();
+            o.vessel_moment = crate::math::V3::zeros();
+            o.work_top = 0.0;
+        }
+        if matches!(ends.anchor_at, crate::sim::system_dynamics::EndAt::Free(_)) {
+            o.work_anchor = 0.0;
+        }
+        add_line(&mut total, &o);
+    }
+    for p in &free.points {
+        let kinetic = 0.5 * p.mass * p.velocity.norm_squared();
+        let potential = p.potential(p.position);
+        total.kinetic_energy += kinetic;
+        total.potential_energy += potential;
+        total.total_energy += kinetic + potential;
+        total.work_hydro += p.work_hydro;
+    }
+    total
+}
+
+/// Zeroes the quantities [`add_line`] sums.
+fn clear_sums(o: &mut Outputs) {
+    let zero = crate::math::V3::zeros();
+    (o.top_force, o.top_moment, o.vessel_force, o.vessel_moment) = (zero, zero, zero, zero);
+    (o.total_energy, o.kinetic_energy, o.strain_energy, o.potential_energy) = (0.0, 0.0, 0.0, 0.0);
+    (o.work_top, o.work_hydro, o.work_anchor, o.work_seabed) = (0.0, 0.0, 0.0, 0.0);
+    (o.dissipated_energy, o.algorithmic_dissipation) = (0.0, 0.0);
 }
 
 /// Adds line `other`'s loads on the vessel and its energies to the
@@ -177,8 +266,29 @@ pub const LINE_OUTPUTS: [(&str, &str, &str); 4] = [
 
 /// Which line and quantity a system output's value reference is.
 pub fn line_output(vr: u32) -> Option<(usize, usize)> {
+    if vr >= POINT_VR_BASE {
+        return None;
+    }
     let k = vr.checked_sub(SYSTEM_VR_BASE)? as usize;
     Some((k / LINE_OUTPUTS.len(), k % LINE_OUTPUTS.len()))
+}
+
+/// The first value reference of a system's free points' outputs: free
+/// point `k`'s (in the scene's order of its free points) coordinate `c`
+/// ([`POINT_OUTPUTS`]) is `POINT_VR_BASE + POINT_OUTPUTS.len() · k + c`.
+pub const POINT_VR_BASE: u32 = 200_000;
+
+/// Each free point's outputs in a packaged system FMU: name suffix, unit, description.
+pub const POINT_OUTPUTS: [(&str, &str, &str); 3] = [
+    ("x", "m", "global x of the free point (the system's frame)"),
+    ("y", "m", "global y of the free point"),
+    ("z", "m", "global z of the free point (up)"),
+];
+
+/// Which free point and coordinate a point output's value reference is.
+pub fn point_output(vr: u32) -> Option<(usize, usize)> {
+    let k = vr.checked_sub(POINT_VR_BASE)? as usize;
+    Some((k / POINT_OUTPUTS.len(), k % POINT_OUTPUTS.len()))
 }
 
 /// The values of [`LINE_OUTPUTS`] of a line whose vessel end is `vessel_end`, of its outputs `o`.
@@ -222,20 +332,25 @@ pub fn model_description(sys: &SystemScene, resource: &str) -> Result<String, St
         .ok_or("the model description has no initial unknown of top_tension")?
         .to_string();
     let (mut vars, mut outputs, mut unknowns) = (String::new(), String::new(), String::new());
-    for (i, l) in sys.lines.iter().enumerate() {
-        for (q, (suffix, unit, what)) in LINE_OUTPUTS.iter().enumerate() {
-            let vr = SYSTEM_VR_BASE + (LINE_OUTPUTS.len() * i + q) as u32;
-            let index = n_vars + 1 + LINE_OUTPUTS.len() * i + q;
-            vars.push_str(&format!(
-                "    <ScalarVariable name=\"{}.{suffix}\" valueReference=\"{vr}\" description=\"line {}: {what}\" \
-                 causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real unit=\"{unit}\"/>\n    \
-                 </ScalarVariable>\n",
-                l.name,
-                xml_escape(&l.name)
-            ));
-            outputs.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"\"/>\n"));
-            unknowns.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"{initial}\"/>\n"));
-        }
+    // each line's outputs, then each free point's (their names are identifiers: no escaping)
+    let free = sys.points.iter().filter(|p| p.kind == crate::scene::system::PointKind::Free);
+    let items = sys.lines.iter().flat_map(|l| LINE_OUTPUTS.iter().map(move |o| (&l.name, "line", SYSTEM_VR_BASE, o)));
+    let items =
+        items.chain(free.flat_map(|p| POINT_OUTPUTS.iter().map(move |o| (&p.name, "free point", POINT_VR_BASE, o))));
+    let (mut k, mut first_of_points) = (0, None);
+    for (name, what_item, base, (suffix, unit, what)) in items {
+        // the k-th of its kind: vr = base + k (LINE_OUTPUTS.len() · i + q, POINT_OUTPUTS.len() · k + c)
+        let at = if base == SYSTEM_VR_BASE { k } else { k - *first_of_points.get_or_insert(k) };
+        let vr = base + at as u32;
+        let index = n_vars + 1 + k;
+        k += 1;
+        vars.push_str(&format!(
+            "    <ScalarVariable name=\"{name}.{suffix}\" valueReference=\"{vr}\" description=\"{what_item} {name}: \
+             {what}\" causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real \
+             unit=\"{unit}\"/>\n    </ScalarVariable>\n"
+        ));
+        outputs.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"\"/>\n"));
+        unknowns.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"{initial}\"/>\n"));
     }
     let insert = |text: &str, before: &str, what: &str| -> Result<String, String> {
         let k = text.find(before).ok_or(format!("the model description has no {before}"))?;

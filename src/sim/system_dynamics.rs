@@ -254,27 +254,37 @@ impl std::fmt::Display for LineError {
 #[derive(Debug)]
 pub enum SystemStepError {
     Line(LineError),
-    /// The free points' positions did not balance their lines within
-    /// `iterations` Newton iterations; `residual` the largest point's net
-    /// force relative to its scale; the state kept at `time`.
-    Points {
-        time: f64,
-        iterations: usize,
-        residual: f64,
-        point: String,
-    },
+    Points(PointsDiverged),
+}
+
+/// The free points' positions did not balance their lines within
+/// `iterations` Newton iterations; `residual` the largest point's net force
+/// relative to its scale; the state kept at `time`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointsDiverged {
+    pub time: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub point: String,
+}
+
+impl std::fmt::Display for PointsDiverged {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let PointsDiverged { time, iterations, residual, point } = self;
+        write!(
+            f,
+            "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
+             iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is kept \
+             at t = {time:.6} s (try a smaller time_step)"
+        )
+    }
 }
 
 impl std::fmt::Display for SystemStepError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SystemStepError::Line(e) => e.fmt(f),
-            SystemStepError::Points { time, iterations, residual, point } => write!(
-                f,
-                "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
-                 iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is \
-                 kept at t = {time:.6} s (try a smaller time_step)"
-            ),
+            SystemStepError::Points(e) => e.fmt(f),
         }
     }
 }
@@ -511,14 +521,15 @@ pub fn unsupported(sys: &SystemScene) -> Option<String> {
     })
 }
 
-/// Why `what` (the FMU, the modes) cannot take a system with free points
-/// in this version, or None: their dynamics is `riser run`'s.
+/// Why `what` (the modes) cannot take a system with free points in this
+/// version, or None: their dynamics is `riser run`'s and the FMU's.
 pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
     let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
     (!free.is_empty()).then(|| {
         format!(
             "free point(s) {}: {what} of a system with free points (joints, clump weights, buoys) is not yet in \
-             this version; `riser run` runs its dynamics and `riser statics` solves it (docs/guide/systems.md)",
+             this version; `riser run` and the FMU run its dynamics and `riser statics` solves it \
+             (docs/guide/systems.md)",
             free.join(", ")
         )
     })
@@ -992,12 +1003,12 @@ impl FreePoints {
         for i in 0..self.ends.len() {
             let _ = lines.sim(i).integrator.set_anchor_motion(None);
         }
-        Err(SystemStepError::Points {
+        Err(SystemStepError::Points(PointsDiverged {
             time: t0,
             iterations: MAX_POINT_ITERATIONS,
             residual: worst.0,
             point: self.points[worst.1].name.clone(),
-        })
+        }))
     }
 }
 
