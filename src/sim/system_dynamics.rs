@@ -295,6 +295,14 @@ impl From<LineError> for SystemStepError {
     }
 }
 
+/// Why a step of the free points failed, unnamed (a step that is split
+/// again allocates nothing): line `i`'s trial, or the points' Newton from
+/// `time`, point `point` the furthest from balance.
+enum StepFailed {
+    Line(usize, RiserError),
+    Points { time: f64, residual: f64, point: usize },
+}
+
 /// The most Newton iterations on the free points' positions in a step.
 pub const MAX_POINT_ITERATIONS: usize = 30;
 
@@ -864,7 +872,8 @@ impl FreePoints {
             let end = if self.time + sub >= t - 1e-12 * span { t } else { self.time + sub };
             match self.step(lines, end, vessel_path, threads) {
                 Ok(()) => self.time = end,
-                Err(e) if level >= MAX_POINT_HALVINGS => return Err(e),
+                // named only here: a step that is split allocates nothing
+                Err(e) if level >= MAX_POINT_HALVINGS => return Err(self.named(lines, e)),
                 Err(_) => {
                     level += 1;
                     sub *= 0.5;
@@ -872,6 +881,19 @@ impl FreePoints {
             }
         }
         Ok(())
+    }
+
+    /// The error of a failed step, its line or point named.
+    fn named(&self, lines: &dyn LineSet, e: StepFailed) -> SystemStepError {
+        match e {
+            StepFailed::Line(i, error) => LineError { line: lines.name(i).to_string(), error }.into(),
+            StepFailed::Points { time, residual, point } => SystemStepError::Points(PointsDiverged {
+                time,
+                iterations: MAX_POINT_ITERATIONS,
+                residual,
+                point: self.points[point].name.clone(),
+            }),
+        }
     }
 
     /// One step of the free points and their lines to `t` (§17.7): Newton
@@ -884,7 +906,7 @@ impl FreePoints {
         t: f64,
         vessel_path: &VesselPath,
         threads: usize,
-    ) -> Result<(), SystemStepError> {
+    ) -> Result<(), StepFailed> {
         let t0 = self.time;
         let h = t - t0;
         let np = self.points.len();
@@ -914,7 +936,7 @@ impl FreePoints {
                     && slot.result.is_err()
                 {
                     let error = std::mem::replace(&mut slot.result, Ok(())).expect_err("a failed trial");
-                    return Err(LineError { line: lines.name(i).to_string(), error }.into());
+                    return Err(StepFailed::Line(i, error));
                 }
             }
             // (17.14) + Σ P_i, and its Jacobian (17.16) with the lines' condensed tangents (17.15)
@@ -1003,12 +1025,7 @@ impl FreePoints {
         for i in 0..self.ends.len() {
             let _ = lines.sim(i).integrator.set_anchor_motion(None);
         }
-        Err(SystemStepError::Points(PointsDiverged {
-            time: t0,
-            iterations: MAX_POINT_ITERATIONS,
-            residual: worst.0,
-            point: self.points[worst.1].name.clone(),
-        }))
+        Err(StepFailed::Points { time: t0, residual: worst.0, point: worst.1 })
     }
 }
 
