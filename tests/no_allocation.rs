@@ -102,7 +102,7 @@ fn a_systems_do_step_with_free_points_does_not_allocate() {
     assert_eq!(i.exit_initialization_mode(), Status::Ok);
     let (surge, heave) = (vr_of("surge").unwrap(), vr_of("heave").unwrap());
     let h = 0.05;
-    let mut step = |i: &mut Instance, k: u64| {
+    let step = |i: &mut Instance, k: u64| {
         let t = k as f64 * h;
         assert_eq!(i.set_real(surge, 2.0 * (0.3 * t).sin()), Status::Ok);
         assert_eq!(i.set_real(heave, 0.5 * (0.8 * t).sin()), Status::Ok);

@@ -226,9 +226,9 @@ fn the_modes_refuse_free_points_naming_them_and_the_fmu_takes_them() {
     // `riser run` and the FMU run them (tests/system_free_dynamics.rs, src/fmi/instance.rs)
     assert!(riser::sim::system_dynamics::unsupported(&sys).is_none());
     // the FMU's path: the system with the master's numerics besides its lines' scenes
-    let (scenes, free) = riser::fmi::system::line_scenes(&sys, &[]).unwrap();
-    assert_eq!(scenes.len(), sys.lines.len());
-    assert_eq!(free.as_ref(), Some(&sys));
+    let built = riser::fmi::system::line_scenes(&sys, &[]).unwrap();
+    assert_eq!(built.scenes.len(), sys.lines.len());
+    assert_eq!(built.free.as_ref(), Some(&sys));
     // the command line: the modes refused, the FMU's model description names the point's outputs
     let run = |args: &[&str]| std::process::Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().unwrap();
     let out = run(&["modes", bridle.as_str()]);

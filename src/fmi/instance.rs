@@ -8,7 +8,7 @@ use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
 use crate::model::{Outputs, State};
-use crate::scene::system::{SystemScene, VesselEnd};
+use crate::scene::system::VesselEnd;
 use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
@@ -512,13 +512,13 @@ impl Instance {
 
     /// The scene with the parameters the master set (a system's: its first line's).
     fn build_scene(&self) -> Result<Scene, String> {
-        Ok(self.build_scenes()?.0.swap_remove(0).0)
+        Ok(self.build_scenes()?.0.scenes.swap_remove(0).0)
     }
 
     /// The scene with the parameters the master set: one for a single-line
     /// scene; a system's lines, in order (its first the instance's line,
     /// [`super::system::line_scenes`]).
-    fn build_scenes(&self) -> Result<(Vec<(Scene, VesselEnd)>, bool, Option<SystemScene>), String> {
+    fn build_scenes(&self) -> Result<(super::system::LineScenes, bool), String> {
         let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
             Some((Value::String(s), _)) => s.clone(),
             _ => "catenary".into(),
@@ -563,8 +563,7 @@ impl Instance {
                 let path = path.as_deref().and_then(|p| p.to_str()).unwrap_or(&name).to_string();
                 if crate::scene::system::is_system_source(&path) {
                     let sys = crate::scene::system::SystemScene::load(&path).map_err(|e| e.to_string())?;
-                    let (scenes, free) = super::system::line_scenes(&sys, &sets)?;
-                    return Ok((scenes, true, free));
+                    return Ok((super::system::line_scenes(&sys, &sets)?, true));
                 }
                 Scene::load(&path).map_err(|e| e.to_string())?
             }
@@ -579,7 +578,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok((vec![(scene, VesselEnd::From)], false, None))
+        Ok((super::system::LineScenes { scenes: vec![(scene, VesselEnd::From)], free: None }, false))
     }
 
     /// fmi2EnterInitializationMode.
@@ -604,7 +603,7 @@ impl Instance {
         if self.sim.is_some() {
             return Status::Ok;
         }
-        let (mut scenes, is_system, free_system) = match self.build_scenes() {
+        let (super::system::LineScenes { mut scenes, free: free_system }, is_system) = match self.build_scenes() {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };

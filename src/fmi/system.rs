@@ -57,10 +57,7 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// With free points, also the system with [`SYSTEM_WIDE`]'s values set
 /// (its lines' scenes then come from its statics, §17.4: those here, at
 /// the points' initial positions, read its parameters back).
-pub fn line_scenes(
-    sys: &SystemScene,
-    sets: &[(&'static Variable, String)],
-) -> Result<(Vec<(Scene, VesselEnd)>, Option<SystemScene>), String> {
+pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<LineScenes, String> {
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }
@@ -107,7 +104,15 @@ pub fn line_scenes(
         s.current.ramp = set.current.ramp;
         s
     });
-    Ok((scenes, system))
+    Ok(LineScenes { scenes, free: system })
+}
+
+/// A system's lines as the FMU builds them ([`line_scenes`]).
+pub struct LineScenes {
+    /// Each line's single-line scene and which of its ends is on the vessel.
+    pub scenes: Vec<(Scene, VesselEnd)>,
+    /// With free points: the system with the master's numerics.
+    pub free: Option<SystemScene>,
 }
 
 /// A system's lines as its free points' stepper reaches them in the FMU:
