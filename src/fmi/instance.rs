@@ -1279,6 +1279,9 @@ impl Instance {
         if let Some((point, c)) = super::system::point_output(vr) {
             return self.get_point_output(vr, point, c);
         }
+        if let Some((line, q)) = super::system::anchor_output(vr) {
+            return self.get_anchor_output(vr, line, q);
+        }
         let v = self.var(vr, Kind::Real)?;
         Ok(match v.causality {
             Causality::Input => self.inputs[INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0)],
@@ -1327,6 +1330,39 @@ impl Instance {
                      point(s))"
                 )))
             }
+        }
+    }
+
+    /// A system's anchor output (a packaged system FMU's `LINE.anchor_force`,
+    /// `LINE.anchor_uplift_angle`; [`super::system::ANCHOR_OUTPUTS`]): line
+    /// `line`'s quantity `q`, a line with an end at a fixed point.
+    fn get_anchor_output(&mut self, vr: u32, line: usize, q: usize) -> Result<f64, Status> {
+        if matches!(self.mode, Instantiated | InitializationMode) {
+            let st = self.initialise();
+            if st != Status::Ok {
+                return Err(st);
+            }
+        }
+        let fixed = |i: usize| {
+            self.free.as_ref().is_none_or(|f| f.ends[i].anchor_at == crate::sim::system_dynamics::EndAt::Fixed)
+        };
+        let (Some(sim), Some(scene)) = (&self.sim, &self.scene) else { return Err(self.fail("no state yet")) };
+        let at = match line {
+            _ if self.system_first_end.is_none() || line > self.others.len() || !fixed(line) => None,
+            0 => Some((scene.analysis.model, sim)),
+            k => self.others.get(k - 1).map(|o| (o.scene.analysis.model, &o.sim)),
+        };
+        let Some((model, sim)) = at else {
+            return Err(self.fail(&format!(
+                "unknown value reference {vr} (an anchor output of line {line}: a system's line with an end at a \
+                 fixed point)"
+            )));
+        };
+        let x = super::system::anchor_values(model, &sim.state, &sim.outputs())[q];
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.fail(&format!("internal error: anchor output {vr} is not finite ({x})")))
         }
     }
 
@@ -2902,6 +2938,14 @@ mod system_tests {
             V3::from_fn(|c, _| i.get_real(super::super::system::POINT_VR_BASE + c as u32).unwrap())
         };
         assert_eq!(clump(&mut fmu), run.free.points[0].position, "the statics");
+        // the anchor's force and uplift (the lower chain's; the upper has no fixed end) are the statics'
+        let st = crate::sim::system::solve_system(&sys, &[0.0; 6], false).unwrap();
+        let anchor = super::super::system::ANCHOR_VR_BASE;
+        let (force, uplift) = (fmu.get_real(anchor).unwrap(), fmu.get_real(anchor + 1).unwrap());
+        let f0 = st.lines[0].anchor_force.unwrap().norm();
+        assert!((force - f0).abs() <= 1e-6 * f0, "{force} vs {f0}");
+        assert_eq!(uplift, st.lines[0].anchor_uplift_angle.unwrap());
+        assert!(fmu.get_real(anchor + 2).is_err(), "the upper chain has no anchor");
         let (mut worst_f, mut worst_x, mut scale) = (0.0f64, 0.0f64, 0.0f64);
         for k in 0..600 {
             assert_eq!(fmu.do_step(k as f64 * h, h), Status::Ok);

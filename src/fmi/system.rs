@@ -11,7 +11,7 @@
 use super::vars::{Kind, Variable};
 use crate::model::{Outputs, State};
 use crate::scene::Scene;
-use crate::scene::system::{SystemScene, VesselEnd};
+use crate::scene::system::{PointKind, SystemScene, VesselEnd};
 use crate::sim::Simulation;
 use crate::sim::system_dynamics::{FreePoints, LineSet};
 
@@ -91,7 +91,7 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
             SYSTEM_WIDE.join(", ")
         ));
     }
-    let free = sys.points.iter().any(|p| p.kind == crate::scene::system::PointKind::Free);
+    let free = sys.points.iter().any(|p| p.kind == PointKind::Free);
     let system = free.then(|| {
         // the first line's scene carries the master's values (the lines' scenes copy the system's)
         let set = &scenes[0].0;
@@ -292,8 +292,34 @@ pub const POINT_OUTPUTS: [(&str, &str, &str); 3] = [
 
 /// Which free point and coordinate a point output's value reference is.
 pub fn point_output(vr: u32) -> Option<(usize, usize)> {
+    if vr >= ANCHOR_VR_BASE {
+        return None;
+    }
     let k = vr.checked_sub(POINT_VR_BASE)? as usize;
     Some((k / POINT_OUTPUTS.len(), k % POINT_OUTPUTS.len()))
+}
+
+/// The first value reference of a system's anchors' outputs: line `i`'s
+/// (a line with an end at a fixed point) quantity `q` ([`ANCHOR_OUTPUTS`])
+/// is `ANCHOR_VR_BASE + ANCHOR_OUTPUTS.len() · i + q`.
+pub const ANCHOR_VR_BASE: u32 = 300_000;
+
+/// Each anchor's outputs in a packaged system FMU (on its line): name suffix, unit, description.
+pub const ANCHOR_OUTPUTS: [(&str, &str, &str); 2] = [
+    ("anchor_force", "N", "the magnitude of its force on its anchor (a fixed point)"),
+    ("anchor_uplift_angle", "deg", "its angle above the horizontal at its anchor"),
+];
+
+/// Which line and quantity an anchor output's value reference is.
+pub fn anchor_output(vr: u32) -> Option<(usize, usize)> {
+    let k = vr.checked_sub(ANCHOR_VR_BASE)? as usize;
+    Some((k / ANCHOR_OUTPUTS.len(), k % ANCHOR_OUTPUTS.len()))
+}
+
+/// The values of [`ANCHOR_OUTPUTS`] of a line (model `model`) at its state
+/// `state` with outputs `o`: |F| (N) and the uplift angle (deg, §17.1's).
+pub fn anchor_values(model: crate::scene::Model, state: &State, o: &Outputs) -> [f64; 2] {
+    [o.bottom_force.norm(), crate::sim::system::anchor_uplift_angle(model, &state.config)]
 }
 
 /// The values of [`LINE_OUTPUTS`] of a line whose vessel end is `vessel_end`, of its outputs `o`.
@@ -337,18 +363,26 @@ pub fn model_description(sys: &SystemScene, resource: &str) -> Result<String, St
         .ok_or("the model description has no initial unknown of top_tension")?
         .to_string();
     let (mut vars, mut outputs, mut unknowns) = (String::new(), String::new(), String::new());
-    // each line's outputs, then each free point's (their names are identifiers: no escaping)
-    let free = sys.points.iter().filter(|p| p.kind == crate::scene::system::PointKind::Free);
-    let items = sys.lines.iter().flat_map(|l| LINE_OUTPUTS.iter().map(move |o| (&l.name, "line", SYSTEM_VR_BASE, o)));
-    let items =
-        items.chain(free.flat_map(|p| POINT_OUTPUTS.iter().map(move |o| (&p.name, "free point", POINT_VR_BASE, o))));
-    let (mut k, mut first_of_points) = (0, None);
-    for (name, what_item, base, (suffix, unit, what)) in items {
-        // the k-th of its kind: vr = base + k (LINE_OUTPUTS.len() · i + q, POINT_OUTPUTS.len() · k + c)
-        let at = if base == SYSTEM_VR_BASE { k } else { k - *first_of_points.get_or_insert(k) };
-        let vr = base + at as u32;
+    // each line's outputs, each free point's, each anchor's (names are identifiers: no escaping)
+    let mut items = Vec::new();
+    for (i, l) in sys.lines.iter().enumerate() {
+        for (q, o) in LINE_OUTPUTS.iter().enumerate() {
+            items.push((&l.name, "line", SYSTEM_VR_BASE + (LINE_OUTPUTS.len() * i + q) as u32, o));
+        }
+    }
+    let free = sys.points.iter().filter(|p| p.kind == PointKind::Free);
+    for (k, p) in free.enumerate() {
+        for (c, o) in POINT_OUTPUTS.iter().enumerate() {
+            items.push((&p.name, "free point", POINT_VR_BASE + (POINT_OUTPUTS.len() * k + c) as u32, o));
+        }
+    }
+    for (i, l) in sys.lines.iter().enumerate().filter(|(i, _)| sys.ends(*i).2.kind == PointKind::Fixed) {
+        for (q, o) in ANCHOR_OUTPUTS.iter().enumerate() {
+            items.push((&l.name, "line", ANCHOR_VR_BASE + (ANCHOR_OUTPUTS.len() * i + q) as u32, o));
+        }
+    }
+    for (k, (name, what_item, vr, (suffix, unit, what))) in items.into_iter().enumerate() {
         let index = n_vars + 1 + k;
-        k += 1;
         vars.push_str(&format!(
             "    <ScalarVariable name=\"{name}.{suffix}\" valueReference=\"{vr}\" description=\"{what_item} {name}: \
              {what}\" causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real \

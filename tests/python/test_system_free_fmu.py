@@ -56,15 +56,19 @@ OUTPUTS = ["top_force_x", "top_force_y", "top_force_z", "clump.x", "clump.y", "c
 ENERGIES = ["total_energy", "work_top", "work_hydro", "work_seabed", "dissipated_energy", "algorithmic_dissipation"]
 
 
-def test_the_fmu_names_the_free_points_outputs(clump):
+def test_the_fmu_names_the_free_points_and_the_anchors_outputs(clump):
     from fmpy import read_model_description
     md = read_model_description(str(clump["clump"][1]), validate=True)
     names = {v.name: v for v in md.modelVariables}
     for c, vr in zip("xyz", range(200000, 200003)):
         v = names[f"clump.{c}"]
         assert (v.causality, v.valueReference, v.unit) == ("output", vr, "m")
+    # the lower chain's anchor (the upper chain has no fixed end)
+    assert (names["lower.anchor_force"].valueReference, names["lower.anchor_uplift_angle"].valueReference) == \
+        (300000, 300001)
+    assert "upper.anchor_force" not in names
     outputs = {u.variable.name for u in md.outputs}
-    assert {"clump.x", "clump.y", "clump.z", "lower.tension_to", "upper.tension_to"} <= outputs
+    assert {"clump.x", "clump.y", "clump.z", "lower.tension_to", "upper.tension_to", "lower.anchor_force"} <= outputs
 
 
 def test_with_the_vessel_held_the_fmu_is_the_command_lines_run(clump, riser_bin, tmp_path):
