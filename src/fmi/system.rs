@@ -271,11 +271,14 @@ pub const LINE_OUTPUTS: [(&str, &str, &str); 4] = [
 
 /// Which line and quantity a system output's value reference is.
 pub fn line_output(vr: u32) -> Option<(usize, usize)> {
-    if vr >= POINT_VR_BASE {
-        return None;
-    }
-    let k = vr.checked_sub(SYSTEM_VR_BASE)? as usize;
-    Some((k / LINE_OUTPUTS.len(), k % LINE_OUTPUTS.len()))
+    item_output(vr, SYSTEM_VR_BASE, POINT_VR_BASE, LINE_OUTPUTS.len())
+}
+
+/// Which item and quantity value reference `vr` is in the range [`base`,
+/// `end`) of `width` quantities an item.
+fn item_output(vr: u32, base: u32, end: u32, width: usize) -> Option<(usize, usize)> {
+    let k = (vr < end).then(|| vr.checked_sub(base))?? as usize;
+    Some((k / width, k % width))
 }
 
 /// The first value reference of a system's free points' outputs: free
@@ -292,11 +295,7 @@ pub const POINT_OUTPUTS: [(&str, &str, &str); 3] = [
 
 /// Which free point and coordinate a point output's value reference is.
 pub fn point_output(vr: u32) -> Option<(usize, usize)> {
-    if vr >= ANCHOR_VR_BASE {
-        return None;
-    }
-    let k = vr.checked_sub(POINT_VR_BASE)? as usize;
-    Some((k / POINT_OUTPUTS.len(), k % POINT_OUTPUTS.len()))
+    item_output(vr, POINT_VR_BASE, ANCHOR_VR_BASE, POINT_OUTPUTS.len())
 }
 
 /// The first value reference of a system's anchors' outputs: line `i`'s
@@ -312,8 +311,7 @@ pub const ANCHOR_OUTPUTS: [(&str, &str, &str); 2] = [
 
 /// Which line and quantity an anchor output's value reference is.
 pub fn anchor_output(vr: u32) -> Option<(usize, usize)> {
-    let k = vr.checked_sub(ANCHOR_VR_BASE)? as usize;
-    Some((k / ANCHOR_OUTPUTS.len(), k % ANCHOR_OUTPUTS.len()))
+    item_output(vr, ANCHOR_VR_BASE, u32::MAX, ANCHOR_OUTPUTS.len())
 }
 
 /// The values of [`ANCHOR_OUTPUTS`] of a line (model `model`) at its state

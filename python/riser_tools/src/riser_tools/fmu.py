@@ -72,12 +72,13 @@ def simulate(fmu: str | Path, motion: Motion | None, duration: float, interval: 
     return FmuRun(series, res, wall)
 
 
-def energy_balance(series: Mapping[str, np.ndarray]) -> tuple[float, float]:
-    """(max |E - E0 - work_top - work_hydro + dissipated + algorithmic|, max |work_top| + |work_hydro|), J."""
+def energy_balance(series: Mapping[str, np.ndarray], seabed: bool = False) -> tuple[float, float]:
+    """(max |E - E0 - work_top - work_hydro + dissipated + algorithmic|, max |work_top| + |work_hydro|), J;
+    with `seabed`, the seabed's work (`work_seabed`) in both."""
     e = series["total_energy"]
-    balance = e - e[0] - series["work_top"] - series["work_hydro"] + series["dissipated_energy"] \
-        + series["algorithmic_dissipation"]
-    exchanged = float(np.max(np.abs(series["work_top"]) + np.abs(series["work_hydro"])))
+    works = [series["work_top"], series["work_hydro"]] + ([series["work_seabed"]] if seabed else [])
+    balance = e - e[0] - sum(works) + series["dissipated_energy"] + series["algorithmic_dissipation"]
+    exchanged = float(np.max(sum(np.abs(w) for w in works)))
     return float(np.max(np.abs(balance))), exchanged
 
 
