@@ -135,6 +135,7 @@ fmu-test: venv check-fmu
 # high-frequency oscillation over 150 s at 160 elements, ...), against the same FMU.
 .PHONY: check-long
 check-long: venv check-fmu
+	cargo test --profile $(TEST_PROFILE) -- --ignored
 	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long tests/python
 
 fmu-test-release: fmu

@@ -99,6 +99,11 @@ fn variable_range(v: &Var) -> Option<(String, String)> {
         ("parameter", name) => RANGES.iter().find(|r| r.parameter == Some(name))?,
         _ => return None,
     };
+    // the numerics' 0: the scene's, or accuracy's choice (docs/theory.md §16.12)
+    if matches!(v.name.as_str(), "n_elements" | "time_step" | "newton_tolerance") {
+        let f = |x: f64| if v.typ == "Integer" { format!("{}", x as i64) } else { format!("{x:e}") };
+        return Some((f(0.0), f(r.max)));
+    }
     let f = |x: f64| if v.typ == "Integer" { format!("{}", x as i64) } else { format!("{x:e}") };
     Some((f(r.min), f(r.max)))
 }
@@ -141,6 +146,7 @@ fn main() {
             "input" => "Causality::Input",
             "output" => "Causality::Output",
             "parameter" => "Causality::Parameter",
+            "calculatedParameter" => "Causality::CalculatedParameter",
             c => panic!("unknown causality {c}"),
         };
         writeln!(
@@ -318,8 +324,15 @@ fn main() {
         w.write_event(Event::Empty(u)).unwrap();
     }
     w.write_event(Event::End(BytesEnd::new("Outputs"))).unwrap();
+    // the initial unknowns: the outputs and the calculated parameters, in index order
+    let initial_unknowns: Vec<usize> = vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == "output" || v.causality == "calculatedParameter")
+        .map(|(i, _)| i)
+        .collect();
     w.write_event(Event::Start(BytesStart::new("InitialUnknowns"))).unwrap();
-    for &i in &outputs {
+    for &i in &initial_unknowns {
         let mut u = BytesStart::new("Unknown");
         u.push_attribute(("index", (i + 1).to_string().as_str()));
         u.push_attribute(("dependencies", init_knowns.as_str()));

@@ -172,6 +172,15 @@ const MAX_VESSEL_MASS: f64 = 1e11;
 const MAX_VESSEL_INERTIA: f64 = 1e17;
 
 /// Parameters of the FMU, not of the scene: never a scene override.
+/// The numerics whose 0 means "the scene's, or `accuracy`'s choice"
+/// (docs/theory.md §16.12): a master that sets every start value sets 0.
+const NUMERICS: [&str; 3] = ["n_elements", "time_step", "newton_tolerance"];
+
+/// True for a numeric parameter at 0: not the master's choice.
+fn is_unset_numeric(name: &str, value: &Value) -> bool {
+    NUMERICS.contains(&name) && matches!(value, Value::Integer(0) | Value::Real(0.0))
+}
+
 fn fmu_only(name: &str) -> bool {
     name == "scene" || name == COUPLING || VESSEL_MASS.contains(&name) || VESSEL_INERTIA.contains(&name)
 }
@@ -223,9 +232,8 @@ pub struct Instance {
     /// The warning that the accuracy knob does not cover the path between
     /// communication points has been logged.
     warned_split: bool,
-    /// The accuracy knob's choice (None: the numerics are the master's or
-    /// the scene's), kept for the warning of a line in compression beyond
-    /// what the knob covers, logged once ([`Instance::warn_compression`]).
+    /// What `accuracy` chose and its estimate (None: the numerics are the
+    /// master's or the scene's; docs/theory.md §16.12): `error_estimate`.
     knob: Option<crate::sim::accuracy::Choice>,
     /// The energy the step's high-frequency dissipation takes, span by span
     /// (docs/theory.md §5.10); `None` once the log has said it grows, and
@@ -542,7 +550,7 @@ impl Instance {
         for (i, p) in self.params.iter().enumerate() {
             if let Some((v, true)) = p {
                 let n = VARIABLES[i].name;
-                if fmu_only(n) {
+                if fmu_only(n) || is_unset_numeric(n, v) {
                     continue;
                 }
                 let mut text = v.to_text();
@@ -620,23 +628,18 @@ impl Instance {
         let (scene, first_end) = scenes.swap_remove(0);
         let scene = first_built.as_ref().map_or(scene, |l| l.scene.clone());
         self.system_first_end = is_system.then_some(first_end);
-        // the accuracy knob (docs/theory.md §16): the numerics for the design
-        // motion (the master's is not known yet), those the master set kept;
-        // read back through n_elements, time_step and newton_tolerance
+        // `accuracy` (docs/theory.md §16.12): the numerics measured by pilots
+        // of the design motion in the scene's sea (the master's motion is not
+        // known yet), those the master set (nonzero) kept; read back as chosen_*
         let pinned = crate::sim::accuracy::Pinned::of_names(
-            self.params.iter().zip(VARIABLES.iter()).filter(|(p, _)| matches!(p, Some((_, true)))).map(|(_, v)| v.name),
+            self.params
+                .iter()
+                .zip(VARIABLES.iter())
+                .filter(|(p, v)| matches!(p, Some((value, true)) if !is_unset_numeric(v.name, value)))
+                .map(|(_, v)| v.name),
         );
-        let scene = match crate::sim::accuracy::apply(scene, None, pinned) {
-            Ok((scene, choice)) => {
-                if let Some(c) = &choice {
-                    self.log_once(Status::Ok, Category::Events, &c.describe());
-                    if let Some(w) = crate::sim::accuracy::warning(c) {
-                        self.log_once(Status::Warning, Category::Warning, &w);
-                    }
-                }
-                self.knob = choice;
-                scene
-            }
+        let scene = match self.choose_numerics(scene, pinned) {
+            Ok(scene) => scene,
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
         };
         self.scene = Some(scene.clone());
@@ -873,18 +876,6 @@ impl Instance {
         self.log(Status::Ok, Category::Events, &msg);
     }
 
-    /// Warns once, where the accuracy knob chose the numerics, when the line
-    /// at `t` s is in compression beyond what the knob's error model covers
-    /// (docs/theory.md §16.9, as `riser run` says over its steady window);
-    /// the knob is then dropped, so that the check costs nothing more.
-    fn warn_compression(&mut self, t: f64) {
-        let (Some(c), Some(o)) = (self.knob.as_ref(), self.outputs.as_ref()) else { return };
-        if let Some(w) = crate::sim::accuracy::compression_warning(c, o.min_tension) {
-            self.knob = None;
-            self.log(Status::Warning, Category::Warning, &format!("at t = {t:.3} s {w}"));
-        }
-    }
-
     /// Warns once when the hang-off at `t` s is farther from the anchor than
     /// the line's unstretched length: the line can only hang straight and
     /// stretched (most often a displacement in the wrong unit or an offset
@@ -923,13 +914,13 @@ impl Instance {
         }
     }
 
-    /// Once, where the accuracy knob chose the numerics and a communication
-    /// step takes more than one internal step: inside the step the hang-off
-    /// follows the path predicted from the inputs (`input_path`), whose
-    /// acceleration misses the motion's at the start and at a jerk of the
-    /// motion for 16 communication steps (10 at steps of 0.21 s and longer),
-    /// by more than the knob's targets
-    /// allow, and the knob does not model it (docs/theory.md §16.6).
+    /// Once, where `accuracy` is set and a communication step takes more
+    /// than one internal step: inside the step the hang-off follows the path
+    /// predicted from the inputs (`input_path`), whose acceleration misses
+    /// the motion's at the start and at a jerk of the motion for 16
+    /// communication steps (10 at steps of 0.21 s and longer), an error the
+    /// pilots (which run the motion itself) do not measure (docs/theory.md
+    /// §16.6, §16.12).
     fn warn_split(&mut self, h: f64, n: u64, dt: f64) {
         let Some(target) = self.scene.as_ref().map(|s| s.analysis.accuracy).filter(|a| *a > 0.0) else { return };
         self.warned_split = true;
@@ -937,11 +928,10 @@ impl Instance {
             "accuracy {target:e}: the communication step of {h} s takes {n} internal steps of {dt} s; between \
              communication points the hang-off follows a path predicted from the inputs, whose acceleration misses \
              the motion's for 16 communication steps (10 at steps of 0.21 s and longer) at the start and after a \
-             jerk of the motion (where a ramp \
-             ends: 12 % of it at 0.05 s, 30-40 % at 0.2 s), an error the accuracy knob does not model: on the \
-             catenary grown over one period the top tension then errs up to 1e-3 at 0.05-0.1 s and 1e-2 at 0.2 s \
-             whatever the target (docs/theory.md §16.6). A communication step equal to the chosen time_step \
-             (read it back) keeps the knob's error"
+             jerk of the motion (where a ramp ends: 12 % of it at 0.05 s, 30-40 % at 0.2 s), an error the \
+             accuracy pilots do not measure (they run the motion itself): on the catenary grown over one period \
+             the top tension then errs up to 1e-3 at 0.05-0.1 s and 1e-2 at 0.2 s whatever the target \
+             (docs/theory.md §16.6). A communication step equal to chosen_time_step keeps the estimate's error"
         );
         self.log(Status::Warning, Category::Warning, &msg);
     }
@@ -1163,7 +1153,6 @@ impl Instance {
             Ok(()) => {
                 self.warn_reach(t_end);
                 self.warn_anchor();
-                self.warn_compression(t_end);
                 self.watch_dissipation(now, t_end);
                 self.history.commit(now, &inp, &path);
                 self.last_successful_time = t_end;
@@ -1252,6 +1241,7 @@ impl Instance {
             "top_force_z_mean" => self.force_mean.z,
             "step_newton_iterations" => self.step_work.0 as f64,
             "step_newton_bound" => self.step_work.1 as f64,
+            "error_estimate" => self.knob.as_ref().map_or(0.0, |c| c.estimate()),
             "max_von_mises" | "max_utilisation" => match (&self.scene, &self.sim) {
                 (Some(scene), Some(sim)) => crate::sim::design::line_stress_output(scene, sim, name),
                 _ => 0.0,
@@ -1296,6 +1286,10 @@ impl Instance {
                 self.output_value(v.name)
             }
             Causality::Parameter => match self.param_value(vr, v)? {
+                Value::Real(x) => x,
+                _ => 0.0,
+            },
+            Causality::CalculatedParameter => match self.calculated_value(v)? {
                 Value::Real(x) => x,
                 _ => 0.0,
             },
@@ -1583,7 +1577,66 @@ impl Instance {
     /// fmi2GetInteger / Boolean / String for one value reference.
     pub fn get_param(&mut self, vr: u32, kind: Kind) -> Result<Value, Status> {
         let v = self.var(vr, kind)?;
+        if v.causality == Causality::CalculatedParameter {
+            return self.calculated_value(v);
+        }
         self.param_value(vr, v)
+    }
+
+    /// A calculated parameter (the numerics run, docs/theory.md §16.12):
+    /// known once the instance is initialised (read before, it initialises).
+    fn calculated_value(&mut self, v: &'static Variable) -> Result<Value, Status> {
+        if matches!(self.mode, Instantiated | InitializationMode) {
+            let st = self.initialise();
+            if st != Status::Ok {
+                return Err(st);
+            }
+        }
+        let Some(scene) = &self.scene else { return Err(self.fail(&format!("{}: no scene yet", v.name))) };
+        let a = &scene.analysis;
+        Ok(match v.name {
+            "chosen_n_elements" => Value::Integer(a.n_elements as i32),
+            "chosen_time_step" => Value::Real(a.time_step),
+            _ => Value::Real(a.newton_tolerance),
+        })
+    }
+
+    /// The scene with the numerics `accuracy` chooses (the scene itself
+    /// where it is unset), the choice logged and kept for `error_estimate`.
+    fn choose_numerics(&mut self, scene: Scene, pinned: crate::sim::accuracy::Pinned) -> Result<Scene, String> {
+        self.knob = None;
+        if scene.analysis.accuracy == 0.0 {
+            return Ok(scene);
+        }
+        let design = crate::sim::accuracy::DesignRun::of(&scene).map_err(|e| e.to_string())?;
+        let heave = design.heave;
+        let motion = move |t: f64| heave.at(t);
+        let spec = crate::sim::error_estimate::RunSpec {
+            motion: &motion,
+            window: design.window,
+            period: Some(design.period),
+            max_tangent_age: crate::model::DynamicOptions::default().max_tangent_age,
+            fatigue: None,
+        };
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut said = Vec::new();
+        let result =
+            crate::sim::accuracy::apply(scene, &spec, pinned, threads, &mut |m: &str| said.push(m.to_string()));
+        for m in said {
+            self.log(Status::Ok, Category::Events, &m);
+        }
+        let (scene, choice) = result.map_err(|e| e.to_string())?;
+        if let Some(c) = &choice {
+            self.log_once(Status::Ok, Category::Events, &c.describe());
+            for n in &c.notes {
+                self.log_once(Status::Warning, Category::Warning, &format!("accuracy: {n}"));
+            }
+            if let Some(w) = c.warning() {
+                self.log_once(Status::Warning, Category::Warning, &w);
+            }
+        }
+        self.knob = choice;
+        Ok(scene)
     }
 
     /// fmi2SetReal for one value reference.
@@ -1622,7 +1675,9 @@ impl Instance {
                 Status::Ok
             }
             Causality::Parameter => self.set_param(vr, Value::Real(x)),
-            Causality::Output => self.fail(&format!("{} is an output and cannot be set", v.name)),
+            Causality::Output | Causality::CalculatedParameter => {
+                self.fail(&format!("{} is calculated and cannot be set", v.name))
+            }
         }
     }
 
@@ -1728,6 +1783,8 @@ impl Instance {
                     ranges::number(max)
                 ));
             }
+        } else if is_unset_numeric(v.name, &value) {
+            // 0: the scene's, or accuracy's choice
         } else if v.name != "scene" {
             let text = value.to_text();
             let mut probe = Scene::builtin("catenary").expect("built-in scene");
@@ -2128,36 +2185,6 @@ mod discard_tests {
         assert!(messages.lock().unwrap().iter().any(|m| m.contains("discarded") && m.contains("Newton")));
         // no further step from a failed one
         assert!(i.check(Op::DoStep, "fmi2DoStep").is_err());
-    }
-
-    /// The knob's compression check through the FMU (docs/theory.md §16.9):
-    /// the steel catenary at accuracy 1e-2, chosen for the design motion,
-    /// heaved by the master 10 m at 20 s, goes into compression at its
-    /// touchdown beyond the 8 % of its static top tension the knob covers:
-    /// the log says so once; heaved 2.5 m at 20 s it does not.
-    #[test]
-    fn the_log_warns_once_when_the_knob_s_line_goes_into_compression() {
-        for (amplitude, warned) in [(10.0, 1), (2.5, 0)] {
-            let messages = Arc::new(Mutex::new(Vec::<String>::new()));
-            let m2 = messages.clone();
-            let logger: Logger = Arc::new(move |_, _, msg: &str| m2.lock().unwrap().push(msg.into()));
-            let mut i = Instance::new("t", GUID, None, logger, true).unwrap();
-            let scene = Value::String("steel_catenary".into());
-            assert_eq!(i.set_param(vr_of("scene").unwrap(), scene), Status::Ok);
-            assert_eq!(i.set_param(vr_of("accuracy").unwrap(), Value::Real(1e-2)), Status::Ok);
-            i.enter_initialization_mode();
-            assert_eq!(i.exit_initialization_mode(), Status::Ok);
-            let (h, w) = (0.1, 2.0 * std::f64::consts::PI / 20.0);
-            for k in 0..600 {
-                let t = k as f64 * h;
-                let ramp = if t < 20.0 { 0.5 * (1.0 - (std::f64::consts::PI * t / 20.0).cos()) } else { 1.0 };
-                assert_eq!(i.set_real(vr_of("heave").unwrap(), amplitude * ramp * (w * t).sin()), Status::Ok);
-                assert_eq!(i.do_step(t, h), Status::Ok);
-            }
-            let log = messages.lock().unwrap();
-            let n = log.iter().filter(|m| m.contains("beyond the 8 % the error model was calibrated on")).count();
-            assert_eq!(n, warned, "{amplitude} m: {log:?}");
-        }
     }
 
     #[test]

@@ -17,6 +17,9 @@ pub enum Causality {
     Input,
     Output,
     Parameter,
+    /// Computed in initialisation from the parameters (FMI 2.0
+    /// calculatedParameter: the numerics run, docs/theory.md §16.12).
+    CalculatedParameter,
 }
 
 /// One scalar variable.

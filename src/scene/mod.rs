@@ -335,6 +335,58 @@ pub struct Analysis {
     /// unset, the run's motion's and otherwise the design motion's 10 s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy_motion_period: Option<f64>,
+    /// What `accuracy` is on (docs/theory.md §16.12): the top tension by
+    /// default.
+    #[serde(default, skip_serializing_if = "AccuracyQuantity::is_default")]
+    pub accuracy_quantity: AccuracyQuantity,
+}
+
+/// The quantity the `accuracy` target is on (docs/theory.md §16.12).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AccuracyQuantity {
+    /// The steady window's top tension: its min, mean and max, relative to its max.
+    #[default]
+    TopTension,
+    /// The largest outer-fibre stress range along the line.
+    StressRange,
+    /// The touchdown's extremes, relative to its largest arc length.
+    Touchdown,
+    /// Miner's damage at the worst point (`riser run --fatigue`).
+    Fatigue,
+    /// All of those the scene has.
+    All,
+}
+
+impl AccuracyQuantity {
+    pub const ALL: [AccuracyQuantity; 5] = [
+        AccuracyQuantity::TopTension,
+        AccuracyQuantity::StressRange,
+        AccuracyQuantity::Touchdown,
+        AccuracyQuantity::Fatigue,
+        AccuracyQuantity::All,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AccuracyQuantity::TopTension => "top_tension",
+            AccuracyQuantity::StressRange => "stress_range",
+            AccuracyQuantity::Touchdown => "touchdown",
+            AccuracyQuantity::Fatigue => "fatigue",
+            AccuracyQuantity::All => "all",
+        }
+    }
+
+    pub fn parse(text: &str) -> Result<AccuracyQuantity, String> {
+        AccuracyQuantity::ALL.into_iter().find(|q| q.name() == text).ok_or_else(|| {
+            let names: Vec<&str> = AccuracyQuantity::ALL.iter().map(|q| q.name()).collect();
+            format!("'{text}' is not one of {}", names.join(", "))
+        })
+    }
+
+    fn is_default(&self) -> bool {
+        *self == AccuracyQuantity::TopTension
+    }
 }
 
 fn is_unset(v: &f64) -> bool {
@@ -378,6 +430,7 @@ impl Default for Analysis {
             accuracy: 0.0,
             accuracy_motion_amplitude: None,
             accuracy_motion_period: None,
+            accuracy_quantity: AccuracyQuantity::TopTension,
         }
     }
 }

@@ -8,7 +8,7 @@ use super::{
 };
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 64] = [
+pub const PARAMETER_NAMES: [(&str, &str); 65] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -66,6 +66,7 @@ pub const PARAMETER_NAMES: [(&str, &str); 64] = [
     ("accuracy", "-"),
     ("accuracy_motion_amplitude", "m"),
     ("accuracy_motion_period", "s"),
+    ("accuracy_quantity", "top_tension | stress_range | touchdown | fatigue | all"),
     ("steel_outer_diameter", "m"),
     ("wall_thickness", "m"),
     ("youngs_modulus", "Pa"),
@@ -214,6 +215,10 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "accuracy" => s.analysis.accuracy = num()?,
         "accuracy_motion_amplitude" => s.analysis.accuracy_motion_amplitude = Some(num()?),
         "accuracy_motion_period" => s.analysis.accuracy_motion_period = Some(num()?),
+        "accuracy_quantity" => {
+            s.analysis.accuracy_quantity = super::AccuracyQuantity::parse(value)
+                .map_err(|message| SceneError::Override { name: name.into(), message })?
+        }
         "static_current" => {
             s.analysis.static_current = match value {
                 "true" | "1" => true,
@@ -326,6 +331,7 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         // unset: the design motion's (the FMU's start values)
         "accuracy_motion_amplitude" => num(s.analysis.accuracy_motion_amplitude.unwrap_or(DESIGN_MOTION_AMPLITUDE)),
         "accuracy_motion_period" => num(s.analysis.accuracy_motion_period.unwrap_or(DESIGN_MOTION_PERIOD)),
+        "accuracy_quantity" => Some(s.analysis.accuracy_quantity.name().into()),
         "length" => num(s.line.length),
         "mass_per_length" => num(s.line.mass_per_length),
         "outer_diameter" => num(s.line.outer_diameter),

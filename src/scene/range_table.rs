@@ -659,8 +659,8 @@ pub const RANGES: &[Range] = &[
         unit: "-",
         min: 0.0,
         max: 0.1,
-        reason: "relative error of the top tension accepted (0: unset, the numerics as given); the error model \
-                 is calibrated from 1e-4 to 1e-2 (theory 16), a looser target gets the 1e-2 choice",
+        reason: "relative error accepted in accuracy_quantity (0: unset, the numerics as given); riser measures \
+                 it by pilot runs (theory 16.12); above 10 % a run says nothing",
     },
     Range {
         field: "analysis.accuracy_motion_amplitude",
@@ -668,8 +668,8 @@ pub const RANGES: &[Range] = &[
         unit: "m",
         min: 0.0,
         max: 100.0,
-        reason: "the hang-off motion's amplitude the accuracy knob chooses for (theory 16.2); it covers 0 to 10 m \
-                 and refuses a larger one",
+        reason: "the heave of the design motion the accuracy pilots run where the motion is not known (the FMU, \
+                 riser statics; theory 16.12)",
     },
     Range {
         field: "analysis.accuracy_motion_period",
@@ -677,8 +677,7 @@ pub const RANGES: &[Range] = &[
         unit: "s",
         min: 0.1,
         max: 1000.0,
-        reason: "the hang-off motion's period the accuracy knob chooses for (theory 16.2); it covers 10 s and \
-                 longer and refuses a shorter one",
+        reason: "the period of the design motion's heave (theory 16.12)",
     },
 ];
 

@@ -21,7 +21,7 @@ pub enum RiserError {
     /// An output that is not a finite number at `time` s (the step that gave
     /// it is discarded).
     NonFinite { name: &'static str, time: f64 },
-    /// The `accuracy` knob refused the scene (docs/theory.md §16).
+    /// `accuracy` cannot choose the numerics (docs/theory.md §16.12).
     Accuracy(AccuracyError),
     /// A system's free points did not balance their lines in a step (§17.7).
     Points(super::system_dynamics::PointsDiverged),
@@ -78,40 +78,24 @@ impl From<AccuracyError> for RiserError {
     }
 }
 
-/// What the accuracy knob's error model (sim::accuracy, docs/theory.md §16)
-/// did not cover or cannot reach.
+/// Why `accuracy` cannot choose (docs/theory.md §16.12).
 #[derive(Debug, Clone, PartialEq)]
 pub enum AccuracyError {
-    /// The scene has a feature the error model was not calibrated on.
-    NotCovered { feature: String, reason: String },
-    /// A target below the smallest covered, `min`.
-    TargetTooSmall { target: f64, min: f64 },
-    /// A hang-off motion outside the calibrated range.
-    Motion { message: String },
-    /// No numerics on the ladders (at most `max_elements`, at least
-    /// `min_step` s) reach the target.
-    Unreachable { target: f64, max_elements: usize, min_step: f64 },
+    /// The scene has none of the quantity the target is on.
+    NoQuantity { quantity: &'static str, reason: &'static str },
+    /// The pilots measured no value of `quantity` over their window.
+    NotMeasured { quantity: &'static str, why: String },
 }
 
 impl std::fmt::Display for AccuracyError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            AccuracyError::NotCovered { feature, reason } => write!(
-                f,
-                "accuracy: the error model does not cover {feature}: {reason}; set n_elements, time_step and \
-                 newton_tolerance yourself (and leave accuracy at 0)"
-            ),
-            AccuracyError::TargetTooSmall { target, min } => write!(
-                f,
-                "accuracy = {target:e} is below {min:e}, the smallest error the model is calibrated for (its \
-                 references are converged to about 2e-5); set the numerics yourself"
-            ),
-            AccuracyError::Motion { message } => write!(f, "accuracy: {message}"),
-            AccuracyError::Unreachable { target, max_elements, min_step } => write!(
-                f,
-                "accuracy = {target:e}: no mesh of at most {max_elements} elements and step of at least {min_step} s \
-                 reaches it by the error model"
-            ),
+            AccuracyError::NoQuantity { quantity, reason } => {
+                write!(f, "accuracy_quantity = {quantity}: {reason}")
+            }
+            AccuracyError::NotMeasured { quantity, why } => {
+                write!(f, "accuracy: the pilots measured no {quantity} ({why})")
+            }
         }
     }
 }

@@ -450,9 +450,9 @@ def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, un
     assert message not in logs[1], logs[1]
 
 
-def test_split_communication_steps_keep_the_steel_catenary_within_the_knob_s_target(fmu_path, unzipped):
-    """docs/theory.md §16.6: the steel catenary at `accuracy` 1e-3 (40 elements, dt 0.05 s) and 1e-4
-    (80 elements, dt 0.02 s since §16.7; 0.015 s before) for the design motion, the master giving the
+def test_split_communication_steps_keep_the_steel_catenary_within_its_target(fmu_path, unzipped):
+    """docs/theory.md §16.6, §16.12: the steel catenary at `accuracy` 1e-3 and 1e-4, the numerics chosen
+    by the pilots of the design motion (the motion the master gives here), the master giving the
     heave (2.5 m / 10 s grown over a period) at communication steps of 0.2 s (four internal steps) and
     0.1 s (five): the top tension meets the target against the study's converged reference
     (steel_catenary_T10, the window 20 to 40 s, (16.1)): measured 2.1e-4 and 2.7e-5 (5.3e-5 at 0.015 s
@@ -510,10 +510,11 @@ def test_a_communication_step_at_a_design_s_bound_answers_as_its_neighbours(fmu_
     and 0.21 s the path took one design and the other by turns, alternated its end state and rang the
     line: the catenary's top tension peaked at 158.3 and 176.5 kN where the neighbouring steps give
     156.3 kN (the minimum at 0.075 s: 118.3 kN against 119.8). The answer is continuous in h: the
-    steady window's extremes (40 to 60 s; the catenary, `accuracy` 1e-3, heaved 2.5 m / 10 s grown over
-    a period) at each bound within 1e-3 of the mean of its neighbours' 0.01 s either side: at most
-    3.3e-4 measured."""
-    heave = {"scene": "catenary", "period": 10.0, "duration": 60.0, "reals": {"accuracy": 1e-3}}
+    steady window's extremes (40 to 60 s; the catenary on 10 elements at 0.075 s, Newton 1e-6, heaved
+    2.5 m / 10 s grown over a period) at each bound within 1e-3 of the mean of its neighbours' 0.01 s
+    either side: at most 3.3e-4 measured."""
+    heave = {"scene": "catenary", "period": 10.0, "duration": 60.0,
+             "reals": {"time_step": 0.075, "newton_tolerance": 1e-6}, "integers": {"n_elements": 10}}
     triples = [(0.065, 0.075, 0.085), (0.2, 0.21, 0.22)]
     cases = [dict(heave, h=h) for triple in triples for h in triple]
     extremes = []
@@ -528,17 +529,16 @@ def test_a_communication_step_at_a_design_s_bound_answers_as_its_neighbours(fmu_
             assert abs(at[k] - mean) <= 1e-3 * mean, (h, k, at[k], below[k], above[k])
 
 
-def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communication_step(fmu_path, unzipped):
-    """docs/theory.md §16.6: with `accuracy` 1e-3 (the catenary: 10 elements, dt 0.075 s, for the
-    design motion; 0.05 s before the step term's order 2, §16.7) and the master giving the heave (2.5 m / 10 s grown over a period) at a
-    communication step equal to the chosen time step, the top tension meets the target against the
-    study's converged reference (docs/accuracy_runs.csv, catenary_T10: the window 20 to 40 s, (16.1)
-    with the time mean); at 0.2 s, three internal steps a communication step, the path predicted
-    between the communication points misses it (its transients at the start and where the ramp ends:
-    8.2e-3 measured, 5.9e-4 at the chosen step; 3.2e-3 with four steps of 0.05 s before, 7.1e-3 before
-    the path's slope and curvature of (7.3a)), and the log says so, once.
-    Silent at the chosen step, and without `accuracy` (the same numerics pinned: 10 elements, 0.075 s,
-    the Newton tolerance 1e-6, the target's square since docs/theory.md §16.8; 1e-7 before)."""
+def test_the_log_warns_that_the_pilots_do_not_measure_the_path_inside_a_communication_step(fmu_path, unzipped):
+    """docs/theory.md §16.6, §16.12: with `accuracy` 1e-3 and the numerics set (the catenary: 10
+    elements, dt 0.075 s, Newton 1e-6: the pilots estimate their error, the numerics the master set
+    win) and the master giving the heave (2.5 m / 10 s grown over a period) at a communication step
+    equal to the time step, the top tension meets the target against the study's converged reference
+    (docs/accuracy_runs.csv, catenary_T10: the window 20 to 40 s, (16.1) with the time mean); at 0.2 s,
+    three internal steps a communication step, the path predicted between the communication points
+    misses it (its transients at the start and where the ramp ends: 8.2e-3 measured, 5.9e-4 at the
+    chosen step), which the pilots (the motion itself) do not measure, and the log says so, once.
+    Silent at the time step, and without `accuracy`."""
     import csv
     from pathlib import Path
 
@@ -546,9 +546,11 @@ def test_the_log_warns_that_the_knob_does_not_cover_the_path_inside_a_communicat
     ref_row = next(r for r in csv.DictReader(open(runs)) if r["case"] == "catenary_T10" and r["kind"] == "reference")
     want = [float(ref_row[k]) for k in ("tt_min", "tt_mean", "tt_max")]
     heave = {"scene": "catenary", "period": 10.0, "duration": 40.0}
-    cases = [dict(heave, h=0.075, reals={"accuracy": 1e-3}), dict(heave, h=0.2, reals={"accuracy": 1e-3}),
-             dict(heave, h=0.2, reals={"time_step": 0.075, "newton_tolerance": 1e-6}, integers={"n_elements": 10})]
-    message = "an error the accuracy knob does not model"
+    pinned = {"time_step": 0.075, "newton_tolerance": 1e-6}
+    cases = [dict(heave, h=0.075, reals={**pinned, "accuracy": 1e-3}, integers={"n_elements": 10}),
+             dict(heave, h=0.2, reals={**pinned, "accuracy": 1e-3}, integers={"n_elements": 10}),
+             dict(heave, h=0.2, reals=pinned, integers={"n_elements": 10})]
+    message = "an error the accuracy pilots do not measure"
     errors, logs = [], []
     for log, series in run_heave_child(fmu_path, unzipped, cases):
         pts = np.array([(t, y) for t, y in series if 20.0 - 1e-9 <= t <= 40.0 + 1e-9])

@@ -321,27 +321,6 @@ impl Motions {
         if parts.is_empty() { "the hang-off held still".to_string() } else { parts.join(", ") }
     }
 
-    /// The motion the accuracy knob chooses for: the translations (heave,
-    /// surge and sway, orthogonal), summarised by their shortest period and
-    /// their resultant amplitude, velocity, acceleration and jerk
-    /// ([`riser::sim::accuracy::Excitation::of_translations`]; of one period, a
-    /// single harmonic of their resultant amplitude √(Σ A²), the hang-off's
-    /// path in phase; one of amplitude 0 left out); a run with rotations (or
-    /// translations of amplitude 0) alone: the shortest of their periods,
-    /// amplitude 0 (the knob refuses a hang-off offset from the reference
-    /// point, about which the rotations turn the vessel, so they do not move
-    /// it); None: the hang-off held still.
-    fn excitation(&self) -> Option<riser::sim::accuracy::Excitation> {
-        use riser::sim::accuracy::Excitation;
-        // a translation of amplitude 0 moves nothing: its period does not count
-        let translations: Vec<(f64, f64)> =
-            [self.heave, self.surge, self.sway].into_iter().flatten().filter(|m| m.0 != 0.0).collect();
-        Excitation::of_translations(&translations).or_else(|| {
-            let shortest = self.all().into_iter().flatten().map(|m| m.1).reduce(f64::min)?;
-            Some(Excitation::harmonic(0.0, shortest))
-        })
-    }
-
     fn all(&self) -> [Option<(f64, f64)>; 6] {
         [self.heave, self.surge, self.sway, self.roll, self.pitch, self.yaw]
     }
@@ -376,73 +355,117 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
     }
 }
 
-/// The scene with the numerics its `accuracy` chooses (docs/theory.md §16;
-/// the scene itself when it has none), the numerics given by `--set` kept;
-/// the choice is printed on stderr.
+/// The scene with the numerics its `accuracy` chooses on the run `spec`
+/// (docs/theory.md §16.12: pilots of the scene's own motion and sea; the
+/// scene itself when it has none), the numerics given by `--set` kept; the
+/// rounds of pilots and the choice are printed on stderr.
 fn choose_numerics(
     scene: Scene,
     set: &[String],
-    excitation: Option<riser::sim::accuracy::Excitation>,
+    spec: &riser::sim::error_estimate::RunSpec,
 ) -> Result<(Scene, Option<riser::sim::accuracy::Choice>), String> {
     use riser::sim::accuracy;
     let pinned = accuracy::Pinned::of_names(set.iter().map(|s| s.as_str()));
-    let (scene, choice) = accuracy::apply(scene, excitation, pinned).map_err(|e| e.to_string())?;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut progress = |m: &str| eprintln!("riser: {m}");
+    let (scene, choice) = accuracy::apply(scene, spec, pinned, threads, &mut progress).map_err(|e| e.to_string())?;
     if let Some(c) = &choice {
         eprintln!("riser: {}", c.describe());
-        if let Some(w) = accuracy::warning(c) {
+        for n in &c.notes {
+            eprintln!("riser: note: {n}");
+        }
+        if let Some(w) = c.warning() {
             eprintln!("riser: warning: {w}");
         }
     }
     Ok((scene, choice))
 }
 
-/// The choice of the accuracy knob under the JSON key `accuracy` (null when unset).
+/// `riser statics` with `accuracy`: the numerics for the design motion
+/// (the motion is not known), as the FMU chooses them.
+fn choose_for_design(scene: Scene, set: &[String]) -> Result<(Scene, Option<riser::sim::accuracy::Choice>), String> {
+    if scene.analysis.accuracy == 0.0 {
+        return Ok((scene, None));
+    }
+    let design = riser::sim::accuracy::DesignRun::of(&scene).map_err(|e| e.to_string())?;
+    let heave = design.heave;
+    let motion = move |t: f64| heave.at(t);
+    let spec = riser::sim::error_estimate::RunSpec {
+        motion: &motion,
+        window: design.window,
+        period: Some(design.period),
+        max_tangent_age: riser::model::DynamicOptions::default().max_tangent_age,
+        fatigue: None,
+    };
+    choose_numerics(scene, set, &spec)
+}
+
+/// The choice of `accuracy` under the JSON key `accuracy` (null when unset):
+/// target, quantity, estimate, orders, chosen, set_by_user, pilots (every
+/// round's), notes.
 fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Value {
-    match choice {
-        None => serde_json::Value::Null,
-        Some(c) => serde_json::json!({
-            "target": c.target,
+    use riser::sim::error_estimate::Quantity;
+    let Some(c) = choice else { return serde_json::Value::Null };
+    let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
+    let orders: serde_json::Map<String, serde_json::Value> = c
+        .predicted
+        .iter()
+        .map(|p| {
+            (
+                p.quantity.name().to_string(),
+                serde_json::json!({
+                    "mesh": p.mesh_order, "step": p.step_order, "error": finite(p.error),
+                    "relative": finite(p.relative), "relative_to": p.relative_to.name(),
+                }),
+            )
+        })
+        .collect();
+    let pilots: Vec<serde_json::Value> = c
+        .rounds
+        .iter()
+        .enumerate()
+        .flat_map(|(r, round)| {
+            round.pilots.iter().map(move |p| {
+                let values: serde_json::Map<String, serde_json::Value> = Quantity::ALL
+                    .iter()
+                    .zip(p.values)
+                    .filter(|(_, v)| v.is_finite())
+                    .map(|(q, v)| (q.name().to_string(), v.into()))
+                    .collect();
+                serde_json::json!({
+                    "round": r + 1, "n_elements": p.n_elements, "time_step": p.time_step,
+                    "values": values, "wall_s": p.wall_s,
+                })
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "target": c.target,
+        "quantity": c.quantity.name(),
+        "estimate": finite(c.estimate()),
+        "met": c.met(),
+        "orders": orders,
+        "chosen": {
             "n_elements": c.n_elements,
             "time_step": c.time_step,
             "newton_tolerance": c.newton_tolerance,
-            "set_by_user": {
-                "n_elements": c.pinned.n_elements,
-                "time_step": c.pinned.time_step,
-                "newton_tolerance": c.pinned.newton_tolerance,
-            },
-            "predicted_error": c.predicted(),
-            "predicted_space_error": c.predicted_space,
-            "predicted_time_error": c.predicted_time,
-            "max_curvature": c.scales.curvature,
-            "max_curvature_s": c.scales.curvature_s,
-            "touchdown_bending_length": c.scales.touchdown_bending_length,
-            "acceleration_ratio": c.scales.acceleration_ratio,
-            "motion_period": c.excitation.period,
-            "motion_amplitude": c.excitation.amplitude,
-            "wave_omega": c.scales.waves.map(|w| w.omega),
-            "wave_amplitude": c.scales.waves.map(|w| w.amplitude),
-            "wave_number": c.scales.waves.map(|w| w.wave_number),
-            "wave_load_ratio": c.scales.waves.map(|w| w.load_ratio),
-            "current_load_ratio": c.scales.current_ratio,
-            "wave_regular": c.scales.waves.map(|w| w.regular),
-            "length": c.scales.length,
-        }),
-    }
+        },
+        "set_by_user": {
+            "n_elements": c.pinned.n_elements,
+            "time_step": c.pinned.time_step,
+            "newton_tolerance": c.pinned.newton_tolerance,
+        },
+        "pilots": pilots,
+        "pilot_window": [c.rounds.last().map(|r| r.plan.window.0), c.rounds.last().map(|r| r.plan.window.1)],
+        "notes": c.notes,
+        "wall_s": c.wall_s,
+    })
 }
 
-/// The choice of the accuracy knob as a line of the text summary.
+/// The choice of `accuracy` as a line of the text summary.
 fn choice_text(choice: &Option<riser::sim::accuracy::Choice>) {
     if let Some(c) = choice {
-        outln!(
-            "  accuracy {:e}: chose n_elements {}, time_step {} s, newton_tolerance {:e} (predicted error {:.1e}; \
-             {})",
-            c.target,
-            c.n_elements,
-            c.time_step,
-            c.newton_tolerance,
-            c.predicted(),
-            c.excitation.describe()
-        );
+        outln!("  {}", c.describe());
     }
 }
 
@@ -556,7 +579,7 @@ fn warn_all(warnings: &[String]) {
 
 fn statics(scene: &str, set: &[String], json: bool, out: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene, set).map_err(|e| e.to_string())?;
-    let (scene, choice) = choose_numerics(scene, set, None)?;
+    let (scene, choice) = choose_for_design(scene, set)?;
     let t0 = std::time::Instant::now();
     let rep = solve_scene(&scene).map_err(|e| e.to_string())?;
     let wall = t0.elapsed().as_secs_f64();
@@ -1070,35 +1093,44 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     if ramp == Some(0.0) && scene.current.ramp.is_none() {
         scene.current.ramp = Some(0.0);
     }
-    // the accuracy knob: the numerics for the motion asked for (issue 28)
-    // (a run without one: the hang-off held still, unless the scene's
-    // accuracy_motion_* give a design motion)
-    let excitation = motions.excitation().unwrap_or(riser::sim::accuracy::STILL);
-    // a ramp shorter than the study's, one period of the slowest motion (the
-    // default), or the paper's abrupt start (--ramp 0, a velocity jump at t = 0),
-    // rings the line's axial modes in a way no mesh and step follow
-    // (docs/theory.md §16.10, "An abrupt start")
-    let slowest = motions.all().into_iter().flatten().filter(|m| m.0 != 0.0).map(|m| m.1).reduce(f64::max);
-    if let (Some(r), Some(t), true) = (ramp, slowest, scene.analysis.accuracy > 0.0)
-        && r < t * (1.0 - 1e-9)
-    {
-        let what = if r == 0.0 {
-            "an abrupt start (--ramp 0, the paper's: a velocity jump at t = 0)".to_string()
-        } else {
-            format!(
-                "a ramp of {r} s, shorter than the slowest motion's period, {t} s, which the study's runs grow over"
-            )
-        };
-        return Err(format!(
-            "accuracy: the error model does not cover {what}: a short start rings the line's axial modes, which no \
-             mesh and step follow (the jumper heaved 2.5 m at 10 s, its top tension's maximum from 40 to 60 s: with \
-             --ramp 0 66.3, 67.9, 98.1 and 194.4 kN on 12 to 160 elements at 0.05 to 0.003125 s, with --ramp 2 \
-             66.3 and 120.8 kN on 12 and 96; docs/theory.md 16.10); leave --ramp at its default (one period of \
-             the slowest motion) or longer, or set n_elements, time_step and newton_tolerance yourself (and leave \
-             accuracy at 0)"
-        ));
+    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
+    let ramp = ramp.unwrap_or(period);
+    // each motion a ramped sine about its axis (heave, surge, sway of the
+    // reference point; roll, pitch, yaw), summed; the hang-off follows the
+    // vessel at its offset (theory §14)
+    let axes = harmonic_axes(&motions, heave_until, ramp);
+    let vessel = riser::sim::vessel::Vessel::of_scene(&scene);
+    // the vessel on its RAOs in the sea's own components (theory §14.5)
+    let sea0 = riser::loads::waves::sea_of(&scene, 0.0).map_err(|e| e.to_string())?;
+    let rao = riser::sim::vessel::rao_motion(&scene, sea0.as_ref())?;
+    let mut rao_warnings = Vec::new();
+    if scene.vessel.as_ref().is_some_and(|v| v.raos.is_some()) && sea0.is_none() {
+        rao_warnings.push(
+            "vessel.raos given, but the scene has no waves: the vessel does not move on its RAOs in still water"
+                .to_string(),
+        );
     }
-    let (scene, choice) = choose_numerics(scene, set, Some(excitation))?;
+    let vessel_motion = |t: f64| vessel_motion_at(&axes, rao.as_ref(), vessel.order, t);
+    let motion_fn = |t: f64| vessel.hang_off(&vessel_motion(t));
+    // the steady window waits for the slower of the motion and the sea
+    let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
+    let settled =
+        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
+    // the current's growth (none without a current or with it in the statics)
+    let current_grown = riser::loads::current_ramp(&scene).duration;
+    let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
+    let slowest = [(period > 0.0).then_some(period), sea.map(|(_, p)| p)].into_iter().flatten().reduce(f64::max);
+    // `accuracy`: the numerics measured on this run's own motion and sea (§16.12)
+    let (scene, choice) = {
+        let spec = riser::sim::error_estimate::RunSpec {
+            motion: &motion_fn,
+            window: (w0, w1),
+            period: slowest,
+            max_tangent_age,
+            fatigue: fatigue_asked.clone(),
+        };
+        choose_numerics(scene, set, &spec)?
+    };
     if let Some(Some(q)) = estimate_error
         && !q.applies(&scene, fatigue_asked.is_some())
     {
@@ -1127,31 +1159,6 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let wall0 = std::time::Instant::now();
     let mut sim = Simulation::from_scene(&scene).map_err(|e| e.to_string())?;
     sim.integrator.options_mut().max_tangent_age = max_tangent_age;
-    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
-    let ramp = ramp.unwrap_or(period);
-    // each motion a ramped sine about its axis (heave, surge, sway of the
-    // reference point; roll, pitch, yaw), summed; the hang-off follows the
-    // vessel at its offset (theory §14)
-    let axes = harmonic_axes(&motions, heave_until, ramp);
-    let vessel = sim.vessel;
-    // the vessel on its RAOs in the sea's own components (theory §14.5)
-    let rao = riser::sim::vessel::rao_motion(&scene, sim.sea.as_ref())?;
-    let mut rao_warnings = Vec::new();
-    if scene.vessel.as_ref().is_some_and(|v| v.raos.is_some()) && sim.sea.is_none() {
-        rao_warnings.push(
-            "vessel.raos given, but the scene has no waves: the vessel does not move on its RAOs in still water"
-                .to_string(),
-        );
-    }
-    if rao.is_some() && scene.analysis.accuracy > 0.0 {
-        rao_warnings.push(
-            "accuracy: the mesh and step were chosen for the waves on the line and the motions given by \
-             --heave etc., not for the vessel's motion on its RAOs; check with a finer time_step"
-                .to_string(),
-        );
-    }
-    let vessel_motion = |t: f64| vessel_motion_at(&axes, rao.as_ref(), vessel.order, t);
-    let motion_fn = |t: f64| vessel.hang_off(&vessel_motion(t));
     // what timeseries.csv adds: the hang-off's displacement and the vessel's six degrees of freedom
     let motion_row = |t: f64, h: &riser::model::HangOff| {
         let m = vessel_motion(t);
@@ -1163,13 +1170,6 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let design = riser::sim::design::Design::new(&scene);
     let (static_design, mut warnings) = design.report(&scene, &sim.integrator, &sim.state);
     warnings.extend(rao_warnings);
-    // the steady window waits for the slower of the motion and the sea
-    let sea = riser::loads::waves::ramp_and_period(&scene).map_err(|e| e.to_string())?;
-    let settled =
-        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
-    // the current's growth (none without a current or with it in the statics)
-    let current_grown = riser::loads::current_ramp(&scene).duration;
-    let ((w0, w1), short) = steady_window(window, settled, current_grown, duration);
     warnings.extend(short);
     // a sea that repeats within the run (docs/theory.md §13)
     if let Some(sea) = sim.sea.as_ref() {
@@ -1308,8 +1308,6 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         let largest = series.iter().filter_map(|o| lifted(&o).map(|a| (o, a))).max_by(|a, b| a.1.total_cmp(&b.1));
         warnings.extend(largest.and_then(|(o, _)| riser::sim::design::anchor_lift_warning(&scene, first.time, o)));
     }
-    // the knob's choice: compression beyond its calibration (docs/theory.md 16.9)
-    warnings.extend(choice.as_ref().and_then(|c| riser::sim::accuracy::compression_warning(c, steady_min_tension)));
     // the window's steadiness: a motion of one period in still water
     let periods: Vec<f64> = motions.all().into_iter().flatten().map(|m| m.1).collect();
     // (a motion that stops in the window, --heave-until, has none)
@@ -1352,8 +1350,6 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     // the error of these numerics on this run's own motion and sea (issue 51)
     let estimate = match estimate_error {
         Some(headline) => {
-            let slowest =
-                [(period > 0.0).then_some(period), sea.map(|(_, p)| p)].into_iter().flatten().reduce(f64::max);
             let spec = riser::sim::error_estimate::RunSpec {
                 motion: &motion_fn,
                 window: (w0, w1),

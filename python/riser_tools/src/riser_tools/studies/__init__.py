@@ -40,8 +40,6 @@ COMMANDS = {
                                                             "MoorDyn-C (docs/system_moordyn.md)"),
     "lowe-langley": ("riser_tools.studies.lowe_langley", "the Lowe & Langley jumper (make lowe-langley)"),
     "accuracy": ("riser_tools.studies.accuracy", "calibration and check of the accuracy knob (make accuracy)"),
-    "accuracy-fit": ("riser_tools.studies.accuracy_fit", "the wave terms' constants of the accuracy knob, fitted to docs/accuracy_runs.csv (--still: the step term's candidate forms)"),
-    "accuracy-search": ("riser_tools.studies.accuracy_search", "the still-water error model of the accuracy knob searched over its forms and constants on docs/accuracy_runs.csv (docs/theory.md §16.8)"),
     "accuracy-ref": ("riser_tools.studies.accuracy_ref", "the accuracy study's references at shorter steps: the references' floor (docs/accuracy.md)"),
     "bench-sweep": ("riser_tools.studies.bench_sweep", "riser-sweep against a plain loop (make bench-sweep)"),
     "bench-cli": ("riser_tools.studies.bench_cli", "the command line against an earlier build, interleaved: wall time, "
