@@ -37,7 +37,7 @@ pub enum EndAt {
     Vessel,
     /// At a fixed point.
     Fixed,
-    /// At the `k`-th free point of the run ([`SystemRun::points`]).
+    /// At the `k`-th free point of the run ([`FreePoints::points`]).
     Free(usize),
 }
 
@@ -173,7 +173,7 @@ impl LineSet for Vec<LineRun> {
         &self[i].name
     }
 
-    /// On threads, the dearest lines first ([`on_threads`]).
+    /// On threads, the dearest lines first.
     fn each_slot(
         &mut self,
         slots: &mut [Option<TrialSlot>],
