@@ -1081,17 +1081,14 @@ impl Instance {
                     }
                 }
             }
-            let mut f = V3::zeros();
-            if !coupled(&self.free, 0) {
-                if let Err(e) = sim.advance_to(target, &motion) {
-                    (result, failed_line) =
-                        (Err(e), (!self.others.is_empty()).then(|| format!("line '{first_name}': ")));
-                    break;
-                }
+            if !coupled(&self.free, 0)
+                && let Err(e) = sim.advance_to(target, &motion)
+            {
+                (result, failed_line) = (Err(e), (!self.others.is_empty()).then(|| format!("line '{first_name}': ")));
+                break;
             }
-            if on_vessel(&self.free, 0) {
-                f += sim.integrator.top_force(&sim.state);
-            }
+            // (the first line's force itself, not added to a zero: the same bits as a single line's)
+            let mut f = if on_vessel(&self.free, 0) { sim.integrator.top_force(&sim.state) } else { V3::zeros() };
             // a system's other lines along the same vessel path at their own vessel points
             for (j, o) in self.others.iter_mut().enumerate() {
                 if !coupled(&self.free, j + 1) {
