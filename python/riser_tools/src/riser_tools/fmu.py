@@ -88,8 +88,9 @@ def package(binary: str = "target/release/riser", lib: str = "target/release/lib
     model-description`), binaries/linux64/riser.so, resources/ (the scene files) and
     documentation/index.html (the README). With `scene` (a system of lines, [[line]]): a system
     FMU, the file in its resources as the `scene` parameter's start value, each line's outputs
-    named (LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s: `riser
-    model-description --scene`), and NAME_OspModelDescription.xml beside it (the vessel's ports,
+    named (LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s; a free
+    point's POINT.x, POINT.y, POINT.z; an anchor's LINE.anchor_force, LINE.anchor_uplift_angle:
+    `riser model-description --scene`), and NAME_OspModelDescription.xml beside it (the vessel's ports,
     as the generic FMU's)."""
     root = Path(root)
     command = [binary, "model-description"] + (["--scene", str(scene)] if scene is not None else [])
