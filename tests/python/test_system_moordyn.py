@@ -189,8 +189,8 @@ def test_the_subsea_buoy_agrees_with_moordyn_short(riser_bin, tmp_path):
 # 5.6 and 3.6 times; at 80, a study run of 15 minutes: 3.1e-3, 4.7e-3, 3.7e-3, the bridles'
 # minimum 96.3 kN in riser, 95.7 in MoorDyn). The means and peaks agree at 20 within 2 % too
 # (measured: the anchor chain's peak at the anchor 1.7e-2 of the largest tension, the rest within
-# 2.2e-3). 7.5 minutes on the loaded 2-core machine (MoorDyn's step, 1.4e-4 s at 40, set by the
-# 60 m bridles' 1.5 m segments, is the cost): long.
+# 2.2e-3). About 4 minutes on the shared 2-core machine (MoorDyn's step, 1.4e-4 s at 40, set by
+# the 60 m bridles' 1.5 m segments, is the cost): long.
 BRIDLE = ROOT / "docs" / "cases" / "bridle_mooring.toml"
 BRIDLE_MESHES = (20, 40)
 
