@@ -28,8 +28,12 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// The tests count one global number: one at a time.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 #[test]
 fn time_steps_do_not_allocate() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let waves = ["wave_kind=jonswap", "wave_hs=6", "wave_tp=10", "wave_components=50", "hang_off_x=20"];
     let cases = [
         ("catenary", "rod", false),
@@ -72,4 +76,47 @@ fn time_steps_do_not_allocate() {
         assert_eq!(during, 0, "{name}, {model}, waves {sea}");
         assert!(o.top_tension.is_finite());
     }
+}
+
+/// fmi2DoStep of a system with a free point (the clump-weight mooring,
+/// docs/cases, its chains coarsened) allocates nothing once warmed up: the
+/// points' stepper and its lines' trials work in storage allocated at
+/// initialisation (docs/theory.md §17.7), the vessel surging and heaving
+/// through the inputs.
+#[test]
+fn a_systems_do_step_with_free_points_does_not_allocate() {
+    use riser::fmi::instance::{Instance, Status, Value};
+    use riser::fmi::vars::{GUID, vr_of};
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let text = include_str!("../docs/cases/clump_weight_mooring.toml")
+        .replace("n_elements = 60", "n_elements = 20")
+        .replace("n_elements = 52", "n_elements = 18");
+    let dir = std::env::temp_dir().join(format!("riser-no-allocation-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("clump.toml");
+    std::fs::write(&path, text).unwrap();
+    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
+    let scene = Value::String(path.to_string_lossy().into_owned());
+    assert_eq!(i.set_param(vr_of("scene").unwrap(), scene), Status::Ok);
+    i.enter_initialization_mode();
+    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+    let (surge, heave) = (vr_of("surge").unwrap(), vr_of("heave").unwrap());
+    let h = 0.05;
+    let step = |i: &mut Instance, k: u64| {
+        let t = k as f64 * h;
+        assert_eq!(i.set_real(surge, 2.0 * (0.3 * t).sin()), Status::Ok);
+        assert_eq!(i.set_real(heave, 0.5 * (0.8 * t).sin()), Status::Ok);
+        assert_eq!(i.do_step(t, h), Status::Ok, "t = {t} s");
+    };
+    for k in 0..40 {
+        step(&mut i, k);
+    }
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for k in 40..140 {
+        step(&mut i, k);
+    }
+    let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    eprintln!("the clump-weight system's fmi2DoStep: allocations in 100 steps: {during}");
+    assert_eq!(during, 0);
+    std::fs::remove_dir_all(&dir).ok();
 }

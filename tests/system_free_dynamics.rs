@@ -67,7 +67,7 @@ fn a_clump_weight_at_rest_stays_at_its_statics() {
     let sys = case("clump_weight_mooring");
     let mut largest: f64 = 0.0;
     let r = run(&sys, &still, 60.0, 1, &mut |r| {
-        let p = &r.points[0];
+        let p = &r.free.points[0];
         largest = largest.max((p.position - p.static_position).norm());
     });
     eprintln!("the clump's largest distance from its statics over 60 s: {largest:.3e} m");
@@ -77,7 +77,7 @@ fn a_clump_weight_at_rest_stays_at_its_statics() {
         let s = l.sim.statics.top_tension;
         assert!((o.top_tension - s).abs() < 1e-6 * s, "line {}: {} against {s} N", l.name, o.top_tension);
     }
-    assert_eq!(r.points.len(), 1);
+    assert_eq!(r.free.points.len(), 1);
 }
 
 /// One energy balance for the system (17.17): E − E0 = W_vessel + W_water +
@@ -102,7 +102,7 @@ fn the_systems_energy_balance_closes_with_free_points() {
             worst = worst.max(b.residual.abs() / b.exchanged().max(1.0));
         });
         let b = r.energy_balance();
-        let p = &r.points[0];
+        let p = &r.free.points[0];
         eprintln!(
             "{name}: residual {:.3e} J of {:.3e} J exchanged (worst over the run {worst:.3e} relative); W_vessel \
              {:.3e} J, W_water {:.3e} J (the point's {:.3e} J), W_seabed {:.3e} J; the point moved {:.3} m; {} point \
@@ -114,8 +114,8 @@ fn the_systems_energy_balance_closes_with_free_points() {
             p.work_hydro,
             b.work_seabed,
             (p.position - p.static_position).norm(),
-            r.point_iterations,
-            r.trial_iterations,
+            r.free.point_iterations,
+            r.free.trial_iterations,
             r.lines[0].sim.state.steps
         );
         assert!(b.exchanged() > 1e4, "{name}: the vessel worked on the system: {b:?}");
@@ -124,7 +124,7 @@ fn the_systems_energy_balance_closes_with_free_points() {
         // the sum of the lines' and the points' own balances is the system's
         let parts: f64 =
             r.outputs().iter().zip(&r.lines).map(|(o, l)| o.energy_balance_residual(l.sim.initial_energy)).sum::<f64>()
-                + r.points.iter().map(|p| p.energy_balance_residual()).sum::<f64>();
+                + r.free.points.iter().map(|p| p.energy_balance_residual()).sum::<f64>();
         assert!((parts - b.residual).abs() < 1e-6 * b.exchanged(), "{parts} against {}", b.residual);
     }
 }
@@ -139,10 +139,10 @@ fn one_and_two_threads_give_the_same_bits_with_free_points() {
     for (la, lb) in a.lines.iter().zip(&b.lines) {
         assert_eq!(la.sim.state, lb.sim.state, "line {}", la.name);
     }
-    for (pa, pb) in a.points.iter().zip(&b.points) {
+    for (pa, pb) in a.free.points.iter().zip(&b.free.points) {
         assert_eq!((pa.position, pa.velocity), (pb.position, pb.velocity), "point {}", pa.name);
     }
-    assert!((a.points[0].position - a.points[0].static_position).norm() > 1e-2, "the joint moved");
+    assert!((a.free.points[0].position - a.free.points[0].static_position).norm() > 1e-2, "the joint moved");
 }
 
 /// A neutrally buoyant mass m (with added mass m_a = C_a ρ V) between two
@@ -210,7 +210,7 @@ newton_tolerance = 1e-10
     let omega_h = 2.0 / h * (omega * h / 2.0).atan();
     let mut r = SystemRun::new(&sys).unwrap();
     r.start(&still(0.0));
-    let z0 = r.points[0].static_position.z;
+    let z0 = r.free.points[0].static_position.z;
     r.set_point_velocity(0, V3::new(0.0, 0.0, 0.01));
     // upward zero crossings of z − z0, interpolated linearly
     let (mut crossings, mut last) = (Vec::new(), (0.0, 0.0));
@@ -218,7 +218,7 @@ newton_tolerance = 1e-10
     for k in 1..=n {
         let t = k as f64 * h;
         r.advance_to(t, &still, 1).unwrap();
-        let dz = r.points[0].position.z - z0;
+        let dz = r.free.points[0].position.z - z0;
         if k > 1 && last.1 < 0.0 && dz >= 0.0 {
             crossings.push(last.0 + (t - last.0) * (-last.1) / (dz - last.1));
         }
@@ -287,7 +287,7 @@ time_step = 0.002
     let h = sys.analysis.time_step;
     for k in 1..=(5.0 / h).round() as usize {
         r.advance_to(k as f64 * h, &still, 1).unwrap();
-        deepest = deepest.min(r.points[0].position.z);
+        deepest = deepest.min(r.free.points[0].position.z);
         let b = r.energy_balance();
         worst = worst.max(b.residual.abs() / (0.5 * 1e4 * 1.0));
     }

@@ -13,6 +13,7 @@ use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
+use crate::sim::system_dynamics::{POINT_VALUES, SystemStepError};
 use std::path::PathBuf;
 
 /// fmi2Status.
@@ -142,6 +143,8 @@ pub struct Saved {
     work: [u64; 4],
     /// A system's other lines' states, in order (§17.6).
     others: Vec<State>,
+    /// A system's free points' states, in order (§17.7).
+    points: Vec<[f64; POINT_VALUES]>,
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
@@ -240,6 +243,9 @@ pub struct Instance {
     /// A system's lines beyond its first (`sim`), moved by the same vessel
     /// path (docs/theory.md §17.6); empty for a single-line scene.
     others: Vec<super::system::OtherLine>,
+    /// A system's free points, stepped with the lines at them (§17.7);
+    /// `None` without free points.
+    free: Option<crate::sim::system_dynamics::FreePoints>,
     /// Which end of a system's first line is on the vessel; `None` for a
     /// single-line scene, which has no line outputs (`LINE.tension_from`, …).
     system_first_end: Option<VesselEnd>,
@@ -364,6 +370,7 @@ impl Instance {
             hf_watch: None,
             sim: None,
             others: Vec::new(),
+            free: None,
             system_first_end: None,
             step_start: None,
             scene: None,
@@ -407,6 +414,7 @@ impl Instance {
         self.hf_watch = None;
         self.sim = None;
         self.others.clear();
+        self.free = None;
         self.step_start = None;
         self.scene = None;
         self.outputs = None;
@@ -503,6 +511,7 @@ impl Instance {
             // a static state built early (outputs read before) starts anew
             self.sim = None;
             self.others.clear();
+            self.free = None;
             self.outputs = None;
         }
         self.start_time = start_time;
@@ -511,13 +520,13 @@ impl Instance {
 
     /// The scene with the parameters the master set (a system's: its first line's).
     fn build_scene(&self) -> Result<Scene, String> {
-        Ok(self.build_scenes()?.0.swap_remove(0).0)
+        Ok(self.build_scenes()?.0.scenes.swap_remove(0).0)
     }
 
     /// The scene with the parameters the master set: one for a single-line
     /// scene; a system's lines, in order (its first the instance's line,
     /// [`super::system::line_scenes`]).
-    fn build_scenes(&self) -> Result<(Vec<(Scene, VesselEnd)>, bool), String> {
+    fn build_scenes(&self) -> Result<(super::system::LineScenes, bool), String> {
         let name = match &self.params[super::vars::vr_of("scene").unwrap() as usize] {
             Some((Value::String(s), _)) => s.clone(),
             _ => "catenary".into(),
@@ -577,7 +586,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok((vec![(scene, VesselEnd::From)], false))
+        Ok((super::system::LineScenes { scenes: vec![(scene, VesselEnd::From)], free: None }, false))
     }
 
     /// fmi2EnterInitializationMode.
@@ -602,13 +611,22 @@ impl Instance {
         if self.sim.is_some() {
             return Status::Ok;
         }
-        let (mut scenes, is_system) = match self.build_scenes() {
+        let (super::system::LineScenes { mut scenes, free: free_system }, is_system) = match self.build_scenes() {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
+        // a system with free points: its lines from its statics, the points
+        // in equilibrium (§17.4), as the command line's run builds them
+        let (mut built, mut free) = match free_system.as_ref().map(crate::sim::system_dynamics::build) {
+            Some(Ok((lines, free))) => (Some(lines.into_iter()), Some(free)),
+            Some(Err(e)) => return self.fail(&format!("initialisation failed: {e}")),
+            None => (None, None),
+        };
+        let first_built = built.as_mut().and_then(|lines| lines.next());
         // a system's lines beyond its first (docs/theory.md §17.6)
         let other_scenes = scenes.split_off(1);
         let (scene, first_end) = scenes.swap_remove(0);
+        let scene = first_built.as_ref().map_or(scene, |l| l.scene.clone());
         self.system_first_end = is_system.then_some(first_end);
         // `accuracy` (docs/theory.md §16.12): the numerics measured by pilots
         // of the design motion in the scene's sea (the master's motion is not
@@ -625,7 +643,7 @@ impl Instance {
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
         };
         self.scene = Some(scene.clone());
-        let mut sim = match Simulation::from_scene(&scene) {
+        let mut sim = match first_built.map(|l| Ok(l.sim)).unwrap_or_else(|| Simulation::from_scene(&scene)) {
             Ok(s) => s,
             Err(e) => return self.fail(&format!("initialisation failed: {e}")),
         };
@@ -634,7 +652,17 @@ impl Instance {
         let inp = self.split_inputs();
         let coupling = self.coupling();
         let m = self.history.start(coupling, &sim.vessel, &inp);
-        if m.displacement.norm() > 0.0 || m.rotation != crate::math::M3::identity() {
+        let moved = m.displacement.norm() > 0.0 || m.rotation != crate::math::M3::identity();
+        if moved && free.is_some() {
+            return self.fail(&format!(
+                "initialisation failed: a system with free points starts at rest in its statics at the neutral \
+                 pose in this version: the vessel's displacement and angle inputs at the start must be zero (they \
+                 move its first vessel point {:.3} m); start the vessel model at its neutral pose, or give the \
+                 system's points there (docs/guide/systems.md)",
+                m.displacement.norm()
+            ));
+        }
+        if moved {
             // the statics with the hang-off there (§7.7): not the scene's with one node moved
             if m.displacement.norm() > 0.0
                 && let Err(e) = sim.move_statics(&scene, m.displacement)
@@ -668,13 +696,42 @@ impl Instance {
             // a start pose set in initialisation is the vessel's, not an absolute position
             self.watch.forget_samples();
         }
-        sim.start(m);
-        sim.integrator.invalidate_tangent();
-        let mut outputs = sim.outputs();
+        if free.is_none() {
+            sim.start(m);
+            sim.integrator.invalidate_tangent();
+        }
         // a system's other lines, each in its statics at its vessel point
         // moved as the first line's hang-off is (§17.6)
         let mut others = Vec::with_capacity(other_scenes.len());
-        for (line_scene, vessel_end) in other_scenes {
+        for l in built.into_iter().flatten() {
+            // (a system with free points: at its statics, started below)
+            let design = crate::sim::design::Design::new(&l.scene);
+            for w in design.report(&l.scene, &l.sim.integrator, &l.sim.state).1 {
+                self.log_once(Status::Warning, Category::Warning, &format!("line '{}': {w}", l.name));
+            }
+            let mut other = l.sim;
+            other.state.time = self.start_time;
+            let step_start = other.state.clone();
+            others.push(super::system::OtherLine {
+                name: l.name,
+                vessel_end: l.vessel_end,
+                scene: l.scene,
+                sim: other,
+                step_start,
+            });
+        }
+        if let Some(free) = free.as_mut() {
+            // every line's hang-off on its motion at the start, a free point's at the point (§17.7)
+            let history = &self.history;
+            let path = |v: &crate::sim::vessel::Vessel, _: f64| history.start(coupling, v, &inp);
+            let first_name = scene.name.as_str();
+            free.start_lines(&mut super::system::FmuLines { first: &mut sim, first_name, others: &mut others }, &path);
+            sim.integrator.invalidate_tangent();
+            for o in &mut others {
+                o.sim.integrator.invalidate_tangent();
+            }
+        }
+        for (line_scene, vessel_end) in other_scenes.into_iter().filter(|_| free.is_none()) {
             let name = line_scene.name.clone();
             let mut other = match Simulation::from_scene(&line_scene) {
                 Ok(s) => s,
@@ -697,10 +754,10 @@ impl Instance {
             }
             other.start(mi);
             other.integrator.invalidate_tangent();
-            super::system::add_line(&mut outputs, &other.outputs());
             let step_start = other.state.clone();
             others.push(super::system::OtherLine { name, vessel_end, scene: line_scene, sim: other, step_start });
         }
+        let outputs = super::system::system_outputs(&sim, &others, free.as_ref());
         // the boundary's invariant: never an output that is not a number
         if let Some(name) = outputs.first_non_finite() {
             return self.fail(&format!(
@@ -737,6 +794,7 @@ impl Instance {
             );
         }
         self.others = others;
+        self.free = free;
         self.last_successful_time = self.start_time;
         self.sim = Some(sim);
         Status::Ok
@@ -965,6 +1023,9 @@ impl Instance {
         for o in &mut self.others {
             o.step_start.clone_from(&o.sim.state);
         }
+        if let Some(free) = self.free.as_mut() {
+            free.checkpoint();
+        }
         // the factorised tangent is carried from one communication step to the
         // next, as within one (modified Newton, theory §5.7); a saved or
         // restored state starts from a new one ([`Instance::save`],
@@ -991,24 +1052,55 @@ impl Instance {
             o.sim.integrator.set_work_bound(bound);
         }
         let mut result = Ok(());
-        let mut failed_line: Option<usize> = None;
+        // who failed in a system: "line 'NAME': " (empty: the free points' Newton, named in its message)
+        let mut failed_line: Option<String> = None;
         let mut f_prev = self.outputs.as_ref().map_or(V3::zeros(), |o| o.top_force);
         let (mut t_prev, mut impulse) = (now, V3::zeros());
+        let first_name = self.scene.as_ref().map_or("", |s| s.name.as_str());
+        let on_vessel = |free: &Option<crate::sim::system_dynamics::FreePoints>, i: usize| {
+            free.as_ref().is_none_or(|f| f.ends[i].on_vessel())
+        };
+        let coupled = |free: &Option<crate::sim::system_dynamics::FreePoints>, i: usize| {
+            free.as_ref().is_some_and(|f| f.ends[i].coupled())
+        };
         'steps: for k in 1..=n {
             let target = if k == n { t_end } else { now + k as f64 * dt };
-            if let Err(e) = sim.advance_to(target, &motion) {
-                result = Err(e);
+            // a system's free points with the lines at them (§17.7)
+            if let Some(free) = self.free.as_mut() {
+                let mut lines = super::system::FmuLines { first: sim, first_name, others: &mut self.others };
+                let vessel_path = |v: &crate::sim::vessel::Vessel, s: f64| path.at_offset(s, v.offset);
+                match free.advance(&mut lines, target, &vessel_path, 1) {
+                    Ok(()) => {}
+                    Err(SystemStepError::Line(e)) => {
+                        (result, failed_line) = (Err(e.error), Some(format!("line '{}': ", e.line)));
+                        break 'steps;
+                    }
+                    Err(SystemStepError::Points(e)) => {
+                        result = Err(RiserError::Points(e));
+                        break 'steps;
+                    }
+                }
+            }
+            if !coupled(&self.free, 0)
+                && let Err(e) = sim.advance_to(target, &motion)
+            {
+                (result, failed_line) = (Err(e), (!self.others.is_empty()).then(|| format!("line '{first_name}': ")));
                 break;
             }
-            let mut f = sim.integrator.top_force(&sim.state);
+            // (the first line's force itself, not added to a zero: the same bits as a single line's)
+            let mut f = if on_vessel(&self.free, 0) { sim.integrator.top_force(&sim.state) } else { V3::zeros() };
             // a system's other lines along the same vessel path at their own vessel points
             for (j, o) in self.others.iter_mut().enumerate() {
-                let offset = o.sim.vessel.offset;
-                if let Err(e) = o.sim.advance_to(target, &|s: f64| path.at_offset(s, offset)) {
-                    (result, failed_line) = (Err(e), Some(j));
-                    break 'steps;
+                if !coupled(&self.free, j + 1) {
+                    let offset = o.sim.vessel.offset;
+                    if let Err(e) = o.sim.advance_to(target, &|s: f64| path.at_offset(s, offset)) {
+                        (result, failed_line) = (Err(e), Some(format!("line '{}': ", o.name)));
+                        break 'steps;
+                    }
                 }
-                f += o.sim.integrator.top_force(&o.sim.state);
+                if on_vessel(&self.free, j + 1) {
+                    f += o.sim.integrator.top_force(&o.sim.state);
+                }
             }
             impulse += (f_prev + f) * (0.5 * (target - t_prev));
             (f_prev, t_prev) = (f, target);
@@ -1022,18 +1114,14 @@ impl Instance {
         for o in &mut self.others {
             o.sim.integrator.set_work_bound(u64::MAX);
         }
-        let failed_line = failed_line.map(|j| self.others[j].name.clone());
         let mut reached = sim.state.time;
-        let mut outputs = sim.outputs();
-        for o in &self.others {
-            super::system::add_line(&mut outputs, &o.sim.outputs());
-        }
+        let mut outputs = super::system::system_outputs(sim, &self.others, self.free.as_ref());
         // the boundary's invariant: never an output that is not a number. A
         // state that gives one is discarded, back to the step's start; a
         // system whose step failed too (its lines at different times: all
-        // back to the step's start, §17.6).
+        // back to the step's start with its free points, §17.6, §17.8).
         let non_finite = outputs.first_non_finite();
-        if non_finite.is_some() || (result.is_err() && !self.others.is_empty()) {
+        if non_finite.is_some() || (result.is_err() && (!self.others.is_empty() || self.free.is_some())) {
             if let Some(start) = &self.step_start {
                 sim.state.clone_from(start);
             }
@@ -1042,14 +1130,15 @@ impl Instance {
                 o.sim.state.clone_from(&o.step_start);
                 o.sim.integrator.invalidate_tangent();
             }
+            if let Some(free) = self.free.as_mut() {
+                free.rollback(now);
+            }
             let at = reached;
             reached = sim.state.time;
-            outputs = sim.outputs();
-            for o in &self.others {
-                super::system::add_line(&mut outputs, &o.sim.outputs());
-            }
+            outputs = super::system::system_outputs(sim, &self.others, self.free.as_ref());
             if let Some(name) = non_finite {
                 result = Err(RiserError::NonFinite { name, time: at });
+                failed_line = None;
             }
         }
         self.outputs = Some(outputs);
@@ -1080,11 +1169,7 @@ impl Instance {
                     ),
                     _ => String::new(),
                 };
-                let line = match (&failed_line, self.others.is_empty()) {
-                    (Some(l), _) => format!("line '{l}': "),
-                    (None, false) => format!("line '{}': ", self.scene.as_ref().map_or("", |s| s.name.as_str())),
-                    (None, true) => String::new(),
-                };
+                let line = failed_line.unwrap_or_default();
                 self.log(
                     Status::Discard,
                     Category::Discard,
@@ -1178,6 +1263,12 @@ impl Instance {
         if let Some((line, q)) = super::system::line_output(vr) {
             return self.get_line_output(vr, line, q);
         }
+        if let Some((point, c)) = super::system::point_output(vr) {
+            return self.get_point_output(vr, point, c);
+        }
+        if let Some((line, q)) = super::system::anchor_output(vr) {
+            return self.get_anchor_output(vr, line, q);
+        }
         let v = self.var(vr, Kind::Real)?;
         Ok(match v.causality {
             Causality::Input => self.inputs[INPUT_NAMES.iter().position(|n| *n == v.name).unwrap_or(0)],
@@ -1208,6 +1299,62 @@ impl Instance {
                 Err(self.fail(&format!("internal error: {} is not finite ({x}); please report it", v.name)))
             }
         })
+    }
+
+    /// A system's free point output (a packaged system FMU's `POINT.x`, …;
+    /// [`super::system::POINT_OUTPUTS`]): free point `point`'s coordinate `c`, m.
+    fn get_point_output(&mut self, vr: u32, point: usize, c: usize) -> Result<f64, Status> {
+        if matches!(self.mode, Instantiated | InitializationMode) {
+            let st = self.initialise();
+            if st != Status::Ok {
+                return Err(st);
+            }
+        }
+        let x = self.free.as_ref().and_then(|f| f.points.get(point)).map(|p| p.position[c]);
+        match x {
+            Some(x) if x.is_finite() => Ok(x),
+            Some(x) => Err(self.fail(&format!("internal error: point output {vr} is not finite ({x})"))),
+            None => {
+                let points = self.free.as_ref().map_or(0, |f| f.points.len());
+                Err(self.fail(&format!(
+                    "unknown value reference {vr} (an output of free point {point}; the scene has {points} free \
+                     point(s))"
+                )))
+            }
+        }
+    }
+
+    /// A system's anchor output (a packaged system FMU's `LINE.anchor_force`,
+    /// `LINE.anchor_uplift_angle`; [`super::system::ANCHOR_OUTPUTS`]): line
+    /// `line`'s quantity `q`, a line with an end at a fixed point.
+    fn get_anchor_output(&mut self, vr: u32, line: usize, q: usize) -> Result<f64, Status> {
+        if matches!(self.mode, Instantiated | InitializationMode) {
+            let st = self.initialise();
+            if st != Status::Ok {
+                return Err(st);
+            }
+        }
+        let fixed = |i: usize| {
+            self.free.as_ref().is_none_or(|f| f.ends[i].anchor_at == crate::sim::system_dynamics::EndAt::Fixed)
+        };
+        let (Some(sim), Some(scene)) = (&self.sim, &self.scene) else { return Err(self.fail("no state yet")) };
+        let at = match line {
+            _ if self.system_first_end.is_none() || line > self.others.len() || !fixed(line) => None,
+            0 => Some((scene.analysis.model, sim)),
+            k => self.others.get(k - 1).map(|o| (o.scene.analysis.model, &o.sim)),
+        };
+        let Some((model, sim)) = at else {
+            return Err(self.fail(&format!(
+                "unknown value reference {vr} (an anchor output of line {line}: a system's line with an end at a \
+                 fixed point)"
+            )));
+        };
+        let x = super::system::anchor_values(model, &sim.state, &sim.outputs())[q];
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.fail(&format!("internal error: anchor output {vr} is not finite ({x})")))
+        }
     }
 
     /// A system's line output (a packaged system FMU's `LINE.tension_from`,
@@ -1368,6 +1515,13 @@ impl Instance {
             }
         }
         let Some(sim) = &self.sim else { return self.fail(&format!("{F}: no state yet")) };
+        if self.free.is_some() {
+            return self.fail(&format!(
+                "{F}: not for a system with free points in this version (its lines' ends at the points move as \
+                 the points re-balance); `riser statics SYSTEM --json` gives the system's 6x6 stiffness with the \
+                 points re-balanced (docs/guide/systems.md)"
+            ));
+        }
         let (rotation, order) = (sim.state.hang_off.rotation, sim.vessel.order);
         let (force, moment) = self.outputs.as_ref().map_or((V3::zeros(), V3::zeros()), |o| (o.top_force, o.top_moment));
         // each line's stiffness at its vessel point, its arm and its force (a
@@ -1502,6 +1656,7 @@ impl Instance {
                     // the start depends on the inputs: rebuild at exit
                     self.sim = None;
                     self.others.clear();
+                    self.free = None;
                     self.outputs = None;
                 }
                 Status::Ok
@@ -1562,6 +1717,7 @@ impl Instance {
         if self.mode != StepComplete {
             self.sim = None;
             self.others.clear();
+            self.free = None;
             self.outputs = None;
         }
         Status::Ok
@@ -1631,6 +1787,7 @@ impl Instance {
         self.scene = None;
         self.sim = None;
         self.others.clear();
+        self.free = None;
         self.outputs = None;
         Status::Ok
     }
@@ -1701,6 +1858,7 @@ impl Instance {
             ramp_start: self.ramp_start,
             work: [self.run_work.0, self.run_work.1, self.step_work.0, self.step_work.1],
             others: self.others.iter().map(|o| o.sim.state.clone()).collect(),
+            points: self.free.as_ref().map_or(Vec::new(), |f| f.points.iter().map(|p| p.values()).collect()),
         })
     }
 
@@ -1718,12 +1876,14 @@ impl Instance {
         };
         if s.state.mesh() != sim.state.mesh()
             || s.others.len() != self.others.len()
+            || s.points.len() != self.free.as_ref().map_or(0, |f| f.points.len())
             || s.others.iter().zip(&self.others).any(|(a, o)| a.mesh() != o.sim.state.mesh())
         {
             return self.fail("the FMU state has another mesh");
         }
         if !s.state.is_finite()
             || !s.others.iter().all(State::is_finite)
+            || !s.points.iter().flatten().all(|x| x.is_finite())
             || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite())
             || !s.ramp_start.is_finite()
         {
@@ -1738,14 +1898,22 @@ impl Instance {
             o.step_start.clone_from(&o.sim.state);
             o.sim.state.clone_from(saved);
         }
-        let mut outputs = sim.outputs();
-        for o in &self.others {
-            super::system::add_line(&mut outputs, &o.sim.outputs());
+        let kept_time = start.time;
+        if let Some(free) = self.free.as_mut() {
+            free.checkpoint();
+            for (p, v) in free.points.iter_mut().zip(&s.points) {
+                p.set_values(v);
+            }
+            free.time = s.state.time;
         }
+        let outputs = super::system::system_outputs(sim, &self.others, self.free.as_ref());
         if let Some(name) = outputs.first_non_finite() {
             sim.state.clone_from(start);
             for o in &mut self.others {
                 o.sim.state.clone_from(&o.step_start);
+            }
+            if let Some(free) = self.free.as_mut() {
+                free.rollback(kept_time);
             }
             return self.fail(&format!("the FMU state gives a non-finite {name}; the instance keeps its state"));
         }
@@ -1759,6 +1927,9 @@ impl Instance {
             sim.set_ramps_start(s.ramp_start);
             for o in &mut self.others {
                 o.sim.set_ramps_start(s.ramp_start);
+            }
+            if let Some(free) = self.free.as_mut() {
+                free.set_ramps_start(s.ramp_start);
             }
             self.ramp_start = s.ramp_start;
         }
@@ -1797,15 +1968,18 @@ impl Instance {
         extra.extend(s.work.iter().map(|&w| w as f64));
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
-        if s.others.is_empty() {
+        if s.others.is_empty() && self.free.is_none() {
             return out;
         }
-        // a system: each line's block, framed (§17.6)
+        // a system: each line's block, framed (§17.6), and its free points' (§17.7)
         let mut blocks = vec![out];
         for o in &s.others {
             let mut b = Vec::new();
             o.write_bytes(&[], &mut b);
             blocks.push(b);
+        }
+        if self.free.is_some() {
+            blocks.push(s.points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect());
         }
         super::system::frame(&blocks)
     }
@@ -1817,13 +1991,24 @@ impl Instance {
         };
         // a system's: its lines' blocks (§17.6)
         let mut others = Vec::with_capacity(self.others.len());
+        let mut points = Vec::new();
         let mut bytes = bytes;
-        if !self.others.is_empty() {
-            let blocks = match super::system::unframe(bytes, 1 + self.others.len()) {
+        if !self.others.is_empty() || self.free.is_some() {
+            let n_points = self.free.as_ref().map(|f| f.points.len());
+            let blocks = match super::system::unframe(bytes, 1 + self.others.len() + usize::from(n_points.is_some())) {
                 Ok(b) => b,
                 Err(e) => return Err(self.fail(&e)),
             };
-            for (b, o) in blocks[1..].iter().zip(&self.others) {
+            if let Some(n) = n_points {
+                let b = blocks[blocks.len() - 1];
+                if b.len() != n * POINT_VALUES * 8 {
+                    return Err(self.fail("the serialized FMU state's free points have an unexpected layout"));
+                }
+                let x: Vec<f64> =
+                    b.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes"))).collect();
+                points = x.chunks_exact(POINT_VALUES).map(|c| c.try_into().expect("a point's values")).collect();
+            }
+            for (b, o) in blocks[1..=self.others.len()].iter().zip(&self.others) {
                 match State::read_bytes(b, o.sim.state.mesh()) {
                     Ok((state, extra)) if extra.is_empty() => others.push(state),
                     Ok(_) => return Err(self.fail("serialized FMU state has an unexpected layout")),
@@ -1866,6 +2051,7 @@ impl Instance {
                     ramp_start,
                     work,
                     others,
+                    points,
                 })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
@@ -2715,6 +2901,118 @@ mod system_tests {
         let one = single.save().unwrap();
         assert!(b.deserialize(&single.serialize(&one)).is_err());
         assert!(single.deserialize(&bytes).is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    const CLUMP: &str = include_str!("../../docs/cases/clump_weight_mooring.toml");
+
+    /// The clump-weight mooring (docs/cases) at 20 and 18 elements, its
+    /// chain with MoorDyn's OC3 drag and added mass (C_d 1.6, C_a 1), in a
+    /// uniform current of 1.5 m/s across it (along y) grown over 20 s from the
+    /// still-water statics, written to `dir`.
+    fn clump_file(dir: &std::path::Path) -> (String, SystemScene) {
+        let text = CLUMP
+            .replace("n_elements = 60", "n_elements = 20")
+            .replace("n_elements = 52", "n_elements = 18")
+            .replace("torsional_stiffness = 0.0", "torsional_stiffness = 0.0\ncd_normal = 1.6\nca_normal = 1.0")
+            + "\n[current]\nprofile = \"uniform\"\nspeed = 1.5\ndirection = [0.0, 1.0]\nramp = 20.0\n";
+        let path = dir.join("clump.toml");
+        std::fs::write(&path, &text).unwrap();
+        (path.to_string_lossy().into_owned(), SystemScene::from_toml(&text, "clump").unwrap())
+    }
+
+    /// A system with free points in the FMU is the command line's run
+    /// (`SystemRun`, the same stepper, §17.7): with the vessel held (its
+    /// inputs zero, so that the FMU's input path and the command line's
+    /// motion are the same, at rest) and a current pushing the clump and its
+    /// chains 30 s, the loads on the vessel and the clump's position agree
+    /// to round-off (the step ends' times are summed in the FMU, multiplied
+    /// in the command line: within 1e-9 of the force's scale, a tenth of the
+    /// Newton tolerance, and 1e-9 m); the
+    /// clump's outputs (`clump.x`, …) are its position; its state saved,
+    /// serialized and restored into another instance continues bit for bit.
+    #[test]
+    fn free_points_step_as_the_command_lines_run_and_their_state_continues() {
+        use crate::sim::system_dynamics::SystemRun;
+        let dir = std::env::temp_dir().join(format!("riser-fmu-free-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (path, sys) = clump_file(&dir);
+        let (mut fmu, st) = instance(&path, &[]);
+        assert_eq!(st, Status::Ok);
+        let mut run = SystemRun::new(&sys).unwrap();
+        let rest = crate::sim::vessel::VesselMotion {
+            displacement: V3::zeros(),
+            velocity: V3::zeros(),
+            angles: [0.0; 3],
+            body_rates: V3::zeros(),
+        };
+        run.start(&rest);
+        let h = 0.05;
+        let clump = |i: &mut Instance| -> V3 {
+            V3::from_fn(|c, _| i.get_real(super::super::system::POINT_VR_BASE + c as u32).unwrap())
+        };
+        assert_eq!(clump(&mut fmu), run.free.points[0].position, "the statics");
+        // the anchor's force and uplift (the lower chain's; the upper has no fixed end) are the statics'
+        let st = crate::sim::system::solve_system(&sys, &[0.0; 6], false).unwrap();
+        let anchor = super::super::system::ANCHOR_VR_BASE;
+        let (force, uplift) = (fmu.get_real(anchor).unwrap(), fmu.get_real(anchor + 1).unwrap());
+        let f0 = st.lines[0].anchor_force.unwrap().norm();
+        assert!((force - f0).abs() <= 1e-6 * f0, "{force} vs {f0}");
+        assert_eq!(uplift, st.lines[0].anchor_uplift_angle.unwrap());
+        let (mut worst_f, mut worst_x, mut scale) = (0.0f64, 0.0f64, 0.0f64);
+        for k in 0..600 {
+            assert_eq!(fmu.do_step(k as f64 * h, h), Status::Ok);
+            run.advance_to((k + 1) as f64 * h, &|_| rest, 1).unwrap();
+            let f = V3::new(
+                fmu.get_real(vr_of("top_force_x").unwrap()).unwrap(),
+                fmu.get_real(vr_of("top_force_y").unwrap()).unwrap(),
+                fmu.get_real(vr_of("top_force_z").unwrap()).unwrap(),
+            );
+            let cli = run.resultant_on_vessel(&run.outputs()).force;
+            scale = scale.max(cli.norm());
+            worst_f = worst_f.max((f - cli).norm());
+            worst_x = worst_x.max((clump(&mut fmu) - run.free.points[0].position).norm());
+        }
+        let moved = (run.free.points[0].position - run.free.points[0].static_position).norm();
+        eprintln!(
+            "the FMU against the command line: force {worst_f:.3e} N of {scale:.3e} N, clump {worst_x:.3e} m of a {moved:.2} m drift"
+        );
+        assert!(moved > 1.0, "the current moved the clump {moved} m");
+        assert!(worst_f <= 1e-9 * scale && worst_x <= 1e-9, "{worst_f} N, {worst_x} m");
+        // the system's energy balance in the FMU's outputs (17.17): what the current's drag did
+        let get = |i: &mut Instance, n: &str| i.get_real(vr_of(n).unwrap()).unwrap();
+        let b = run.energy_balance();
+        let e = get(&mut fmu, "total_energy");
+        assert!((e - b.energy).abs() <= 1e-9 * b.energy.abs(), "{e} vs {}", b.energy);
+        assert!((get(&mut fmu, "work_hydro") - b.work_water).abs() <= 1e-9 * b.work_water.abs());
+        // saved, serialized, restored into another instance: the same bits on
+        let saved = fmu.save().unwrap();
+        let bytes = fmu.serialize(&saved);
+        let (mut other, _) = instance(&path, &[]);
+        let back = other.deserialize(&bytes).unwrap();
+        assert_eq!(other.restore(&back), Status::Ok);
+        for k in 600..640 {
+            let t = k as f64 * h;
+            assert_eq!(fmu.do_step(t, h), Status::Ok);
+            assert_eq!(other.do_step(t, h), Status::Ok);
+            assert_eq!(loads(&mut fmu), loads(&mut other), "t = {} s", t + h);
+            assert_eq!(clump(&mut fmu), clump(&mut other));
+        }
+        // a step that fails (the vessel thrown 300 m away from the anchor in one step: the chains
+        // cannot follow) is discarded with every line and the clump back at its start
+        let (before, at) = (loads(&mut fmu), clump(&mut fmu));
+        let t = 640.0 * h;
+        assert_eq!(fmu.set_real(vr_of("surge").unwrap(), 300.0), Status::Ok);
+        assert_eq!(fmu.do_step(t, h), Status::Discard);
+        assert_eq!((loads(&mut fmu), clump(&mut fmu)), (before, at));
+        assert!((fmu.last_successful_time - t).abs() < 1e-9, "{}", fmu.last_successful_time);
+        // (an error puts the instance in Error: last) the upper chain has no anchor; the directional
+        // derivative is refused, named (the points re-balance)
+        assert!(other.get_real(anchor + 2).is_err(), "the upper chain has no anchor");
+        let mut d = [0.0];
+        let st =
+            other.directional_derivative(&[vr_of("top_force_x").unwrap()], &[vr_of("surge").unwrap()], &[1.0], &mut d);
+        assert_eq!(st, Status::Error);
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -4,13 +4,16 @@
 //! outputs, `top_tension`, `shape[k]`, … are that line's); the others are
 //! [`OtherLine`]s moved by the same vessel path at their own vessel
 //! points; the loads on the vessel and the energies are the system's sums
-//! (17.11, 17.12).
+//! (17.11, 17.12). Free points (joints, clump weights, buoys) step with the
+//! lines at them by the command line's stepper ([`FreePoints`], §17.7), the
+//! lines handed to it one at a time ([`FmuLines`]), allocating nothing.
 
 use super::vars::{Kind, Variable};
 use crate::model::{Outputs, State};
 use crate::scene::Scene;
-use crate::scene::system::{SystemScene, VesselEnd};
+use crate::scene::system::{PointKind, SystemScene, VesselEnd};
 use crate::sim::Simulation;
+use crate::sim::system_dynamics::{FreePoints, LineSet};
 
 /// A line of the system beyond its first, in a run.
 pub struct OtherLine {
@@ -51,10 +54,10 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// [`SYSTEM_WIDE`] applied to every line; any other must read as the
 /// first line's scene reads it (a master that sets every start value of
 /// the generic FMU sets the default scene's), else it is refused, named.
-pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<Vec<(Scene, VesselEnd)>, String> {
-    if let Some(m) = crate::sim::system_dynamics::free_points_refused(sys, "the FMU") {
-        return Err(m);
-    }
+/// With free points, also the system with [`SYSTEM_WIDE`]'s values set
+/// (its lines' scenes then come from its statics, §17.4: those here, at
+/// the points' initial positions, read its parameters back).
+pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<LineScenes, String> {
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }
@@ -88,7 +91,98 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
             SYSTEM_WIDE.join(", ")
         ));
     }
-    Ok(scenes)
+    let free = sys.points.iter().any(|p| p.kind == PointKind::Free);
+    let system = free.then(|| {
+        // the first line's scene carries the master's values (the lines' scenes copy the system's)
+        let set = &scenes[0].0;
+        let mut s = sys.clone();
+        s.analysis.time_step = set.analysis.time_step;
+        s.analysis.newton_tolerance = set.analysis.newton_tolerance;
+        s.analysis.structural_damping = set.analysis.structural_damping;
+        s.analysis.rho_infinity = set.analysis.rho_infinity;
+        s.analysis.static_current = set.analysis.static_current;
+        s.current.ramp = set.current.ramp;
+        s
+    });
+    Ok(LineScenes { scenes, free: system })
+}
+
+/// A system's lines as the FMU builds them ([`line_scenes`]).
+pub struct LineScenes {
+    /// Each line's single-line scene and which of its ends is on the vessel.
+    pub scenes: Vec<(Scene, VesselEnd)>,
+    /// With free points: the system with the master's numerics.
+    pub free: Option<SystemScene>,
+}
+
+/// A system's lines as its free points' stepper reaches them in the FMU:
+/// the instance's line (the first) and its others, one at a time.
+pub struct FmuLines<'a> {
+    pub first: &'a mut Simulation,
+    pub first_name: &'a str,
+    pub others: &'a mut [OtherLine],
+}
+
+impl LineSet for FmuLines<'_> {
+    fn sim(&mut self, i: usize) -> &mut Simulation {
+        if i == 0 { self.first } else { &mut self.others[i - 1].sim }
+    }
+
+    fn name(&self, i: usize) -> &str {
+        if i == 0 { self.first_name } else { &self.others[i - 1].name }
+    }
+}
+
+/// The outputs of a system of the first line `first`, the others `others`
+/// and the free points `free`: the single-line outputs the first line's;
+/// without free points, every line's loads on the vessel and energies
+/// summed ([`add_line`], 17.11, 17.12); with them, the loads of the lines
+/// whose hang-off is on the vessel, and the system's energies and works as
+/// its balance counts them (17.17): the points' energies and the water's
+/// work on them added, the works of the points on their lines (a hang-off
+/// or a cable's anchor at a point) internal and left out.
+pub fn system_outputs(first: &Simulation, others: &[OtherLine], free: Option<&FreePoints>) -> Outputs {
+    let mut sum = first.outputs();
+    let Some(free) = free else {
+        for o in others {
+            add_line(&mut sum, &o.sim.outputs());
+        }
+        return sum;
+    };
+    let lines = std::iter::once(sum).chain(others.iter().map(|o| o.sim.outputs()));
+    let mut total = sum;
+    clear_sums(&mut total);
+    for (mut o, ends) in lines.zip(&free.ends) {
+        if !ends.on_vessel() {
+            o.top_force = crate::math::V3::zeros();
+            o.top_moment = crate::math::V3::zeros();
+            o.vessel_force = crate::math::V3::zeros();
+            o.vessel_moment = crate::math::V3::zeros();
+            o.work_top = 0.0;
+        }
+        if matches!(ends.anchor_at, crate::sim::system_dynamics::EndAt::Free(_)) {
+            o.work_anchor = 0.0;
+        }
+        add_line(&mut total, &o);
+    }
+    for p in &free.points {
+        let kinetic = 0.5 * p.mass * p.velocity.norm_squared();
+        let potential = p.potential(p.position);
+        total.kinetic_energy += kinetic;
+        total.potential_energy += potential;
+        total.total_energy += kinetic + potential;
+        total.work_hydro += p.work_hydro;
+    }
+    total
+}
+
+/// Zeroes the quantities [`add_line`] sums.
+fn clear_sums(o: &mut Outputs) {
+    let zero = crate::math::V3::zeros();
+    (o.top_force, o.top_moment, o.vessel_force, o.vessel_moment) = (zero, zero, zero, zero);
+    (o.total_energy, o.kinetic_energy, o.strain_energy, o.potential_energy) = (0.0, 0.0, 0.0, 0.0);
+    (o.work_top, o.work_hydro, o.work_anchor, o.work_seabed) = (0.0, 0.0, 0.0, 0.0);
+    (o.dissipated_energy, o.algorithmic_dissipation) = (0.0, 0.0);
 }
 
 /// Adds line `other`'s loads on the vessel and its energies to the
@@ -177,8 +271,53 @@ pub const LINE_OUTPUTS: [(&str, &str, &str); 4] = [
 
 /// Which line and quantity a system output's value reference is.
 pub fn line_output(vr: u32) -> Option<(usize, usize)> {
-    let k = vr.checked_sub(SYSTEM_VR_BASE)? as usize;
-    Some((k / LINE_OUTPUTS.len(), k % LINE_OUTPUTS.len()))
+    item_output(vr, SYSTEM_VR_BASE, POINT_VR_BASE, LINE_OUTPUTS.len())
+}
+
+/// Which item and quantity value reference `vr` is in the range [`base`,
+/// `end`) of `width` quantities an item.
+fn item_output(vr: u32, base: u32, end: u32, width: usize) -> Option<(usize, usize)> {
+    let k = (vr < end).then(|| vr.checked_sub(base))?? as usize;
+    Some((k / width, k % width))
+}
+
+/// The first value reference of a system's free points' outputs: free
+/// point `k`'s (in the scene's order of its free points) coordinate `c`
+/// ([`POINT_OUTPUTS`]) is `POINT_VR_BASE + POINT_OUTPUTS.len() · k + c`.
+pub const POINT_VR_BASE: u32 = 200_000;
+
+/// Each free point's outputs in a packaged system FMU: name suffix, unit, description.
+pub const POINT_OUTPUTS: [(&str, &str, &str); 3] = [
+    ("x", "m", "global x of the free point (the system's frame)"),
+    ("y", "m", "global y of the free point"),
+    ("z", "m", "global z of the free point (up)"),
+];
+
+/// Which free point and coordinate a point output's value reference is.
+pub fn point_output(vr: u32) -> Option<(usize, usize)> {
+    item_output(vr, POINT_VR_BASE, ANCHOR_VR_BASE, POINT_OUTPUTS.len())
+}
+
+/// The first value reference of a system's anchors' outputs: line `i`'s
+/// (a line with an end at a fixed point) quantity `q` ([`ANCHOR_OUTPUTS`])
+/// is `ANCHOR_VR_BASE + ANCHOR_OUTPUTS.len() · i + q`.
+pub const ANCHOR_VR_BASE: u32 = 300_000;
+
+/// Each anchor's outputs in a packaged system FMU (on its line): name suffix, unit, description.
+pub const ANCHOR_OUTPUTS: [(&str, &str, &str); 2] = [
+    ("anchor_force", "N", "the magnitude of its force on its anchor (a fixed point)"),
+    ("anchor_uplift_angle", "deg", "its angle above the horizontal at its anchor"),
+];
+
+/// Which line and quantity an anchor output's value reference is.
+pub fn anchor_output(vr: u32) -> Option<(usize, usize)> {
+    item_output(vr, ANCHOR_VR_BASE, u32::MAX, ANCHOR_OUTPUTS.len())
+}
+
+/// The values of [`ANCHOR_OUTPUTS`] of a line (model `model`) at its state
+/// `state` with outputs `o`: |F| (N) and the uplift angle (deg, §17.1's).
+pub fn anchor_values(model: crate::scene::Model, state: &State, o: &Outputs) -> [f64; 2] {
+    [o.bottom_force.norm(), crate::sim::system::anchor_uplift_angle(model, &state.config)]
 }
 
 /// The values of [`LINE_OUTPUTS`] of a line whose vessel end is `vessel_end`, of its outputs `o`.
@@ -222,20 +361,33 @@ pub fn model_description(sys: &SystemScene, resource: &str) -> Result<String, St
         .ok_or("the model description has no initial unknown of top_tension")?
         .to_string();
     let (mut vars, mut outputs, mut unknowns) = (String::new(), String::new(), String::new());
+    // each line's outputs, each free point's, each anchor's (names are identifiers: no escaping)
+    let mut items = Vec::new();
     for (i, l) in sys.lines.iter().enumerate() {
-        for (q, (suffix, unit, what)) in LINE_OUTPUTS.iter().enumerate() {
-            let vr = SYSTEM_VR_BASE + (LINE_OUTPUTS.len() * i + q) as u32;
-            let index = n_vars + 1 + LINE_OUTPUTS.len() * i + q;
-            vars.push_str(&format!(
-                "    <ScalarVariable name=\"{}.{suffix}\" valueReference=\"{vr}\" description=\"line {}: {what}\" \
-                 causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real unit=\"{unit}\"/>\n    \
-                 </ScalarVariable>\n",
-                l.name,
-                xml_escape(&l.name)
-            ));
-            outputs.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"\"/>\n"));
-            unknowns.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"{initial}\"/>\n"));
+        for (q, o) in LINE_OUTPUTS.iter().enumerate() {
+            items.push((&l.name, "line", SYSTEM_VR_BASE + (LINE_OUTPUTS.len() * i + q) as u32, o));
         }
+    }
+    let free = sys.points.iter().filter(|p| p.kind == PointKind::Free);
+    for (k, p) in free.enumerate() {
+        for (c, o) in POINT_OUTPUTS.iter().enumerate() {
+            items.push((&p.name, "free point", POINT_VR_BASE + (POINT_OUTPUTS.len() * k + c) as u32, o));
+        }
+    }
+    for (i, l) in sys.lines.iter().enumerate().filter(|(i, _)| sys.ends(*i).2.kind == PointKind::Fixed) {
+        for (q, o) in ANCHOR_OUTPUTS.iter().enumerate() {
+            items.push((&l.name, "line", ANCHOR_VR_BASE + (ANCHOR_OUTPUTS.len() * i + q) as u32, o));
+        }
+    }
+    for (k, (name, what_item, vr, (suffix, unit, what))) in items.into_iter().enumerate() {
+        let index = n_vars + 1 + k;
+        vars.push_str(&format!(
+            "    <ScalarVariable name=\"{name}.{suffix}\" valueReference=\"{vr}\" description=\"{what_item} {name}: \
+             {what}\" causality=\"output\" variability=\"continuous\" initial=\"calculated\">\n      <Real \
+             unit=\"{unit}\"/>\n    </ScalarVariable>\n"
+        ));
+        outputs.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"\"/>\n"));
+        unknowns.push_str(&format!("      <Unknown index=\"{index}\" dependencies=\"{initial}\"/>\n"));
     }
     let insert = |text: &str, before: &str, what: &str| -> Result<String, String> {
         let k = text.find(before).ok_or(format!("the model description has no {before}"))?;

@@ -52,6 +52,11 @@ pub struct BandedSystem {
     pub values: Vec<f64>,
     factorized: bool,
     band: BandLu,
+    /// The Schur complement's scratch ([`BandedSystem::schur_complement_into`]):
+    /// the driven rows on the interior and the right-hand sides, n each,
+    /// grown once.
+    schur_rows: Vec<f64>,
+    schur_cols: Vec<f64>,
 }
 
 /// The diagonal stays the pivot while it is at least this fraction of the
@@ -235,6 +240,8 @@ impl BandedSystem {
             values,
             factorized: false,
             band: BandLu::new(n, block - 1, block - 1),
+            schur_rows: Vec::new(),
+            schur_cols: Vec::new(),
         })
     }
 
@@ -348,33 +355,62 @@ impl BandedSystem {
     /// rows' residuals per unit move of the driven unknowns with the interior
     /// re-solved; row-major, `driven.len()` square. Leaves the matrix with
     /// `fixed` constrained and factorised (a Newton iteration may go on with
-    /// it). Allocates: for stiffness reports and systems' ends, not a step.
+    /// it). Allocates its result: for stiffness reports; a step's is
+    /// [`BandedSystem::schur_complement_into`].
     pub fn schur_complement(&mut self, driven: &[usize], fixed: &[usize]) -> Result<Vec<f64>, LinearSolveError> {
+        let mut s = vec![0.0; driven.len() * driven.len()];
+        self.schur_complement_into(driven, fixed, &mut s)?;
+        Ok(s)
+    }
+
+    /// [`BandedSystem::schur_complement`] into `s` (`driven.len()` square,
+    /// row-major), allocating nothing once its scratch has grown (the first
+    /// call): a system's free points condense their lines' step tangents
+    /// on their ends every Newton iteration (docs/theory.md (17.15)).
+    pub fn schur_complement_into(
+        &mut self,
+        driven: &[usize],
+        fixed: &[usize],
+        s: &mut [f64],
+    ) -> Result<(), LinearSolveError> {
         let (n, nd) = (self.n, driven.len());
+        assert_eq!(s.len(), nd * nd, "the Schur complement's size");
         let interior = |k: usize| fixed.binary_search(&k).is_err();
-        let mut s = vec![0.0; nd * nd];
         for (a, &i) in driven.iter().enumerate() {
             for (b, &j) in driven.iter().enumerate() {
                 s[a * nd + b] = self.get(i, j);
             }
         }
         // K_di (the driven rows on the interior) and the right-hand sides K_id e_b
-        let rows: Vec<Vec<f64>> =
-            driven.iter().map(|&i| (0..n).map(|k| if interior(k) { self.get(i, k) } else { 0.0 }).collect()).collect();
-        let mut cols: Vec<Vec<f64>> =
-            driven.iter().map(|&j| (0..n).map(|k| if interior(k) { self.get(k, j) } else { 0.0 }).collect()).collect();
+        let (mut rows, mut cols) = (std::mem::take(&mut self.schur_rows), std::mem::take(&mut self.schur_cols));
+        rows.resize(nd * n, 0.0);
+        cols.resize(nd * n, 0.0);
+        for (a, &i) in driven.iter().enumerate() {
+            for k in 0..n {
+                rows[a * n + k] = if interior(k) { self.get(i, k) } else { 0.0 };
+                cols[a * n + k] = if interior(k) { self.get(k, i) } else { 0.0 };
+            }
+        }
         for &i in fixed {
             self.constrain(i);
         }
-        self.factorize()?;
-        for (b, y) in cols.iter_mut().enumerate() {
+        let mut solved = self.factorize();
+        for b in 0..nd {
+            if solved.is_err() {
+                break;
+            }
             // y = K_ii⁻¹ K_id e_b (the fixed rows' right-hand sides zero: y_f = 0)
-            self.solve_in_place(y)?;
-            for (a, row) in rows.iter().enumerate() {
-                s[a * nd + b] -= row.iter().zip(y.iter()).map(|(k, y)| k * y).sum::<f64>();
+            let y = &mut cols[b * n..(b + 1) * n];
+            solved = self.solve_in_place(y);
+            if solved.is_ok() {
+                for a in 0..nd {
+                    let row = &rows[a * n..(a + 1) * n];
+                    s[a * nd + b] -= row.iter().zip(y.iter()).map(|(k, y)| k * y).sum::<f64>();
+                }
             }
         }
-        Ok(s)
+        (self.schur_rows, self.schur_cols) = (rows, cols);
+        solved
     }
 
     /// Factorises the current values (LU with partial pivoting).

@@ -23,6 +23,8 @@ pub enum RiserError {
     NonFinite { name: &'static str, time: f64 },
     /// `accuracy` cannot choose the numerics (docs/theory.md §16.12).
     Accuracy(AccuracyError),
+    /// A system's free points did not balance their lines in a step (§17.7).
+    Points(super::system_dynamics::PointsDiverged),
 }
 
 impl std::fmt::Display for RiserError {
@@ -34,6 +36,7 @@ impl std::fmt::Display for RiserError {
             RiserError::Linearized(e) => e.fmt(f),
             RiserError::Unsupported(m) => write!(f, "not supported: {m}"),
             RiserError::Accuracy(e) => e.fmt(f),
+            RiserError::Points(e) => e.fmt(f),
             RiserError::NonFinite { name, time } => write!(
                 f,
                 "the state at t = {time:.6} s gives a non-finite {name}; the step is discarded and the state kept \

@@ -172,6 +172,18 @@ impl Engine {
         with_integrator!(self, i => i.condensed_fixed_tangent(prev, cfg, h, target))
     }
 
+    /// See [`Integrator::condensed_fixed_tangent_into`].
+    pub fn condensed_fixed_tangent_into(
+        &mut self,
+        prev: &State,
+        cfg: &crate::model::RodConfig,
+        h: f64,
+        target: HangOff,
+        s: &mut [f64],
+    ) -> Result<(), crate::math::band::LinearSolveError> {
+        with_integrator!(self, i => i.condensed_fixed_tangent_into(prev, cfg, h, target, s))
+    }
+
     /// Moves the cable's anchor end to `m` over the next step (None: held);
     /// false for the rod, whose anchor cannot move.
     pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) -> bool {

@@ -204,14 +204,7 @@ fn line_statics(
         (t < l.length).then_some(t)
     });
     let fixed_end = ap.kind == PointKind::Fixed;
-    // the line's direction at the anchor, up the line: the rod's tangent, the cable's last chord
-    let cfg = &rep.solution.config;
-    let n = cfg.x.len() - 1;
-    let up = match scene.analysis.model {
-        Model::Rod => -cfg.xp[n],
-        Model::Cable => cfg.x[n - 1] - cfg.x[n],
-    };
-    let anchor_uplift_angle = up.z.atan2(up.x.hypot(up.y)).to_degrees();
+    let anchor_uplift_angle = anchor_uplift_angle(scene.analysis.model, &rep.solution.config);
     LineStatics {
         name: l.name.clone(),
         min_tension: rep.min_tension,
@@ -229,6 +222,18 @@ fn line_statics(
         touchdown_s,
         stiffness: stiffness.unwrap_or_else(M3::zeros),
     }
+}
+
+/// A line's angle above the horizontal at its anchor (its last node) in
+/// configuration `cfg`, deg: of its direction up the line there, the rod's
+/// tangent, the cable's last chord.
+pub fn anchor_uplift_angle(model: Model, cfg: &crate::model::RodConfig) -> f64 {
+    let n = cfg.x.len() - 1;
+    let up = match model {
+        Model::Rod => -cfg.xp[n],
+        Model::Cable => cfg.x[n - 1] - cfg.x[n],
+    };
+    up.z.atan2(up.x.hypot(up.y)).to_degrees()
 }
 
 /// Solves every line of `sys` with the vessel at `pose`, the free points

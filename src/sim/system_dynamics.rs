@@ -20,7 +20,7 @@
 use super::Simulation;
 use super::error::RiserError;
 use super::system::{POINT_CONTACT_AREA, solve_system};
-use super::vessel::{VesselLoads, VesselMotion};
+use super::vessel::{Vessel, VesselLoads, VesselMotion};
 use crate::loads::current::Current;
 use crate::loads::waves::Ramp;
 use crate::math::{M3, V3};
@@ -28,7 +28,6 @@ use crate::model::cable::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
-use nalgebra::{DMatrix, DVector};
 use std::sync::Mutex;
 
 /// Where a line's end is held in a dynamic run.
@@ -38,8 +37,31 @@ pub enum EndAt {
     Vessel,
     /// At a fixed point.
     Fixed,
-    /// At the `k`-th free point of the run ([`SystemRun::points`]).
+    /// At the `k`-th free point of the run ([`FreePoints::points`]).
     Free(usize),
+}
+
+/// What holds a line's two ends in a run, and its frame's origin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineEnds {
+    /// What holds its hang-off (node 0) and its anchor (its last node).
+    pub hang_off_at: EndAt,
+    pub anchor_at: EndAt,
+    /// Its frame's origin, global: its hang-off at rest, m.
+    pub origin: V3,
+}
+
+impl LineEnds {
+    /// True if its hang-off is on the vessel: its force on its hang-off is a
+    /// load on the vessel (a free point's lines pull the point instead).
+    pub fn on_vessel(&self) -> bool {
+        self.hang_off_at == EndAt::Vessel
+    }
+
+    /// True if an end is at a free point: it steps with the points (§17.7).
+    pub fn coupled(&self) -> bool {
+        matches!(self.hang_off_at, EndAt::Free(_)) || matches!(self.anchor_at, EndAt::Free(_))
+    }
 }
 
 /// One line of a system in a dynamic run.
@@ -50,21 +72,122 @@ pub struct LineRun {
     /// The single-line scene it is (its frame at its vessel point at rest).
     pub scene: Scene,
     pub sim: Simulation,
-    /// What holds its hang-off (node 0) and its anchor (its last node).
-    pub hang_off_at: EndAt,
-    pub anchor_at: EndAt,
-    /// Its frame's origin, global: its hang-off at rest, m.
-    pub origin: V3,
+    /// What holds its ends, and its frame's origin.
+    pub ends: LineEnds,
 }
 
-/// A trial step of a line with a free end (§17.7): its state at the end of
-/// the step, the reactions of its supports on it at its hang-off and its
-/// anchor (the end rows of its midpoint equations, N), and its step tangent
-/// condensed on its two ends (6×6 row-major: [hang-off; anchor], N/m).
-struct Trial {
+/// The hang-off motion at time s (s) of a line's vessel end, the line's
+/// [`Vessel`] (its vessel point) given: the command line's harmonics
+/// through [`Vessel::hang_off`], the FMU's input path at the line's offset.
+pub type VesselPath<'a> = dyn Fn(&Vessel, f64) -> HangOff + Sync + 'a;
+
+/// A trial step of a line with a free end (§17.7), in storage allocated
+/// once: the line's state at the step's start and at its end, the
+/// reactions of its supports on it at its hang-off and its anchor (the end
+/// rows of its midpoint equations, N, in the end state), and its step
+/// tangent condensed on its two ends (6×6 row-major: [hang-off; anchor], N/m).
+pub struct TrialSlot {
+    ends: LineEnds,
+    start: State,
     state: State,
-    reaction: [V3; 2],
-    condensed: Vec<f64>,
+    condensed: [f64; 36],
+    result: Result<(), RiserError>,
+}
+
+impl TrialSlot {
+    /// Steps `sim`'s line from the slot's start to `t` with its free ends at
+    /// the points' end-of-step positions `x1` and velocities `v1` (global),
+    /// its vessel end on `vessel_path`: the line's own state untouched.
+    fn run(&mut self, sim: &mut Simulation, t: f64, vessel_path: &VesselPath, x1: &[V3], v1: &[V3]) {
+        self.result = self.try_run(sim, t, vessel_path, x1, v1);
+    }
+
+    fn try_run(
+        &mut self,
+        sim: &mut Simulation,
+        t: f64,
+        vessel_path: &VesselPath,
+        x1: &[V3],
+        v1: &[V3],
+    ) -> Result<(), RiserError> {
+        let prev = &self.start;
+        let h = t - prev.time;
+        let vessel = sim.vessel;
+        let origin = self.ends.origin;
+        let hang_off = match self.ends.hang_off_at {
+            EndAt::Free(k) => HangOff::translation(x1[k] - origin, v1[k]),
+            _ => vessel_path(&vessel, t),
+        };
+        let anchor = match self.ends.anchor_at {
+            EndAt::Free(k) => Some(AnchorMotion { position: x1[k] - origin, velocity: v1[k] }),
+            _ => None,
+        };
+        if !sim.integrator.set_anchor_motion(anchor) && anchor.is_some() {
+            return Err(RiserError::Unsupported("a rod's anchor at a free point".to_string()));
+        }
+        let free_hang_off = matches!(self.ends.hang_off_at, EndAt::Free(_));
+        let target = |s: f64| if free_hang_off { hang_off } else { vessel_path(&vessel, s) };
+        self.state.clone_from(prev);
+        sim.integrator.step(&mut self.state, h, &target)?;
+        self.state.time = t;
+        sim.integrator
+            .condensed_fixed_tangent_into(prev, &self.state.config, h, hang_off, &mut self.condensed)
+            .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
+        Ok(())
+    }
+}
+
+/// A system's lines as its free points' stepper reaches them: the command
+/// line's [`LineRun`]s, the FMU's instance line and its others.
+pub trait LineSet {
+    /// Line `i`'s run.
+    fn sim(&mut self, i: usize) -> &mut Simulation;
+
+    /// Line `i`'s name.
+    fn name(&self, i: usize) -> &str;
+
+    /// `f` on every line that has a slot in `slots` (indexed as the lines)
+    /// with its slot, on up to `threads` threads; here in order on this one,
+    /// allocating nothing.
+    fn each_slot(
+        &mut self,
+        slots: &mut [Option<TrialSlot>],
+        threads: usize,
+        f: &(dyn Fn(&mut Simulation, &mut TrialSlot) + Sync),
+    ) {
+        let _ = threads;
+        for (i, slot) in slots.iter_mut().enumerate() {
+            if let Some(slot) = slot {
+                f(self.sim(i), slot);
+            }
+        }
+    }
+}
+
+impl LineSet for Vec<LineRun> {
+    fn sim(&mut self, i: usize) -> &mut Simulation {
+        &mut self[i].sim
+    }
+
+    fn name(&self, i: usize) -> &str {
+        &self[i].name
+    }
+
+    /// On threads, the dearest lines first.
+    fn each_slot(
+        &mut self,
+        slots: &mut [Option<TrialSlot>],
+        threads: usize,
+        f: &(dyn Fn(&mut Simulation, &mut TrialSlot) + Sync),
+    ) {
+        let items: Vec<(usize, (&mut LineRun, &mut TrialSlot))> = self
+            .iter_mut()
+            .zip(slots.iter_mut())
+            .enumerate()
+            .filter_map(|(i, (l, s))| s.as_mut().map(|s| (i, (l, s))))
+            .collect();
+        on_threads(items, threads, &|(l, _)| l.cost(), &|_, (l, s)| f(&mut l.sim, s));
+    }
 }
 
 impl LineRun {
@@ -92,54 +215,14 @@ impl LineRun {
         self.sim.advance_to(t, &hang_off)
     }
 
-    /// True if its hang-off is on the vessel: its force on its hang-off is a
-    /// load on the vessel (a free point's lines pull the point instead).
+    /// True if its hang-off is on the vessel ([`LineEnds::on_vessel`]).
     pub fn on_vessel(&self) -> bool {
-        self.hang_off_at == EndAt::Vessel
+        self.ends.on_vessel()
     }
 
-    /// True if an end is at a free point: it steps with the points (§17.7).
+    /// True if an end is at a free point ([`LineEnds::coupled`]).
     pub fn coupled(&self) -> bool {
-        matches!(self.hang_off_at, EndAt::Free(_)) || matches!(self.anchor_at, EndAt::Free(_))
-    }
-
-    /// Steps the line from `prev` to `t` with its free ends at the points'
-    /// end-of-step positions `x1` and velocities `v1` (global), its vessel
-    /// end on `motion` (§17.7): a trial, the line's own state untouched.
-    fn trial(
-        &mut self,
-        prev: &State,
-        t: f64,
-        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
-        x1: &[V3],
-        v1: &[V3],
-    ) -> Result<Trial, RiserError> {
-        let h = t - prev.time;
-        let vessel = self.sim.vessel;
-        let origin = self.origin;
-        let at_point = |k: usize| HangOff::translation(x1[k] - origin, v1[k]);
-        let hang_off = match self.hang_off_at {
-            EndAt::Free(k) => at_point(k),
-            _ => vessel.hang_off(&motion(t)),
-        };
-        let anchor = match self.anchor_at {
-            EndAt::Free(k) => Some(AnchorMotion { position: x1[k] - origin, velocity: v1[k] }),
-            _ => None,
-        };
-        if !self.sim.integrator.set_anchor_motion(anchor) && anchor.is_some() {
-            return Err(RiserError::Unsupported(format!("line '{}': a rod's anchor at a free point", self.name)));
-        }
-        let free_hang_off = matches!(self.hang_off_at, EndAt::Free(_));
-        let target = |s: f64| if free_hang_off { hang_off } else { vessel.hang_off(&motion(s)) };
-        let mut state = prev.clone();
-        self.sim.integrator.step(&mut state, h, &target)?;
-        state.time = t;
-        let condensed = self
-            .sim
-            .integrator
-            .condensed_fixed_tangent(prev, &state.config, h, hang_off)
-            .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
-        Ok(Trial { reaction: state.mid_reaction, state, condensed })
+        self.ends.coupled()
     }
 
     /// What a step of the line costs, roughly (the order the lines are handed
@@ -171,27 +254,37 @@ impl std::fmt::Display for LineError {
 #[derive(Debug)]
 pub enum SystemStepError {
     Line(LineError),
-    /// The free points' positions did not balance their lines within
-    /// `iterations` Newton iterations; `residual` the largest point's net
-    /// force relative to its scale; the state kept at `time`.
-    Points {
-        time: f64,
-        iterations: usize,
-        residual: f64,
-        point: String,
-    },
+    Points(PointsDiverged),
+}
+
+/// The free points' positions did not balance their lines within
+/// `iterations` Newton iterations; `residual` the largest point's net force
+/// relative to its scale; the state kept at `time`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointsDiverged {
+    pub time: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub point: String,
+}
+
+impl std::fmt::Display for PointsDiverged {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let PointsDiverged { time, iterations, residual, point } = self;
+        write!(
+            f,
+            "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
+             iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is kept \
+             at t = {time:.6} s (try a smaller time_step)"
+        )
+    }
 }
 
 impl std::fmt::Display for SystemStepError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SystemStepError::Line(e) => e.fmt(f),
-            SystemStepError::Points { time, iterations, residual, point } => write!(
-                f,
-                "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
-                 iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is \
-                 kept at t = {time:.6} s (try a smaller time_step)"
-            ),
+            SystemStepError::Points(e) => e.fmt(f),
         }
     }
 }
@@ -200,6 +293,14 @@ impl From<LineError> for SystemStepError {
     fn from(e: LineError) -> Self {
         SystemStepError::Line(e)
     }
+}
+
+/// Why a step of the free points failed, unnamed (a step that is split
+/// again allocates nothing): line `i`'s trial, or the points' Newton from
+/// `time`, point `point` the furthest from balance.
+enum StepFailed {
+    Line(usize, RiserError),
+    Points { time: f64, residual: f64, point: usize },
 }
 
 /// The most Newton iterations on the free points' positions in a step.
@@ -257,6 +358,26 @@ impl FreePointRun {
         let ub = -self.water_density * self.gravity * self.volume * x.z.min(self.surface_z);
         let uc = self.bed.map_or(0.0, |(z0, t, kp)| 0.5 * kp * (z0 + t * x.x - x.z).max(0.0).powi(2));
         self.mass * self.gravity * x.z + ub + uc
+    }
+
+    /// Its state as numbers (a saved FMU state): position, velocity, the
+    /// predictor's two mean velocities, the water's and the lines' work
+    /// on it (its energy at the start is taken again at the start).
+    pub fn values(&self) -> [f64; POINT_VALUES] {
+        let mut v = [0.0; POINT_VALUES];
+        for (k, x) in [self.position, self.velocity, self.mean_vel[0], self.mean_vel[1]].iter().enumerate() {
+            v[3 * k..3 * k + 3].copy_from_slice(x.as_slice());
+        }
+        v[12] = self.work_hydro;
+        v[13] = self.work_lines;
+        v
+    }
+
+    /// The state of [`FreePointRun::values`].
+    pub fn set_values(&mut self, v: &[f64; POINT_VALUES]) {
+        let at = |k: usize| V3::new(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+        (self.position, self.velocity, self.mean_vel) = (at(0), at(1), [at(2), at(3)]);
+        (self.work_hydro, self.work_lines) = (v[12], v[13]);
     }
 
     /// ½ m |v|² + U(x), J (the added mass's kinetic energy is the water's: §5.4).
@@ -335,9 +456,40 @@ impl FreePointRun {
 /// at the neutral pose (and the free points in theirs, at rest).
 pub struct SystemRun {
     pub lines: Vec<LineRun>,
+    /// The free points and their stepper (none: every line on its own).
+    pub free: FreePoints,
+    /// The run's time, s.
+    pub time: f64,
+}
+
+/// The numbers of a free point's state in a saved FMU state ([`FreePointRun::values`]).
+pub const POINT_VALUES: usize = 14;
+
+/// A system's free points in a dynamic run and what steps them with their
+/// lines (§17.7), its storage allocated once ([`FreePoints::advance`]
+/// allocates nothing when its lines are handed to it one at a time, as the
+/// FMU does).
+pub struct FreePoints {
     /// The free points, in the scene's order.
     pub points: Vec<FreePointRun>,
-    /// The run's time, s.
+    /// What holds each line's ends, every line of the system in its order.
+    pub ends: Vec<LineEnds>,
+    /// Each line with an end at a free point: its trial (None: the others).
+    slots: Vec<Option<TrialSlot>>,
+    /// The points' Newton (17.16): end-of-step positions x⁺ and velocities
+    /// v⁺, residuals, their force scales, the water's forces, the lines'
+    /// reactions, the Jacobian (3 n_p square, row-major) and the right-hand side.
+    x1: Vec<V3>,
+    v1: Vec<V3>,
+    r: Vec<V3>,
+    scale: Vec<f64>,
+    f_water: Vec<V3>,
+    reactions: Vec<V3>,
+    jac: Vec<f64>,
+    rhs: Vec<f64>,
+    /// The points' states at a checkpoint ([`FreePoints::checkpoint`]).
+    saved: Vec<[f64; POINT_VALUES]>,
+    /// The points' time, s.
     pub time: f64,
     /// Newton iterations on the free points' positions since the start.
     pub point_iterations: u64,
@@ -377,136 +529,137 @@ pub fn unsupported(sys: &SystemScene) -> Option<String> {
     })
 }
 
-/// Why `what` (the FMU, the modes) cannot take a system with free points
-/// in this version, or None: their dynamics is `riser run`'s.
+/// Why `what` (the modes) cannot take a system with free points in this
+/// version, or None: their dynamics is `riser run`'s and the FMU's.
 pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
     let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
     (!free.is_empty()).then(|| {
         format!(
             "free point(s) {}: {what} of a system with free points (joints, clump weights, buoys) is not yet in \
-             this version; `riser run` runs its dynamics and `riser statics` solves it (docs/guide/systems.md)",
+             this version; `riser run` and the FMU run its dynamics and `riser statics` solves it \
+             (docs/guide/systems.md)",
             free.join(", ")
         )
     })
 }
 
-impl SystemRun {
-    /// Each line's single-line run from its statics at the neutral pose (the
-    /// lines' statics as `riser statics SYSTEM` solves them, §17.1); with
-    /// free points, the system's statics (§17.4): the points in equilibrium
-    /// at rest, each line with a free end from its state there.
-    pub fn new(sys: &SystemScene) -> Result<Self, String> {
-        if let Some(m) = unsupported(sys) {
-            return Err(m);
-        }
-        let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
-        let statics = if free.is_empty() { None } else { Some(solve_system(sys, &[0.0; 6], false)?) };
-        let at = |p: &PointSpec| match p.kind {
-            PointKind::Vessel => EndAt::Vessel,
-            PointKind::Fixed => EndAt::Fixed,
-            PointKind::Free => EndAt::Free(free.iter().position(|f| f.name == p.name).expect("a free point")),
+/// Each line of `sys` set up for a dynamic run ([`SystemRun::new`]): its
+/// single-line run from its statics at the neutral pose (the lines' statics
+/// as `riser statics SYSTEM` solves them, §17.1); with free points, the
+/// system's statics (§17.4): the points in equilibrium at rest, each line
+/// with a free end from its state there; and the free points.
+pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
+    if let Some(m) = unsupported(sys) {
+        return Err(m);
+    }
+    let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
+    let statics = if free.is_empty() { None } else { Some(solve_system(sys, &[0.0; 6], false)?) };
+    let at = |p: &PointSpec| match p.kind {
+        PointKind::Vessel => EndAt::Vessel,
+        PointKind::Fixed => EndAt::Fixed,
+        PointKind::Free => EndAt::Free(free.iter().position(|f| f.name == p.name).expect("a free point")),
+    };
+    let mut lines = Vec::with_capacity(sys.lines.len());
+    for (i, l) in sys.lines.iter().enumerate() {
+        let (vessel_end, vp, ap) = sys.ends(i);
+        let (hang_off_at, anchor_at) = (at(vp), at(ap));
+        let coupled = matches!(hang_off_at, EndAt::Free(_)) || matches!(anchor_at, EndAt::Free(_));
+        let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
+        let (scene, sim, origin) = match (&statics, coupled) {
+            (Some(st), true) => {
+                // its state at the free points' equilibrium
+                let ls = &st.lines[i];
+                let mut sim = Simulation::from_statics(&ls.scene, ls.report.clone()).map_err(|e| named(&e))?;
+                // a failed trial is the points' step's to split, not the line's
+                sim.integrator.options_mut().max_halvings = 0;
+                (ls.scene.clone(), sim, ls.fairlead)
+            }
+            _ => {
+                // at the neutral pose the vessel point is at ρ
+                let scene = sys.line_scene(i, V3::from(vp.position));
+                let sim = Simulation::from_scene(&scene).map_err(|e| named(&e))?;
+                (scene, sim, V3::from(vp.position))
+            }
         };
-        let mut lines = Vec::with_capacity(sys.lines.len());
-        for (i, l) in sys.lines.iter().enumerate() {
-            let (vessel_end, vp, ap) = sys.ends(i);
-            let (hang_off_at, anchor_at) = (at(vp), at(ap));
-            let coupled = matches!(hang_off_at, EndAt::Free(_)) || matches!(anchor_at, EndAt::Free(_));
-            let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
-            let (scene, sim, origin) = match (&statics, coupled) {
-                (Some(st), true) => {
-                    // its state at the free points' equilibrium
-                    let ls = &st.lines[i];
-                    let mut sim = Simulation::from_statics(&ls.scene, ls.report.clone()).map_err(|e| named(&e))?;
-                    // a failed trial is the points' step's to split, not the line's
-                    sim.integrator.options_mut().max_halvings = 0;
-                    (ls.scene.clone(), sim, ls.fairlead)
-                }
-                _ => {
-                    // at the neutral pose the vessel point is at ρ
-                    let scene = sys.line_scene(i, V3::from(vp.position));
-                    let sim = Simulation::from_scene(&scene).map_err(|e| named(&e))?;
-                    (scene, sim, V3::from(vp.position))
-                }
-            };
-            lines.push(LineRun { name: l.name.clone(), vessel_end, scene, sim, hang_off_at, anchor_at, origin });
-        }
-        let mut points = Vec::with_capacity(free.len());
-        for (k, p) in free.iter().enumerate() {
-            let st = &statics.as_ref().expect("free points have statics").points[k];
-            let env = &sys.environment;
-            // the current as the first line at the point sees it
-            let l = lines
-                .iter()
-                .find(|l| l.hang_off_at == EndAt::Free(k) || l.anchor_at == EndAt::Free(k))
-                .expect("a free point has a line");
-            let current_s = if l.hang_off_at == EndAt::Free(k) { 0.0 } else { l.scene.line.length };
-            let bed = sys.seabed.as_ref().map(|b| (b.z, b.slope.to_radians().tan(), b.stiffness * POINT_CONTACT_AREA));
-            let mut point = FreePointRun {
-                name: p.name.clone(),
-                mass: p.mass(),
-                added_mass: p.ca() * env.water_density * p.volume(),
-                volume: p.volume(),
-                cd_area: p.cd_area(),
-                position: st.position,
-                velocity: V3::zeros(),
-                static_position: st.position,
-                mean_vel: [V3::zeros(); 2],
-                work_hydro: 0.0,
-                work_lines: 0.0,
-                initial_energy: 0.0,
-                water_density: env.water_density,
-                gravity: env.gravity,
-                surface_z: env.water_surface_z,
-                bed,
-                current: crate::loads::current(&l.scene),
-                current_frame_z: l.origin.z,
-                current_s,
-                current_ramp: crate::loads::current_ramp(&l.scene),
-            };
-            point.initial_energy = point.energy();
-            points.push(point);
-        }
-        Ok(SystemRun { lines, points, time: 0.0, point_iterations: 0, trial_iterations: 0 })
+        let ends = LineEnds { hang_off_at, anchor_at, origin };
+        lines.push(LineRun { name: l.name.clone(), vessel_end, scene, sim, ends });
+    }
+    let mut points = Vec::with_capacity(free.len());
+    for (k, p) in free.iter().enumerate() {
+        let st = &statics.as_ref().expect("free points have statics").points[k];
+        let env = &sys.environment;
+        // the current as the first line at the point sees it
+        let l = lines
+            .iter()
+            .find(|l| l.ends.hang_off_at == EndAt::Free(k) || l.ends.anchor_at == EndAt::Free(k))
+            .expect("a free point has a line");
+        let current_s = if l.ends.hang_off_at == EndAt::Free(k) { 0.0 } else { l.scene.line.length };
+        let bed = sys.seabed.as_ref().map(|b| (b.z, b.slope.to_radians().tan(), b.stiffness * POINT_CONTACT_AREA));
+        let mut point = FreePointRun {
+            name: p.name.clone(),
+            mass: p.mass(),
+            added_mass: p.ca() * env.water_density * p.volume(),
+            volume: p.volume(),
+            cd_area: p.cd_area(),
+            position: st.position,
+            velocity: V3::zeros(),
+            static_position: st.position,
+            mean_vel: [V3::zeros(); 2],
+            work_hydro: 0.0,
+            work_lines: 0.0,
+            initial_energy: 0.0,
+            water_density: env.water_density,
+            gravity: env.gravity,
+            surface_z: env.water_surface_z,
+            bed,
+            current: crate::loads::current(&l.scene),
+            current_frame_z: l.ends.origin.z,
+            current_s,
+            current_ramp: crate::loads::current_ramp(&l.scene),
+        };
+        point.initial_energy = point.energy();
+        points.push(point);
+    }
+    let ends = lines.iter().map(|l| l.ends).collect();
+    let states: Vec<&State> = lines.iter().map(|l| &l.sim.state).collect();
+    let free = FreePoints::new(points, ends, &states);
+    Ok((lines, free))
+}
+
+impl SystemRun {
+    /// Each line's single-line run from its statics at the neutral pose and
+    /// the free points in theirs ([`build`]).
+    pub fn new(sys: &SystemScene) -> Result<Self, String> {
+        let (lines, free) = build(sys)?;
+        Ok(SystemRun { lines, free, time: 0.0 })
     }
 
     /// Puts every line's hang-off on the vessel's motion `m` at t = 0 (each
     /// line's [`Simulation::start`]; a free point's lines at the point, at
     /// rest) and takes the points' energy reference there.
     pub fn start(&mut self, m: &VesselMotion) {
-        let points = &self.points;
-        for l in &mut self.lines {
-            let h = match l.hang_off_at {
-                EndAt::Free(k) => HangOff::translation(points[k].position - l.origin, points[k].velocity),
-                _ => l.sim.vessel.hang_off(m),
-            };
-            l.sim.start(h);
-        }
-        let time = self.lines.first().map_or(0.0, |l| l.sim.state.time);
-        self.time = time;
-        for p in &mut self.points {
-            p.current_ramp.start = time;
-            p.initial_energy = p.energy();
-        }
+        self.free.start_lines(&mut self.lines, &|v: &Vessel, _| v.hang_off(m));
+        self.time = self.free.time;
     }
 
     /// Gives free point `k` the velocity `v` (m/s) and its lines' ends with
     /// it, and takes the energy references again (a kick to start a free
     /// oscillation from; the lines' other nodes keep theirs).
     pub fn set_point_velocity(&mut self, k: usize, v: V3) {
-        self.points[k].velocity = v;
+        self.free.points[k].velocity = v;
         for l in &mut self.lines {
             let s = &mut l.sim.state;
-            if l.hang_off_at == EndAt::Free(k) {
+            if l.ends.hang_off_at == EndAt::Free(k) {
                 s.vel[0] = v;
                 s.hang_off.velocity = v;
             }
-            if l.anchor_at == EndAt::Free(k) {
+            if l.ends.anchor_at == EndAt::Free(k) {
                 let n = s.vel.len() - 1;
                 s.vel[n] = v;
             }
             l.sim.initial_energy = l.sim.integrator.outputs(&l.sim.state).total_energy;
         }
-        for p in &mut self.points {
+        for p in &mut self.free.points {
             p.initial_energy = p.energy();
         }
     }
@@ -516,7 +669,10 @@ impl SystemRun {
     /// order. One thread: in order on this one, nothing spawned.
     pub fn for_each_line<R: Send>(&mut self, threads: usize, f: &(dyn Fn(&mut LineRun) -> R + Sync)) -> Vec<R> {
         let n = self.lines.len();
-        let all = on_threads(self.lines.iter_mut().enumerate().collect(), threads, &|_, l| f(l));
+        let all =
+            on_threads(self.lines.iter_mut().enumerate().collect(), threads, &|l: &&mut LineRun| l.cost(), &|_, l| {
+                f(l)
+            });
         let mut results: Vec<Option<R>> = (0..n).map(|_| None).collect();
         for (i, r) in all {
             results[i] = Some(r);
@@ -534,169 +690,20 @@ impl SystemRun {
         motion: &(dyn Fn(f64) -> VesselMotion + Sync),
         threads: usize,
     ) -> Result<(), SystemStepError> {
-        if !self.points.is_empty() {
-            self.step_points_split(t, motion, threads)?;
+        if !self.free.points.is_empty() {
+            let path = |v: &Vessel, s: f64| v.hang_off(&motion(s));
+            self.free.advance(&mut self.lines, t, &path, threads)?;
         }
         let free: Vec<(usize, &mut LineRun)> =
             self.lines.iter_mut().enumerate().filter(|(_, l)| !l.coupled()).collect();
-        let mut results = on_threads(free, threads, &|_, l: &mut LineRun| l.advance_to(t, motion));
+        let mut results =
+            on_threads(free, threads, &|l: &&mut LineRun| l.cost(), &|_, l: &mut LineRun| l.advance_to(t, motion));
         results.sort_by_key(|(i, _)| *i);
         for (i, r) in results {
             r.map_err(|error| LineError { line: self.lines[i].name.clone(), error })?;
         }
         self.time = t;
         Ok(())
-    }
-
-    /// The free points and their lines to `t` in one step, split in halves
-    /// where it fails (a line's trial or the points' Newton), down to
-    /// 1/2^`MAX_POINT_HALVINGS` of it, as a single line splits its step
-    /// (§5.7); the error of the smallest sub-step if that fails too, the
-    /// state kept at the last converged sub-step.
-    fn step_points_split(
-        &mut self,
-        t: f64,
-        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
-        threads: usize,
-    ) -> Result<(), SystemStepError> {
-        let span = t - self.time;
-        let (mut sub, mut level) = (span, 0u32);
-        while self.time < t - 1e-12 * span {
-            let end = if self.time + sub >= t - 1e-12 * span { t } else { self.time + sub };
-            match self.step_points(end, motion, threads) {
-                Ok(()) => self.time = end,
-                Err(e) if level >= MAX_POINT_HALVINGS => return Err(e),
-                Err(_) => {
-                    level += 1;
-                    sub *= 0.5;
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// One step of the free points and their lines to `t` (§17.7): Newton
-    /// on the points' end-of-step positions x⁺ (17.16), each line with an
-    /// end at a point stepped from its start with its ends at x⁺ (a trial)
-    /// and giving its end reactions and its condensed step tangent (17.15).
-    fn step_points(
-        &mut self,
-        t: f64,
-        motion: &(dyn Fn(f64) -> VesselMotion + Sync),
-        threads: usize,
-    ) -> Result<(), SystemStepError> {
-        let t0 = self.time;
-        let h = t - t0;
-        let tol = self.lines.iter().find(|l| l.coupled()).map_or(1e-8, |l| l.sim.integrator.options().newton_tolerance);
-        let prev: Vec<Option<State>> = self.lines.iter().map(|l| l.coupled().then(|| l.sim.state.clone())).collect();
-        let np = self.points.len();
-        // the predictor: the quadratic of the cable's (§5.7)
-        let mut x1: Vec<V3> =
-            self.points.iter().map(|p| p.position + (p.mean_vel[0] * 2.0 - p.mean_vel[1]) * h).collect();
-        let mut worst = (0.0, 0);
-        for it in 0..=MAX_POINT_ITERATIONS {
-            // v⁺ = 2 (x⁺ − x⁻)/h − v⁻ (5.1's update)
-            let v1: Vec<V3> =
-                self.points.iter().zip(&x1).map(|(p, x)| (x - p.position) * (2.0 / h) - p.velocity).collect();
-            let coupled: Vec<(usize, &mut LineRun)> =
-                self.lines.iter_mut().enumerate().filter(|(_, l)| l.coupled()).collect();
-            let (xr, vr, pr) = (&x1, &v1, &prev);
-            let mut trials = on_threads(coupled, threads, &|i, l: &mut LineRun| {
-                let start = pr[i].as_ref().expect("a coupled line's start");
-                l.trial(start, t, motion, xr, vr)
-            });
-            trials.sort_by_key(|(i, _)| *i);
-            let mut ok = Vec::with_capacity(trials.len());
-            for (i, r) in trials {
-                match r {
-                    Ok(tr) => ok.push((i, tr)),
-                    Err(error) => {
-                        return Err(LineError { line: self.lines[i].name.clone(), error }.into());
-                    }
-                }
-            }
-            // (17.14) + Σ P_i, and its Jacobian (17.16) with the lines' condensed tangents (17.15)
-            let t_mid = t0 + 0.5 * h;
-            let mut r = vec![V3::zeros(); np];
-            let mut jac = DMatrix::<f64>::zeros(3 * np, 3 * np);
-            let mut scale = vec![0.0; np];
-            let mut f_water = vec![V3::zeros(); np];
-            for (k, p) in self.points.iter().enumerate() {
-                let (rk, kk, fw) = p.own_rows(x1[k], h, t_mid);
-                r[k] = rk;
-                f_water[k] = fw;
-                jac.fixed_view_mut::<3, 3>(3 * k, 3 * k).copy_from(&kk);
-                scale[k] = p.gravity * (p.mass + p.water_density * p.volume) + fw.norm();
-            }
-            for (i, tr) in &ok {
-                let l = &self.lines[*i];
-                let ends = [l.hang_off_at, l.anchor_at];
-                for (ea, a) in ends.iter().enumerate() {
-                    let EndAt::Free(ka) = *a else { continue };
-                    r[ka] += tr.reaction[ea];
-                    scale[ka] += tr.reaction[ea].norm();
-                    for (eb, b) in ends.iter().enumerate() {
-                        let EndAt::Free(kb) = *b else { continue };
-                        for (ra, ca) in (0..3).map(|c| (3 * ea + c, 3 * ka + c)) {
-                            for (rb, cb) in (0..3).map(|c| (3 * eb + c, 3 * kb + c)) {
-                                jac[(ca, cb)] += tr.condensed[ra * 6 + rb];
-                            }
-                        }
-                    }
-                }
-            }
-            worst = (0.0, 0);
-            for k in 0..np {
-                let rel = r[k].norm() / scale[k].max(f64::MIN_POSITIVE);
-                if rel > worst.0 || rel.is_nan() {
-                    worst = (rel, k);
-                }
-            }
-            self.trial_iterations += ok.iter().map(|(_, tr)| tr.state.newton_iterations).sum::<u64>()
-                - ok.iter().map(|(i, _)| prev[*i].as_ref().map_or(0, |s| s.newton_iterations)).sum::<u64>();
-            if worst.0 <= tol {
-                // converged: the lines' trials and the points' step are the step
-                let mut reactions = vec![V3::zeros(); np];
-                for (i, tr) in ok {
-                    let l = &mut self.lines[i];
-                    for (e, a) in [l.hang_off_at, l.anchor_at].iter().enumerate() {
-                        if let EndAt::Free(k) = *a {
-                            reactions[k] += tr.reaction[e];
-                        }
-                    }
-                    l.sim.state = tr.state;
-                }
-                for (k, p) in self.points.iter_mut().enumerate() {
-                    let dx = x1[k] - p.position;
-                    // the lines pull the point by −Σ P_i; the water's work over the step (§5.4)
-                    p.work_lines -= dx.dot(&reactions[k]);
-                    p.work_hydro += dx.dot(&f_water[k]);
-                    p.mean_vel = [dx / h, p.mean_vel[0]];
-                    p.velocity = v1[k];
-                    p.position = x1[k];
-                }
-                self.point_iterations += it as u64;
-                return Ok(());
-            }
-            if it == MAX_POINT_ITERATIONS {
-                break;
-            }
-            let rhs = DVector::from_iterator(3 * np, r.iter().flat_map(|v| [-v.x, -v.y, -v.z]));
-            let Some(dx) = jac.lu().solve(&rhs) else { break };
-            for (k, x) in x1.iter_mut().enumerate() {
-                *x += V3::new(dx[3 * k], dx[3 * k + 1], dx[3 * k + 2]);
-            }
-        }
-        // the lines' own states were never touched
-        for l in &mut self.lines {
-            let _ = l.sim.integrator.set_anchor_motion(None);
-        }
-        Err(SystemStepError::Points {
-            time: t0,
-            iterations: MAX_POINT_ITERATIONS,
-            residual: worst.0,
-            point: self.points[worst.1].name.clone(),
-        })
     }
 
     /// The lines' loads on the vessel of their outputs `outputs` (one per
@@ -745,12 +752,12 @@ impl SystemRun {
             b.work_water += o.work_hydro;
             b.work_seabed += o.work_seabed;
             // a cable's anchor at a free point: its work is internal
-            if !matches!(l.anchor_at, EndAt::Free(_)) {
+            if !matches!(l.ends.anchor_at, EndAt::Free(_)) {
                 b.work_anchor += o.work_anchor;
             }
             b.dissipated += o.dissipated_energy + o.algorithmic_dissipation;
         }
-        for p in &self.points {
+        for p in &self.free.points {
             b.energy += p.energy();
             b.initial_energy += p.initial_energy;
             b.work_water += p.work_hydro;
@@ -759,6 +766,300 @@ impl SystemRun {
             b.energy - b.initial_energy - b.work_vessel - b.work_water - b.work_seabed - b.work_anchor + b.dissipated;
         b
     }
+}
+
+impl FreePoints {
+    /// The points `points` of a system whose lines' ends are `ends` and
+    /// states `states` (in its order): each line with a free end a trial
+    /// slot sized on its state.
+    pub fn new(points: Vec<FreePointRun>, ends: Vec<LineEnds>, states: &[&State]) -> Self {
+        let np = points.len();
+        let slots = ends
+            .iter()
+            .zip(states)
+            .map(|(e, s)| {
+                e.coupled().then(|| TrialSlot {
+                    ends: *e,
+                    start: (*s).clone(),
+                    state: (*s).clone(),
+                    condensed: [0.0; 36],
+                    result: Ok(()),
+                })
+            })
+            .collect();
+        FreePoints {
+            points,
+            ends,
+            slots,
+            x1: vec![V3::zeros(); np],
+            v1: vec![V3::zeros(); np],
+            r: vec![V3::zeros(); np],
+            scale: vec![0.0; np],
+            f_water: vec![V3::zeros(); np],
+            reactions: vec![V3::zeros(); np],
+            jac: vec![0.0; 9 * np * np],
+            rhs: vec![0.0; 3 * np],
+            saved: vec![[0.0; POINT_VALUES]; np],
+            time: 0.0,
+            point_iterations: 0,
+            trial_iterations: 0,
+        }
+    }
+
+    /// Puts every line's hang-off on its motion at the start ([`Simulation::start`]):
+    /// on the vessel at `vessel_path` at the lines' time, a free point's lines
+    /// at the point, at rest; starts the points' current ramps there and
+    /// takes their energy reference.
+    pub fn start_lines(&mut self, lines: &mut dyn LineSet, vessel_path: &VesselPath) {
+        let mut time = 0.0;
+        for (i, e) in self.ends.iter().enumerate() {
+            let sim = lines.sim(i);
+            let h = match e.hang_off_at {
+                EndAt::Free(k) => HangOff::translation(self.points[k].position - e.origin, self.points[k].velocity),
+                _ => vessel_path(&sim.vessel, sim.state.time),
+            };
+            sim.start(h);
+            if i == 0 {
+                time = sim.state.time;
+            }
+        }
+        self.time = time;
+        self.set_ramps_start(time);
+        for p in &mut self.points {
+            p.initial_energy = p.energy();
+        }
+    }
+
+    /// Starts the points' current ramps at `start` s (a restored state's, §5.11).
+    pub fn set_ramps_start(&mut self, start: f64) {
+        for p in &mut self.points {
+            p.current_ramp.start = start;
+        }
+    }
+
+    /// Keeps the points' states ([`FreePoints::rollback`] returns to them), allocating nothing.
+    pub fn checkpoint(&mut self) {
+        for (s, p) in self.saved.iter_mut().zip(&self.points) {
+            *s = p.values();
+        }
+    }
+
+    /// Back to the points' states at the last [`FreePoints::checkpoint`], at `time` s.
+    pub fn rollback(&mut self, time: f64) {
+        for (s, p) in self.saved.iter().zip(self.points.iter_mut()) {
+            p.set_values(s);
+        }
+        self.time = time;
+    }
+
+    /// The free points and their lines to `t` in one step, split in halves
+    /// where it fails (a line's trial or the points' Newton), down to
+    /// 1/2^`MAX_POINT_HALVINGS` of it, as a single line splits its step
+    /// (§5.7); the error of the smallest sub-step if that fails too, the
+    /// state kept at the last converged sub-step. The lines are `lines`
+    /// (every line of the system, those without a free end untouched),
+    /// their vessel ends on `vessel_path`.
+    pub fn advance(
+        &mut self,
+        lines: &mut dyn LineSet,
+        t: f64,
+        vessel_path: &VesselPath,
+        threads: usize,
+    ) -> Result<(), SystemStepError> {
+        let span = t - self.time;
+        let (mut sub, mut level) = (span, 0u32);
+        while self.time < t - 1e-12 * span {
+            let end = if self.time + sub >= t - 1e-12 * span { t } else { self.time + sub };
+            match self.step(lines, end, vessel_path, threads) {
+                Ok(()) => self.time = end,
+                // named only here: a step that is split allocates nothing
+                Err(e) if level >= MAX_POINT_HALVINGS => return Err(self.named(lines, e)),
+                Err(_) => {
+                    level += 1;
+                    sub *= 0.5;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The error of a failed step, its line or point named.
+    fn named(&self, lines: &dyn LineSet, e: StepFailed) -> SystemStepError {
+        match e {
+            StepFailed::Line(i, error) => LineError { line: lines.name(i).to_string(), error }.into(),
+            StepFailed::Points { time, residual, point } => SystemStepError::Points(PointsDiverged {
+                time,
+                iterations: MAX_POINT_ITERATIONS,
+                residual,
+                point: self.points[point].name.clone(),
+            }),
+        }
+    }
+
+    /// One step of the free points and their lines to `t` (§17.7): Newton
+    /// on the points' end-of-step positions x⁺ (17.16), each line with an
+    /// end at a point stepped from its start with its ends at x⁺ (a trial)
+    /// and giving its end reactions and its condensed step tangent (17.15).
+    fn step(
+        &mut self,
+        lines: &mut dyn LineSet,
+        t: f64,
+        vessel_path: &VesselPath,
+        threads: usize,
+    ) -> Result<(), StepFailed> {
+        let t0 = self.time;
+        let h = t - t0;
+        let np = self.points.len();
+        let mut tol = None;
+        for (i, slot) in self.slots.iter_mut().enumerate() {
+            if let Some(slot) = slot {
+                let sim = lines.sim(i);
+                tol.get_or_insert(sim.integrator.options().newton_tolerance);
+                slot.start.clone_from(&sim.state);
+            }
+        }
+        let tol = tol.unwrap_or(1e-8);
+        // the predictor: the quadratic of the cable's (§5.7)
+        for (x, p) in self.x1.iter_mut().zip(&self.points) {
+            *x = p.position + (p.mean_vel[0] * 2.0 - p.mean_vel[1]) * h;
+        }
+        let mut worst = (0.0, 0);
+        for it in 0..=MAX_POINT_ITERATIONS {
+            // v⁺ = 2 (x⁺ − x⁻)/h − v⁻ (5.1's update)
+            for ((v, x), p) in self.v1.iter_mut().zip(&self.x1).zip(&self.points) {
+                *v = (x - p.position) * (2.0 / h) - p.velocity;
+            }
+            let (x1, v1) = (&self.x1, &self.v1);
+            lines.each_slot(&mut self.slots, threads, &|sim, slot| slot.run(sim, t, vessel_path, x1, v1));
+            for (i, slot) in self.slots.iter_mut().enumerate() {
+                if let Some(slot) = slot
+                    && slot.result.is_err()
+                {
+                    let error = std::mem::replace(&mut slot.result, Ok(())).expect_err("a failed trial");
+                    return Err(StepFailed::Line(i, error));
+                }
+            }
+            // (17.14) + Σ P_i, and its Jacobian (17.16) with the lines' condensed tangents (17.15)
+            let t_mid = t0 + 0.5 * h;
+            let n3 = 3 * np;
+            self.jac.iter_mut().for_each(|x| *x = 0.0);
+            for (k, p) in self.points.iter().enumerate() {
+                let (rk, kk, fw) = p.own_rows(self.x1[k], h, t_mid);
+                self.r[k] = rk;
+                self.f_water[k] = fw;
+                for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                    self.jac[(3 * k + a) * n3 + 3 * k + b] = kk[(a, b)];
+                }
+                self.scale[k] = p.gravity * (p.mass + p.water_density * p.volume) + fw.norm();
+            }
+            for tr in self.slots.iter().flatten() {
+                let ends = [tr.ends.hang_off_at, tr.ends.anchor_at];
+                let reaction = tr.state.mid_reaction;
+                for (ea, a) in ends.iter().enumerate() {
+                    let EndAt::Free(ka) = *a else { continue };
+                    self.r[ka] += reaction[ea];
+                    self.scale[ka] += reaction[ea].norm();
+                    for (eb, b) in ends.iter().enumerate() {
+                        let EndAt::Free(kb) = *b else { continue };
+                        for (ra, ca) in (0..3).map(|c| (3 * ea + c, 3 * ka + c)) {
+                            for (rb, cb) in (0..3).map(|c| (3 * eb + c, 3 * kb + c)) {
+                                self.jac[ca * n3 + cb] += tr.condensed[ra * 6 + rb];
+                            }
+                        }
+                    }
+                }
+            }
+            worst = (0.0, 0);
+            for k in 0..np {
+                let rel = self.r[k].norm() / self.scale[k].max(f64::MIN_POSITIVE);
+                if rel > worst.0 || rel.is_nan() {
+                    worst = (rel, k);
+                }
+            }
+            self.trial_iterations += self
+                .slots
+                .iter()
+                .flatten()
+                .map(|tr| tr.state.newton_iterations - tr.start.newton_iterations)
+                .sum::<u64>();
+            if worst.0 <= tol {
+                // converged: the lines' trials and the points' step are the step
+                self.reactions.iter_mut().for_each(|r| *r = V3::zeros());
+                for (i, slot) in self.slots.iter_mut().enumerate() {
+                    let Some(tr) = slot else { continue };
+                    for (e, a) in [tr.ends.hang_off_at, tr.ends.anchor_at].iter().enumerate() {
+                        if let EndAt::Free(k) = *a {
+                            self.reactions[k] += tr.state.mid_reaction[e];
+                        }
+                    }
+                    std::mem::swap(&mut lines.sim(i).state, &mut tr.state);
+                }
+                for (k, p) in self.points.iter_mut().enumerate() {
+                    let dx = self.x1[k] - p.position;
+                    // the lines pull the point by −Σ P_i; the water's work over the step (§5.4)
+                    p.work_lines -= dx.dot(&self.reactions[k]);
+                    p.work_hydro += dx.dot(&self.f_water[k]);
+                    p.mean_vel = [dx / h, p.mean_vel[0]];
+                    p.velocity = self.v1[k];
+                    p.position = self.x1[k];
+                }
+                self.point_iterations += it as u64;
+                return Ok(());
+            }
+            if it == MAX_POINT_ITERATIONS {
+                break;
+            }
+            for (k, r) in self.r.iter().enumerate() {
+                for c in 0..3 {
+                    self.rhs[3 * k + c] = -r[c];
+                }
+            }
+            if !solve_dense(&mut self.jac, &mut self.rhs) {
+                break;
+            }
+            for (k, x) in self.x1.iter_mut().enumerate() {
+                *x += V3::new(self.rhs[3 * k], self.rhs[3 * k + 1], self.rhs[3 * k + 2]);
+            }
+        }
+        // the lines' own states were never touched
+        for i in 0..self.ends.len() {
+            let _ = lines.sim(i).integrator.set_anchor_motion(None);
+        }
+        Err(StepFailed::Points { time: t0, residual: worst.0, point: worst.1 })
+    }
+}
+
+/// Solves A x = b in place (A n×n row-major, n = b's length; x in `b`) by
+/// Gaussian elimination with partial pivoting, allocating nothing; false if
+/// A is singular or the solution is not finite.
+fn solve_dense(a: &mut [f64], b: &mut [f64]) -> bool {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs())).unwrap_or(c);
+        if a[p * n + c] == 0.0 || !a[p * n + c].is_finite() {
+            return false;
+        }
+        if p != c {
+            for j in 0..n {
+                a.swap(c * n + j, p * n + j);
+            }
+            b.swap(c, p);
+        }
+        for i in c + 1..n {
+            let f = a[i * n + c] / a[c * n + c];
+            if f != 0.0 {
+                for j in c..n {
+                    a[i * n + j] -= f * a[c * n + j];
+                }
+                b[i] -= f * b[c];
+            }
+        }
+    }
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|j| a[c * n + j] * b[j]).sum();
+        b[c] = (b[c] - s) / a[c * n + c];
+    }
+    b.iter().all(|x| x.is_finite())
 }
 
 /// The terms of a system's energy balance (17.17), J: its energy (the
@@ -789,20 +1090,21 @@ impl SystemBalance {
     }
 }
 
-/// `f` on each (index, line) of `items`, on up to `threads` threads (this
-/// one among them), the dearest lines first; the results with their
+/// `f` on each (index, item) of `items`, on up to `threads` threads (this
+/// one among them), the dearest (by `cost`) first; the results with their
 /// indices, in no order. One thread: in order on this one, nothing spawned.
-fn on_threads<'a, R: Send>(
-    items: Vec<(usize, &'a mut LineRun)>,
+fn on_threads<T: Send, R: Send>(
+    items: Vec<(usize, T)>,
     threads: usize,
-    f: &(dyn Fn(usize, &mut LineRun) -> R + Sync),
+    cost: &(dyn Fn(&T) -> usize + Sync),
+    f: &(dyn Fn(usize, T) -> R + Sync),
 ) -> Vec<(usize, R)> {
     let threads = threads.clamp(1, items.len().max(1));
     if threads == 1 {
         return items.into_iter().map(|(i, l)| (i, f(i, l))).collect();
     }
     let mut queue = items;
-    queue.sort_by_key(|(i, l)| (std::cmp::Reverse(l.cost()), *i));
+    queue.sort_by_key(|(i, l)| (std::cmp::Reverse(cost(l)), *i));
     let queue = Mutex::new(queue.into_iter());
     let work = || {
         let mut done = Vec::new();

@@ -340,16 +340,31 @@ impl<M: StepEquations> Integrator<M> {
         h: f64,
         target: HangOff,
     ) -> Result<Vec<f64>, LinearSolveError> {
+        let mut s = vec![0.0; self.lin.fixed.len().pow(2)];
+        self.condensed_fixed_tangent_into(prev, cfg, h, target, &mut s)?;
+        Ok(s)
+    }
+
+    /// [`Integrator::condensed_fixed_tangent`] into `s` (the fixed
+    /// unknowns' number squared), allocating nothing once warmed up.
+    pub fn condensed_fixed_tangent_into(
+        &mut self,
+        prev: &State,
+        cfg: &RodConfig,
+        h: f64,
+        target: HangOff,
+        s: &mut [f64],
+    ) -> Result<(), LinearSolveError> {
         let eta = self.options.structural_damping;
         self.model.begin(&mut self.ws, prev, &self.options);
         self.factor_h = f64::NAN;
         self.model.assemble(&mut self.ws, &mut self.lin, prev, cfg, h, target, eta, true);
         let lin = &mut self.lin;
-        let s = lin.sys.schur_complement(&lin.fixed, &lin.fixed)?;
+        lin.sys.schur_complement_into(&lin.fixed, &lin.fixed, s)?;
         self.factor_h = h;
         self.factor_age = 0;
         self.factorizations += 1;
-        Ok(s)
+        Ok(())
     }
 }
 

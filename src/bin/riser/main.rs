@@ -104,7 +104,9 @@ enum Command {
     ModelDescription {
         /// A system scene file: the model description of a system FMU with it in its resources
         /// (its `scene` parameter's start value the file's name; each line's outputs
-        /// LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s).
+        /// LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s, each free
+        /// point's POINT.x, POINT.y, POINT.z, each line's at a fixed point LINE.anchor_force,
+        /// LINE.anchor_uplift_angle).
         #[arg(long, value_name = "FILE")]
         scene: Option<String>,
     },

@@ -47,7 +47,7 @@ fn sample(l: &LineRun, e0: f64) -> Sample {
         // a free point's work on its line is internal to the system (§17.7)
         exchanged: if l.on_vessel() { o.work_top.abs() } else { 0.0 }
             + o.work_hydro.abs()
-            + if matches!(l.anchor_at, EndAt::Free(_)) { 0.0 } else { o.work_anchor.abs() }
+            + if matches!(l.ends.anchor_at, EndAt::Free(_)) { 0.0 } else { o.work_anchor.abs() }
             + o.work_seabed.abs(),
         held: o.kinetic_energy.abs() + o.strain_energy.abs() + o.potential_energy.abs(),
     }
@@ -63,7 +63,8 @@ struct PointSample {
 }
 
 fn point_samples(run: &SystemRun) -> Vec<PointSample> {
-    run.points
+    run.free
+        .points
         .iter()
         .map(|p| PointSample { position: p.position, balance: p.energy_balance_residual(), work_hydro: p.work_hydro })
         .collect()
@@ -119,7 +120,7 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     // with free points the lines at them step together, a step at a time
     // (§17.7); without, a thread runs a line through the whole run
     let mut per_point: Vec<Vec<PointSample>> = Vec::new();
-    let per_line = if run.points.is_empty() {
+    let per_line = if run.free.points.is_empty() {
         run.for_each_line(threads, &|l: &mut LineRun| {
             // the energy reference: the line's energy at the start
             let e = l.sim.initial_energy;
@@ -239,6 +240,7 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     }
     // each free point's position over the steady window
     let point_rows: Vec<(String, V3, [[f64; 3]; 3])> = run
+        .free
         .points
         .iter()
         .enumerate()
@@ -302,8 +304,8 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
                 "y": w[1].map(finite),
                 "z": w[2].map(finite),
             })).collect::<Vec<_>>(),
-            "point_iterations": run.point_iterations,
-            "trial_newton_iterations": run.trial_iterations,
+            "point_iterations": run.free.point_iterations,
+            "trial_newton_iterations": run.free.trial_iterations,
             "threads": threads,
             "steps": steps,
             "newton_iterations": iterations,
@@ -415,7 +417,7 @@ fn write_csv(
     for l in &run.lines {
         write!(f, ",{0}.tension_from,{0}.tension_to,{0}.min_tension", l.name)?;
     }
-    for p in &run.points {
+    for p in &run.free.points {
         write!(f, ",{0}.x,{0}.y,{0}.z", p.name)?;
     }
     writeln!(f)?;
@@ -449,7 +451,8 @@ pub fn model_description(path: &str) -> Result<(), String> {
         ));
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
-    if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the FMU") {
+    // free points in waves, a rod at a free point: not in the FMU's dynamics either
+    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
         return Err(m);
     }
     let name = std::path::Path::new(path).file_name().and_then(|n| n.to_str()).unwrap_or(path);

@@ -72,12 +72,13 @@ def simulate(fmu: str | Path, motion: Motion | None, duration: float, interval: 
     return FmuRun(series, res, wall)
 
 
-def energy_balance(series: Mapping[str, np.ndarray]) -> tuple[float, float]:
-    """(max |E - E0 - work_top - work_hydro + dissipated + algorithmic|, max |work_top| + |work_hydro|), J."""
+def energy_balance(series: Mapping[str, np.ndarray], seabed: bool = False) -> tuple[float, float]:
+    """(max |E - E0 - work_top - work_hydro + dissipated + algorithmic|, max |work_top| + |work_hydro|), J;
+    with `seabed`, the seabed's work (`work_seabed`) in both."""
     e = series["total_energy"]
-    balance = e - e[0] - series["work_top"] - series["work_hydro"] + series["dissipated_energy"] \
-        + series["algorithmic_dissipation"]
-    exchanged = float(np.max(np.abs(series["work_top"]) + np.abs(series["work_hydro"])))
+    works = [series["work_top"], series["work_hydro"]] + ([series["work_seabed"]] if seabed else [])
+    balance = e - e[0] - sum(works) + series["dissipated_energy"] + series["algorithmic_dissipation"]
+    exchanged = float(np.max(sum(np.abs(w) for w in works)))
     return float(np.max(np.abs(balance))), exchanged
 
 
@@ -87,8 +88,9 @@ def package(binary: str = "target/release/riser", lib: str = "target/release/lib
     model-description`), binaries/linux64/riser.so, resources/ (the scene files) and
     documentation/index.html (the README). With `scene` (a system of lines, [[line]]): a system
     FMU, the file in its resources as the `scene` parameter's start value, each line's outputs
-    named (LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s: `riser
-    model-description --scene`), and NAME_OspModelDescription.xml beside it (the vessel's ports,
+    named (LINE.tension_from, LINE.tension_to, LINE.min_tension, LINE.touchdown_s; a free
+    point's POINT.x, POINT.y, POINT.z; an anchor's LINE.anchor_force, LINE.anchor_uplift_angle:
+    `riser model-description --scene`), and NAME_OspModelDescription.xml beside it (the vessel's ports,
     as the generic FMU's)."""
     root = Path(root)
     command = [binary, "model-description"] + (["--scene", str(scene)] if scene is not None else [])
