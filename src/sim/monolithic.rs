@@ -67,9 +67,11 @@ pub struct BodyRun {
     /// The body's heave (m) and pitch (rad) from rest, and their rates.
     pub q: [f64; 2],
     pub q_dot: [f64; 2],
-    /// The support's reaction on the line at rest, N: the load the body's
-    /// buoyancy and trim balance (a constant force on the body, (7.14)).
-    pub static_reaction: V3,
+    /// The line's generalized load on the body at rest, [N, N m]: what the
+    /// body's buoyancy and trim balance, a constant heave force and pitch
+    /// moment (7.14), as a vessel model balances the load it starts with
+    /// (osp/vessel/Vessel6.py's `balance_initial_load`).
+    pub static_load: [f64; 2],
     /// Work of the excitation on the body since the start, J.
     pub work_excitation: f64,
     /// Energy the body's damping took since the start, J (≥ 0).
@@ -85,18 +87,21 @@ impl BodyRun {
     /// The line at rest in its statics with the body at rest on it.
     pub fn new(mut sim: Simulation, body: HeavePitchBody) -> Self {
         sim.start(HangOff::default());
-        let static_reaction = -sim.outputs().top_force;
-        BodyRun {
+        let mut run = BodyRun {
             sim,
             body,
             q: [0.0; 2],
             q_dot: [0.0; 2],
-            static_reaction,
+            static_load: [0.0; 2],
             work_excitation: 0.0,
             dissipated: 0.0,
             work_line: 0.0,
             iterations: 0,
-        }
+        };
+        let p0 = -run.sim.outputs().top_force;
+        let g = run.chord(0.0, 0.0);
+        run.static_load = [g[0].dot(&p0), g[1].dot(&p0)];
+        run
     }
 
     /// The lever's arm R_y(θ) ρ (global), m.
@@ -124,13 +129,13 @@ impl BodyRun {
         [V3::z(), g]
     }
 
-    /// The body's energy: ½ q̇ᵀ M q̇ + ½ qᵀ C q − P₀·x(q), J (the last the
+    /// The body's energy: ½ q̇ᵀ M q̇ + ½ qᵀ C q − Q₀·q, J (the last the
     /// potential of the constant load that balances the line at rest).
     pub fn body_energy(&self) -> f64 {
         let b = &self.body;
         let kinetic = 0.5 * (b.mass * self.q_dot[0].powi(2) + b.inertia * self.q_dot[1].powi(2));
         let spring = 0.5 * (b.stiffness[0] * self.q[0].powi(2) + b.stiffness[1] * self.q[1].powi(2));
-        kinetic + spring - self.static_reaction.dot(&self.hang_off_displacement(self.q))
+        kinetic + spring - self.static_load[0] * self.q[0] - self.static_load[1] * self.q[1]
     }
 
     /// The line's and the body's energy balance (7.18), J: ΔE_line + ΔE_body
@@ -190,10 +195,11 @@ impl BodyRun {
                     b.damping[i] * dq / h,
                     b.stiffness[i] * (q0[i] + q1[i]) * 0.5,
                     -f[i],
-                    g[i].dot(&(p - self.static_reaction)),
+                    g[i].dot(&p),
+                    -self.static_load[i],
                 ];
                 r[i] = terms.iter().sum();
-                scale[i] = terms.iter().map(|x| x.abs()).sum::<f64>() + g[i].dot(&self.static_reaction).abs();
+                scale[i] = terms.iter().map(|x| x.abs()).sum::<f64>();
             }
             worst = (0..n).map(|i| r[i].abs() / scale[i].max(f64::MIN_POSITIVE)).fold(0.0, f64::max);
             if worst <= tol {
@@ -220,6 +226,12 @@ impl BodyRun {
                     jac[(i, j)] = g[i].dot(&(s * g[j]));
                 }
                 jac[(i, i)] += mass[i] * 2.0 / (h * h) + b.damping[i] / h + 0.5 * b.stiffness[i];
+            }
+            // the chord's turn with θ⁺ under the line's load: ½ a″(θ½)·P
+            let (tm, e) = (0.5 * (q0[1] + q1[1]), 1e-4);
+            let curvature = (self.arm(tm + e) - self.arm(tm) * 2.0 + self.arm(tm - e)) / (e * e);
+            if n == 2 {
+                jac[(1, 1)] += 0.5 * curvature.dot(&p);
             }
             let rhs = nalgebra::Vector2::new(-r[0], -r[1]);
             let Some(dq) = jac.lu().solve(&rhs) else { break };
