@@ -1,0 +1,104 @@
+"""Two-way coupling against the monolithic reference (issue 53; docs/coupling.md "Against the
+monolithic reference", docs/theory.md §7.9): a body in heave and pitch with the hang-off at its
+lever, coupled to riser's FMU in libcosim's fixed step (osp/vessel/Vessel6.py with its other degrees
+of freedom held; riser given the body's mass and inertias, `vessel_mass_*`, `vessel_inertia_*`; no
+filter), against the same body integrated inside riser's own step (examples/monolithic_body.rs,
+riser::sim::monolithic). References: the monolithic run (converged: its window within 4e-6 between
+0.05 s and 0.01 s, tests/monolithic_body.rs for its own checks) and the body alone's closed form.
+
+What the ports exchange: riser's `work_top` (the vessel's work on the line) against minus the vessel's
+`work` (riser's held force on the vessel's displacement). With the force held over each step the two
+differ by the work of the force's change within the step, ∫(F − F_n)·v dt: measured 0.022–0.028 h/s
+of the line's work's range; held to 0.04 h/s."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+from riser_tools import coupling_mono as cm
+from riser_tools.coupling_loop import build_vessel_fmu
+
+
+@pytest.fixture(scope="module")
+def vessel6_fmu(tmp_path_factory):
+    return build_vessel_fmu(tmp_path_factory.mktemp("vessel6"), "Vessel6")
+
+
+@pytest.fixture(scope="module")
+def exe(riser_bin):
+    """examples/monolithic_body of the same build as the riser CLI (`cargo test` builds the examples)."""
+    p = Path(riser_bin).parent / "examples" / "monolithic_body"
+    if not p.exists():
+        pytest.skip(f"build the example first: cargo build --example monolithic_body ({p})")
+    return str(p)
+
+
+def check(case, h, duration, window, fmu_path, vessel6_fmu, ref, tolerance=0.01):
+    two = cm.two_way(case, h, duration, fmu_path, vessel6_fmu)
+    c = cm.compare(two, ref, duration - window)
+    print(f"{case.name}, h {h}: " + ", ".join(f"{k} {v:.3e}" for k, v in c.items()))
+    for k in ("tension min", "tension max", "heave", "pitch"):
+        if np.isfinite(c[k]):
+            assert abs(c[k]) <= tolerance, (k, c[k])
+    assert c["energy"] <= 0.04 * h, c["energy"]
+    return c
+
+
+def test_the_2000_t_vessel_at_a_30_m_lever_at_0_2_s_is_the_monolithic_reference_within_1_percent(
+        fmu_path, vessel6_fmu, exe):
+    # 100 s (the ramp 20 s), window 60–100 s, the reference at 0.05 s (riser's internal step in the
+    # loop; within 4e-6 of the 0.01 s reference's window). Measured: tension within 0.003 %, heave
+    # 0.004 %, pitch 0.018 %; the ports' energy within 4.6e-3 of the line's work's range
+    ref = cm.monolithic(cm.VESSEL_2000T, 0.05, 100.0, exe)
+    check(cm.VESSEL_2000T, 0.2, 100.0, 40.0, fmu_path, vessel6_fmu, ref)
+
+
+@pytest.fixture(scope="module")
+def references(exe):
+    """The monolithic references at 0.01 s over 300 s, per case (computed once)."""
+    return {}
+
+
+def reference(references, key, exe):
+    if key not in references:
+        references[key] = cm.monolithic(cm.CASES[key], 0.01, 300.0, exe)
+    return references[key]
+
+
+# measured over 300 s, window 200–300 s (docs/coupling.md): the vessel misses at 0.1 s, where the
+# loop rings the line's axial resonance at 3.85 Hz (1 kN); the buoy is as heavy as the line's
+# axial mode's share at the hang-off and the held force's lag grows it at 0.05–0.2 s; at 0.5 s it
+# is bounded but its heave 26 % high
+VESSEL_MISS = {0.1: "the loop rings the line's axial mode at 3.85 Hz: tension 1.1 % off (docs/coupling.md)"}
+BUOY_MISS = {0.05: "grows (the held force's lag on the line's axial mode)", 0.1: "diverges", 0.2: "grows",
+             0.5: "bounded, its heave 26 % high"}
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("h", [pytest.param(h, marks=pytest.mark.xfail(strict=True, reason=VESSEL_MISS[h]))
+                               if h in VESSEL_MISS else h for h in (0.05, 0.1, 0.2, 0.5)])
+def test_the_2000_t_vessel_two_way_against_the_monolithic_reference_over_300_s(
+        fmu_path, vessel6_fmu, exe, references, h):
+    check(cm.VESSEL_2000T, h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, "vessel", exe))
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("h", [pytest.param(h, marks=pytest.mark.xfail(strict=True, reason=BUOY_MISS[h]))
+                               for h in (0.05, 0.1, 0.2, 0.5)])
+def test_the_50_t_buoy_two_way_against_the_monolithic_reference_over_300_s(
+        fmu_path, vessel6_fmu, exe, references, h):
+    check(cm.BUOY_50T, h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, "buoy", exe))
+
+
+@pytest.mark.long
+def test_the_line_changes_the_buoy_s_heave_by_more_than_5_percent(exe, references):
+    # the body alone: |X| = F / |C − (M + A) ω² + i B ω| = 0.2811 m in the 10 s wave; on the line
+    # (monolithic) 0.3031 m: the line changes the buoy's motion by 7.8 % (the 2,000 t vessel's by
+    # less than 0.01 %: 0.28571 m both)
+    for key, lo, hi in (("buoy", 0.05, 1.0), ("vessel", 0.0, 1e-3)):
+        case = cm.CASES[key]
+        w = 2 * np.pi / case.period
+        alone = case.excitation[0] / abs(case.stiffness[0] - case.mass * w**2 + 1j * case.damping[0] * w)
+        ref = reference(references, key, exe)
+        amp = np.ptp(ref["heave"][ref["t"] >= 200.0]) / 2
+        print(f"{case.name}: heave {amp:.5f} m on the line, {alone:.5f} m alone ({amp / alone - 1:+.2%})")
+        assert lo <= abs(amp / alone - 1) <= hi
