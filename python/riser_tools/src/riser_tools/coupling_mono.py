@@ -80,7 +80,18 @@ VESSEL_2000T = Case("2,000 t vessel, 30 m lever", 3.0e6, 7.0e8, (5.0276e6, 1.18e
 # the 50 t buoy of issue 29 (M + A 75 t, 10 m² waterplane, 5 %, a 10 s wave of 20 kN), no lever
 BUOY_50T = Case("50 t buoy", 7.5e4, 0.0, (1.0055e5, 0.0), (float(_critical(0.05, 7.5e4, 1.0055e5)), 0.0),
                 (2.0e4, 0.0))
-CASES = {"vessel": VESSEL_2000T, "buoy": BUOY_50T}
+# for the stability map: the same vessel with ten times the pitch inertia, and with its hang-off over
+# its reference point (no lever: the hang-off's vertical inertia is then M + A alone)
+VESSEL_2000T_I10 = Case("2,000 t vessel, 30 m lever, pitch inertia 7e9", 3.0e6, 7.0e9, (5.0276e6, 1.18e9),
+                        (3.883e5, float(_critical(0.05, 7.0e9, 1.18e9))), (1.1e6, 2.5e7), riser={"hang_off_x": 30.0})
+VESSEL_2000T_NO_LEVER = Case("2,000 t vessel, no lever", 3.0e6, 0.0, (5.0276e6, 0.0), (3.883e5, 0.0), (1.1e6, 0.0))
+CASES = {"vessel": VESSEL_2000T, "buoy": BUOY_50T, "vessel_i10": VESSEL_2000T_I10, "vessel_no_lever": VESSEL_2000T_NO_LEVER}
+
+
+def hang_off_inertia(case: Case) -> float:
+    """The body's inertia felt at the hang-off along z, kg: 1/(1/M + ρ²/I) (heave and pitch at the lever ρ)."""
+    rho = case.riser.get("hang_off_x", 0.0)
+    return 1.0 / (1.0 / case.mass + (rho**2 / case.inertia if case.inertia > 0 else 0.0))
 
 
 def monolithic(case: Case, h: float, duration: float, exe: str | None = None) -> dict:
