@@ -8,8 +8,9 @@ riser::sim::monolithic). References: the monolithic run (converged: its window w
 
 What the ports exchange: riser's `work_top` (the vessel's work on the line) against minus the vessel's
 `work` (riser's held force on the vessel's displacement). With the force held over each step the two
-differ by the work of the force's change within the step, ∫(F − F_n)·v dt: measured 0.022–0.028 h/s
-of the line's work's range; held to 0.04 h/s."""
+differ by the work of the force's change within the step, ∫(F − F_n)·v dt, first order in h: over
+300 s the largest |work_top + work| is 6.5e-5, 1.5e-4, 2.7e-4, 7.3e-4 of the energy exchanged (the
+vessel's `work_magnitude`) at 0.05, 0.1, 0.2, 0.5 s, about 1.4e-3 h/s; held to 3e-3 h/s."""
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +40,7 @@ def check(case, h, duration, window, fmu_path, vessel6_fmu, ref, tolerance=0.01)
     for k in ("tension min", "tension max", "heave", "pitch"):
         if np.isfinite(c[k]):
             assert abs(c[k]) <= tolerance, (k, c[k])
-    assert c["energy"] <= 0.04 * h, c["energy"]
+    assert c["energy"] <= 3e-3 * h, c["energy"]
     return c
 
 
@@ -47,7 +48,7 @@ def test_the_2000_t_vessel_at_a_30_m_lever_at_0_2_s_is_the_monolithic_reference_
         fmu_path, vessel6_fmu, exe):
     # 100 s (the ramp 20 s), window 60–100 s, the reference at 0.05 s (riser's internal step in the
     # loop; within 4e-6 of the 0.01 s reference's window). Measured: tension within 0.003 %, heave
-    # 0.004 %, pitch 0.018 %; the ports' energy within 4.6e-3 of the line's work's range
+    # 0.012 %, pitch 0.030 %; the ports' energy within 2.7e-4 of the energy exchanged
     ref = cm.monolithic(cm.VESSEL_2000T, 0.05, 100.0, exe)
     check(cm.VESSEL_2000T, 0.2, 100.0, 40.0, fmu_path, vessel6_fmu, ref)
 
@@ -65,12 +66,12 @@ def reference(references, key, exe):
 
 
 # measured over 300 s, window 200–300 s (docs/coupling.md): the vessel misses at 0.1 s, where the
-# loop rings the line's axial resonance at 3.85 Hz (1 kN); the buoy is as heavy as the line's
-# axial mode's share at the hang-off and the held force's lag grows it at 0.05–0.2 s; at 0.5 s it
-# is bounded but its heave 26 % high
+# loop rings the line's axial resonance at 3.85 Hz (1 kN; at 0.05 s it rings too, at 3.9 Hz and
+# 0.5 kN, 0.41 % off); the buoy is as heavy as the line's axial mode's share at the hang-off and
+# the held force's lag grows it at 0.05–0.2 s; at 0.5 s it is bounded but its heave 84 % high
 VESSEL_MISS = {0.1: "the loop rings the line's axial mode at 3.85 Hz: tension 1.1 % off (docs/coupling.md)"}
 BUOY_MISS = {0.05: "grows (the held force's lag on the line's axial mode)", 0.1: "diverges", 0.2: "grows",
-             0.5: "bounded, its heave 26 % high"}
+             0.5: "bounded, its heave 84 % high"}
 
 
 @pytest.mark.long
@@ -92,8 +93,8 @@ def test_the_50_t_buoy_two_way_against_the_monolithic_reference_over_300_s(
 @pytest.mark.long
 def test_the_line_changes_the_buoy_s_heave_by_more_than_5_percent(exe, references):
     # the body alone: |X| = F / |C − (M + A) ω² + i B ω| = 0.2811 m in the 10 s wave; on the line
-    # (monolithic) 0.3031 m: the line changes the buoy's motion by 7.8 % (the 2,000 t vessel's by
-    # less than 0.01 %: 0.28571 m both)
+    # (monolithic, 200–300 s) 0.30225 m: the line changes the buoy's motion by 7.5 % (the 2,000 t
+    # vessel's by 0.08 %: 0.28540 m against 0.28564 m)
     for key, lo, hi in (("buoy", 0.05, 1.0), ("vessel", 0.0, 1e-3)):
         case = cm.CASES[key]
         w = 2 * np.pi / case.period
