@@ -5,6 +5,8 @@
 //! the line is a light taut spring: the body on its own stiffness plus the
 //! line's static stiffness at the hang-off (§8.3) through the lever.
 
+mod common;
+
 use riser::math::V3;
 use riser::scene::Scene;
 use riser::sim::Simulation;
@@ -18,15 +20,7 @@ const TAUT: &str = r#"
 name = "taut"
 [line]
 length = 10.0
-mass_per_length = 0.01
-outer_diameter = 0.001
-axial_stiffness = 1.0e6
-bending_stiffness = 0.0
-torsional_stiffness = 0.0
-cd_normal = 0.0
-cd_tangential = 0.0
-ca_normal = 0.0
-[anchor]
+LINE[anchor]
 x = 0.0
 y = 0.0
 z = -10.05
@@ -75,7 +69,7 @@ fn harmonic(t: &[f64], x: &[f64], omega: f64) -> (f64, f64) {
 /// energy exchanged.
 #[test]
 fn a_body_on_a_light_taut_line_answers_as_the_linear_oscillator() {
-    let scene = Scene::from_toml(TAUT, "taut").unwrap();
+    let scene = Scene::from_toml(&TAUT.replace("LINE", common::LIGHT_ELASTIC_LINE), "taut").unwrap();
     let sim = Simulation::from_scene(&scene).unwrap();
     let s = sim.hang_off_stiffness().unwrap();
     let rho = sim.vessel.offset;
