@@ -11,7 +11,7 @@ ports: the vessel's work on the line (riser's `work_top`) against minus the line
 vessel (the vessel's `work`, the held force on its displacement), their sum the coupling's energy
 error, relative to the energy exchanged (the vessel's `work_magnitude`, the sum of each step's |work|).
 
-    python -m riser_tools.coupling_mono --fmu out/check/riser.fmu --steps 0.05,0.1,0.2,0.5
+    riser-tools coupling-mono --fmu out/check/riser.fmu --steps 0.05,0.1,0.2,0.5
 """
 from __future__ import annotations
 
@@ -142,7 +142,7 @@ def compare(two: dict, ref: dict, start: float) -> dict:
 def main(argv=None):
     import argparse
 
-    ap = argparse.ArgumentParser(prog="python -m riser_tools.coupling_mono", description=__doc__,
+    ap = argparse.ArgumentParser(prog="riser-tools coupling-mono", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--fmu", default="out/check/riser.fmu")
     ap.add_argument("--vessel-fmu", default=None, help="Vessel6.fmu (built into out/check if not given)")
