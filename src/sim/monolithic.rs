@@ -18,6 +18,10 @@ use super::error::RiserError;
 use crate::math::{M3, V3};
 use crate::model::{DynamicsError, HangOff, State};
 
+/// The corner below which the held body's answer returns to 0, rad/s
+/// (0.5 Hz: a tenth of the line's axial modes, five times the waves').
+pub const HELD_BODY_CORNER: f64 = 2.0 * std::f64::consts::PI * 0.5;
+
 /// The most Newton corrections of the body's unknowns in a step.
 pub const MAX_BODY_ITERATIONS: usize = 30;
 
@@ -219,7 +223,7 @@ impl BodyRun {
             }
             // (7.17)'s Jacobian: the body's own terms and Gᵀ S G, S the line's
             // step condensed on its hang-off (17.15)
-            let s = self.hang_off_condensed(&prev, &state, h, target)?;
+            let s = hang_off_condensed(&mut self.sim, &prev, &state, h, target)?;
             let mut jac = nalgebra::Matrix2::<f64>::identity();
             for i in 0..n {
                 for j in 0..n {
@@ -242,24 +246,141 @@ impl BodyRun {
         let (iterations, residual) = (MAX_BODY_ITERATIONS, worst);
         Err(RiserError::Dynamics(DynamicsError::NotConverged { time: t0, step: h, iterations, residual }))
     }
+}
 
-    /// The line's step from `prev` to `state` condensed on its hang-off's
-    /// translation, global, N/m: the first 3×3 block of (17.15), turned from
-    /// the rod's corotated basis (the hang-off node's director frame) when
-    /// the tangent is assembled in it.
-    fn hang_off_condensed(&mut self, prev: &State, state: &State, h: f64, target: HangOff) -> Result<M3, RiserError> {
-        let engine = &mut self.sim.integrator;
-        let s = engine
-            .condensed_fixed_tangent(prev, &state.config, h, target)
-            .map_err(|error| DynamicsError::Linear { time: prev.time, step: h, error })?;
-        let m = (s.len() as f64).sqrt().round() as usize;
-        let local = M3::from_fn(|i, j| s[i * m + j]);
-        let rod = matches!(engine, super::Engine::Rod(_));
-        Ok(if rod && engine.options().corotated_tangent {
-            let d = state.config.d[0];
-            d * local * d.transpose()
-        } else {
-            local
-        })
+/// The vessel's answer to the line's force beyond the force it holds,
+/// integrated inside the line's own steps (docs/theory.md §7.10; issue 53):
+/// in a fixed-step master the vessel holds the load of t_n over the
+/// communication step while the line's force turns within it; the FMU,
+/// given the vessel's inertias (`vessel_mass_*`, `vessel_inertia_*`), moves
+/// the hang-off by that rigid body's answer δq = (δu, δθ) (global
+/// translation and small rotation about the reference point) to the
+/// difference, M δq̈ = −Gᵀ(P − P_n), P the line's reaction at the hang-off
+/// and P_n the held one, implicitly in the line's step (the monolithic step
+/// of §7.9): the hang-off at the input path's position plus δu + δθ × Rρ.
+/// The answer is the high-frequency one: below [`HELD_BODY_CORNER`] it
+/// returns to zero (the vessel's own samples carry the slow motion).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HeldBody {
+    /// Masses (surge, sway, heave; kg) and principal inertias (roll, pitch,
+    /// yaw; kg m², vessel frame), with their added parts; 0: not moved.
+    pub inertia: [f64; 6],
+    /// δq and its rate.
+    pub dq: [f64; 6],
+    pub dq_dot: [f64; 6],
+}
+
+impl HeldBody {
+    /// One step of h of the line from its state with the body's δq (7.19),
+    /// about the path's `base` at the step's end, the vessel holding the
+    /// reaction `held` (N). On failure the line and δq are left at the
+    /// step's start.
+    pub fn step(&mut self, sim: &mut Simulation, h: f64, base: HangOff, held: V3) -> Result<(), RiserError> {
+        let prev: State = sim.state.clone();
+        let t0 = prev.time;
+        let r = base.rotation * sim.vessel.offset;
+        let rot = base.rotation;
+        // the mass matrix, global: translations, R diag(I) Rᵀ
+        let mut mass = nalgebra::Matrix6::<f64>::zeros();
+        for i in 0..3 {
+            mass[(i, i)] = self.inertia[i];
+        }
+        let inertia =
+            rot * M3::from_diagonal(&V3::new(self.inertia[3], self.inertia[4], self.inertia[5])) * rot.transpose();
+        mass.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
+        let active: [bool; 6] = std::array::from_fn(|i| self.inertia[i] > 0.0);
+        // G = [I, −[r]×]: δx = δu + δθ × r
+        let g = |i: usize| -> V3 { if i < 3 { V3::ith(i, 1.0) } else { V3::ith(i - 3, 1.0).cross(&r) } };
+        let tol = sim.integrator.options().newton_tolerance;
+        let (q0, v0) = (self.dq, self.dq_dot);
+        let mut q1: [f64; 6] = std::array::from_fn(|i| if active[i] { q0[i] + h * v0[i] } else { 0.0 });
+        let mut worst = f64::INFINITY;
+        for it in 0..=MAX_BODY_ITERATIONS {
+            let v1: [f64; 6] = std::array::from_fn(|i| (q1[i] - q0[i]) * (2.0 / h) - v0[i]);
+            let du = V3::new(q1[0], q1[1], q1[2]);
+            let dth = V3::new(q1[3], q1[4], q1[5]);
+            let target = HangOff {
+                displacement: base.displacement + du + dth.cross(&r),
+                velocity: base.velocity + V3::new(v1[0], v1[1], v1[2]) + V3::new(v1[3], v1[4], v1[5]).cross(&r),
+                rotation: crate::math::rigid::exp_so3(&dth) * rot,
+                angular_velocity: base.angular_velocity + V3::new(v1[3], v1[4], v1[5]),
+            };
+            let mut state = prev.clone();
+            sim.integrator.step(&mut state, h, &|_| target)?;
+            state.time = t0 + h;
+            let p = state.mid_reaction[0];
+            let acc = nalgebra::Vector6::from_fn(|i, _| (v1[i] - v0[i]) / h);
+            let inert = mass * acc;
+            let mut res = nalgebra::Vector6::<f64>::zeros();
+            worst = 0.0;
+            // the answer is the high-frequency one: δq returns to 0 below ω_c, critically damped (7.19)
+            let wc = HELD_BODY_CORNER;
+            let dq = nalgebra::Vector6::from_fn(|i, _| q1[i] - q0[i]);
+            let qm = nalgebra::Vector6::from_fn(|i, _| 0.5 * (q0[i] + q1[i]));
+            let leak = mass * (dq * (2.0 * wc / h) + qm * (wc * wc));
+            for i in (0..6).filter(|&i| active[i]) {
+                res[i] = inert[i] + leak[i] + g(i).dot(&(p - held));
+                let scale = inert[i].abs() + g(i).dot(&p).abs() + g(i).dot(&held).abs();
+                worst = f64::max(worst, res[i].abs() / scale.max(f64::MIN_POSITIVE));
+            }
+            if worst <= tol {
+                self.dq = q1;
+                self.dq_dot = v1;
+                sim.state = state;
+                return Ok(());
+            }
+            if it == MAX_BODY_ITERATIONS {
+                break;
+            }
+            let s = hang_off_condensed(sim, &prev, &state, h, target)?;
+            let wc = HELD_BODY_CORNER;
+            let mut jac = mass * (2.0 / (h * h) + 2.0 * wc / h + 0.5 * wc * wc);
+            for i in 0..6 {
+                for j in 0..6 {
+                    jac[(i, j)] += g(i).dot(&(s * g(j)));
+                }
+            }
+            for i in (0..6).filter(|&i| !active[i]) {
+                for j in 0..6 {
+                    jac[(i, j)] = 0.0;
+                    jac[(j, i)] = 0.0;
+                }
+                jac[(i, i)] = 1.0;
+            }
+            let Some(d) = jac.lu().solve(&(-res)) else { break };
+            for (i, qi) in q1.iter_mut().enumerate() {
+                *qi += d[i];
+            }
+        }
+        let (iterations, residual) = (MAX_BODY_ITERATIONS, worst);
+        Err(RiserError::Dynamics(DynamicsError::NotConverged { time: t0, step: h, iterations, residual }))
     }
+}
+
+/// The line's step from `prev` to `state` condensed on its hang-off's
+/// translation, global, N/m: the first 3×3 block of (17.15), turned from
+/// the rod's corotated basis (the hang-off node's director frame) when
+/// the tangent is assembled in it.
+fn hang_off_condensed(
+    sim: &mut Simulation,
+    prev: &State,
+    state: &State,
+    h: f64,
+    target: HangOff,
+) -> Result<M3, RiserError> {
+    let engine = &mut sim.integrator;
+    let s = engine.condensed_fixed_tangent(prev, &state.config, h, target).map_err(|error| DynamicsError::Linear {
+        time: prev.time,
+        step: h,
+        error,
+    })?;
+    let m = (s.len() as f64).sqrt().round() as usize;
+    let local = M3::from_fn(|i, j| s[i * m + j]);
+    let rod = matches!(engine, super::Engine::Rod(_));
+    Ok(if rod && engine.options().corotated_tangent {
+        let d = state.config.d[0];
+        d * local * d.transpose()
+    } else {
+        local
+    })
 }
