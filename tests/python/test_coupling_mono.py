@@ -3,14 +3,16 @@ monolithic reference", docs/theory.md §7.9): a body in heave and pitch with the
 lever, coupled to riser's FMU in libcosim's fixed step (osp/vessel/Vessel6.py with its other degrees
 of freedom held; riser given the body's mass and inertias, `vessel_mass_*`, `vessel_inertia_*`; no
 filter), against the same body integrated inside riser's own step (examples/monolithic_body.rs,
-riser::sim::monolithic). References: the monolithic run (converged: its window within 4e-6 between
+riser::sim::monolithic). riser, given the body's inertias, also takes the body's answer to the line's
+force beyond the held one inside its own steps (docs/theory.md §7.10). References: the monolithic run (converged: its window within 4e-6 between
 0.05 s and 0.01 s, tests/monolithic_body.rs for its own checks) and the body alone's closed form.
 
 What the ports exchange: riser's `work_top` (the vessel's work on the line) against minus the vessel's
 `work` (riser's held force on the vessel's displacement). With the force held over each step the two
-differ by the work of the force's change within the step, ∫(F − F_n)·v dt, first order in h: over
-300 s the largest |work_top + work| is 6.5e-5, 1.5e-4, 2.7e-4, 7.3e-4 of the energy exchanged (the
-vessel's `work_magnitude`) at 0.05, 0.1, 0.2, 0.5 s, about 1.4e-3 h/s; held to 3e-3 h/s."""
+differ by the work of the force's change within the step, ∫(F − F_n)·v dt, first order in h: the
+largest |work_top + work| is 6.2e-5, 1.3e-4, 2.6e-4, 1.9e-3 of the energy exchanged (the vessel's
+`work_magnitude`) at 0.05, 0.1, 0.2, 0.5 s for the vessel over 100 s, 1.5e-4 and 3.8e-4 for the buoy
+at 0.05 and 0.1 s: 1.2e-3 to 3.8e-3 h/s; held to 5e-3 h/s."""
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +42,7 @@ def check(case, h, duration, window, fmu_path, vessel6_fmu, ref, tolerance=0.01)
     for k in ("tension min", "tension max", "heave", "pitch"):
         if np.isfinite(c[k]):
             assert abs(c[k]) <= tolerance, (k, c[k])
-    assert c["energy"] <= 3e-3 * h, c["energy"]
+    assert c["energy"] <= 5e-3 * h, c["energy"]
     return c
 
 
@@ -65,13 +67,11 @@ def reference(references, key, exe):
     return references[key]
 
 
-# measured over 300 s, window 200–300 s (docs/coupling.md): the vessel misses at 0.1 s, where the
-# loop rings the line's axial resonance at 3.85 Hz (1 kN; at 0.05 s it rings too, at 3.9 Hz and
-# 0.5 kN, 0.41 % off); the buoy is as heavy as the line's axial mode's share at the hang-off and
-# the held force's lag grows it at 0.05–0.2 s; at 0.5 s it is bounded but its heave 84 % high
+# measured (docs/coupling.md): with the vessel's answer inside riser's steps (§7.10) the vessel is
+# within 1 % at every step (before: 1.1 % at 0.1 s, the line's axial mode ringing at 3.85 Hz); the
+# buoy at 0.05 and 0.1 s too (before: unstable), at 0.2 s it still rings, at 0.5 s its heave is 3 % high
 VESSEL_MISS: dict = {}
-BUOY_MISS = {0.05: "grows (the held force's lag on the line's axial mode)", 0.1: "diverges", 0.2: "grows",
-             0.5: "bounded, its heave 84 % high"}
+BUOY_MISS = {0.2: "rings (the line's axial mode; docs/coupling.md)", 0.5: "bounded, its heave 3 % high"}
 
 
 @pytest.mark.long
@@ -84,7 +84,7 @@ def test_the_2000_t_vessel_two_way_against_the_monolithic_reference_over_300_s(
 
 @pytest.mark.long
 @pytest.mark.parametrize("h", [pytest.param(h, marks=pytest.mark.xfail(strict=True, reason=BUOY_MISS[h]))
-                               for h in (0.05, 0.1, 0.2, 0.5)])
+                               if h in BUOY_MISS else h for h in (0.05, 0.1, 0.2, 0.5)])
 def test_the_50_t_buoy_two_way_against_the_monolithic_reference_over_300_s(
         fmu_path, vessel6_fmu, exe, references, h):
     check(cm.BUOY_50T, h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, "buoy", exe))
