@@ -12,6 +12,11 @@
 //! line stepped from its start with its hang-off at the lever's end-of-step
 //! position (a trial), its reaction and its step tangent condensed on the
 //! hang-off (17.15) closing a Newton on q⁺ (7.17), as free points do (§17.7).
+//!
+//! The same step serves the FMU ([`HeldBody`], §7.10): a single line given
+//! the vessel's inertias takes, inside its internal steps, the vessel's
+//! answer to the line's force beyond the force the vessel holds over the
+//! communication step.
 
 use super::Simulation;
 use super::error::RiserError;
