@@ -77,24 +77,16 @@ def reference(references, key, exe):
 # within 1 % at every step (before: 1.1 % at 0.1 s, the line's axial mode ringing at 3.85 Hz); the
 # buoy at 0.05, 0.1 and 0.5 s too (before: unstable, or its heave 84 % high at 0.5 s); at 0.2 s it
 # still rings (tension ±42 %, heave 11 % high)
-VESSEL_MISS: dict = {}
-BUOY_MISS = {0.2: "rings (the line's axial mode; docs/coupling.md)"}
+MISS = {("buoy", 0.2): "rings (the line's axial mode; docs/coupling.md)"}
 
 
 @pytest.mark.long
-@pytest.mark.parametrize("h", [pytest.param(h, marks=pytest.mark.xfail(strict=True, reason=VESSEL_MISS[h]))
-                               if h in VESSEL_MISS else h for h in (0.05, 0.1, 0.2, 0.5)])
-def test_the_2000_t_vessel_two_way_against_the_monolithic_reference_over_300_s(
-        fmu_path, vessel6_fmu, exe, references, h):
-    check(cm.VESSEL_2000T, h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, "vessel", exe))
-
-
-@pytest.mark.long
-@pytest.mark.parametrize("h", [pytest.param(h, marks=pytest.mark.xfail(strict=True, reason=BUOY_MISS[h]))
-                               if h in BUOY_MISS else h for h in (0.05, 0.1, 0.2, 0.5)])
-def test_the_50_t_buoy_two_way_against_the_monolithic_reference_over_300_s(
-        fmu_path, vessel6_fmu, exe, references, h):
-    check(cm.BUOY_50T, h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, "buoy", exe))
+@pytest.mark.parametrize("key,h", [pytest.param(k, h, marks=pytest.mark.xfail(strict=True, reason=MISS[(k, h)]))
+                                   if (k, h) in MISS else (k, h)
+                                   for k in ("vessel", "buoy") for h in (0.05, 0.1, 0.2, 0.5)])
+def test_the_vessel_and_the_buoy_two_way_against_the_monolithic_reference_over_300_s(
+        fmu_path, vessel6_fmu, exe, references, key, h):
+    check(cm.CASES[key], h, 300.0, 100.0, fmu_path, vessel6_fmu, reference(references, key, exe))
 
 
 @pytest.mark.long
