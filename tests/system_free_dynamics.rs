@@ -4,6 +4,8 @@
 //! buoy; one and two threads give the same bits; a mass between two taut
 //! elastic lines oscillates at sqrt(2k/(m + m_a)).
 
+mod common;
+
 use riser::math::V3;
 use riser::scene::system::SystemScene;
 use riser::sim::system_dynamics::SystemRun;
@@ -160,15 +162,7 @@ name = "spring_mass"
 [[line_type]]
 name = "spring"
 model = "cable"
-mass_per_length = 0.01
-outer_diameter = 0.001
-axial_stiffness = 1.0e6
-bending_stiffness = 0.0
-torsional_stiffness = 0.0
-cd_normal = 0.0
-cd_tangential = 0.0
-ca_normal = 0.0
-[[point]]
+LINE[[point]]
 name = "top"
 kind = "fixed"
 position = [0.0, 0.0, -40.0]
@@ -201,7 +195,8 @@ n_elements = 10
 time_step = 0.005
 newton_tolerance = 1e-10
 "#;
-    let sys = SystemScene::from_toml(text, "spring_mass").expect("a valid system");
+    let text = text.replace("LINE", common::LIGHT_ELASTIC_LINE);
+    let sys = SystemScene::from_toml(&text, "spring_mass").expect("a valid system");
     let (ea, l, m) = (1.0e6, 10.0, 10000.0);
     // neutrally buoyant: V = m/ρ (the lines hold it at their pretension alone)
     let m_a = 1.0 * sys.environment.water_density * sys.points[1].volume();

@@ -7,12 +7,13 @@ use super::plausibility::Watch;
 use super::vars::{Causality, GUID, Kind, VARIABLES, Variable, variable};
 use crate::math::V3;
 use crate::model::serialize::fnv1a;
-use crate::model::{Outputs, State};
+use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::VesselEnd;
 use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
+use crate::sim::monolithic::HeldBody;
 use crate::sim::system_dynamics::{POINT_VALUES, SystemStepError};
 use std::path::PathBuf;
 
@@ -145,12 +146,23 @@ pub struct Saved {
     others: Vec<State>,
     /// A system's free points' states, in order (§17.7).
     points: Vec<[f64; POINT_VALUES]>,
+    /// The vessel's answer inside the steps and where the inputs' path
+    /// ended (§7.10).
+    held_body: HeldBody,
+    held_base: Option<HangOff>,
 }
 
 /// Numbers a serialized state carries besides the line's state: the inputs
 /// (12), the input history, the mode, the parameters' hash (2), the mean
-/// force over the last step (3), the ramps' start (1).
-const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 11;
+/// force over the last step (3), the ramps' start (1), the bounded step's
+/// counters (4), the vessel's answer inside the steps (12) and where the
+/// inputs' path ended (a flag and 18: §7.10).
+const SAVED_EXTRA: usize = N_INPUTS + HISTORY_VALUES + 11 + HELD_VALUES;
+
+/// Numbers of the vessel's answer inside the steps in a serialized state:
+/// δq, δq̇ (12), a flag and the path's end (displacement, velocity,
+/// rotation, angular velocity: 18).
+const HELD_VALUES: usize = 31;
 
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
@@ -232,6 +244,10 @@ pub struct Instance {
     /// The warning that the accuracy knob does not cover the path between
     /// communication points has been logged.
     warned_split: bool,
+    /// The vessel's answer inside the steps and where the inputs' path
+    /// ended (a single line given the vessel's inertias, §7.10).
+    held_body: HeldBody,
+    held_base: Option<HangOff>,
     /// What `accuracy` chose and its estimate (None: the numerics are the
     /// master's or the scene's; docs/theory.md §16.12): `error_estimate`.
     knob: Option<crate::sim::accuracy::Choice>,
@@ -366,6 +382,8 @@ impl Instance {
             warned_reach: false,
             warned_anchor: false,
             warned_split: false,
+            held_body: Default::default(),
+            held_base: None,
             knob: None,
             hf_watch: None,
             sim: None,
@@ -995,7 +1013,14 @@ impl Instance {
         let coupling = self.coupling();
         self.history.mass = self.vessel_inertia(&VESSEL_MASS);
         self.history.inertia = self.vessel_inertia(&VESSEL_INERTIA);
-        let path = self.history.plan(coupling, &sim.vessel, now, h, &inp, &sim.state.hang_off);
+        // a single line given the vessel's inertias takes the vessel's answer
+        // to its force beyond the held one inside its steps (§7.10), its path
+        // planned from where the inputs' path ended (the hang-off less that answer)
+        let implicit = self.others.is_empty()
+            && self.free.is_none()
+            && self.history.mass.iter().chain(&self.history.inertia).any(|&m| m > 0.0);
+        let from = if implicit { self.held_base.unwrap_or(sim.state.hang_off) } else { sim.state.hang_off };
+        let path = self.history.plan(coupling, &sim.vessel, now, h, &inp, &from);
         let vessel = sim.vessel;
         self.look_at_inputs(now, &inp, &vessel);
         self.log_modes(coupling);
@@ -1063,6 +1088,18 @@ impl Instance {
         let coupled = |free: &Option<crate::sim::system_dynamics::FreePoints>, i: usize| {
             free.as_ref().is_some_and(|f| f.ends[i].coupled())
         };
+        // the vessel's answer inside the steps (§7.10; a single line only)
+        let held = -f_prev;
+        let body_start = self.held_body;
+        if implicit {
+            let (m, i) = (self.history.mass, self.history.inertia);
+            let rotation = i.iter().all(|&x| x > 0.0);
+            self.held_body.inertia = std::array::from_fn(|k| match k {
+                0..3 => m[[1, 2, 0][k]],
+                _ if rotation => i[k - 3],
+                _ => 0.0,
+            });
+        }
         'steps: for k in 1..=n {
             let target = if k == n { t_end } else { now + k as f64 * dt };
             // a system's free points with the lines at them (§17.7)
@@ -1081,9 +1118,15 @@ impl Instance {
                     }
                 }
             }
-            if !coupled(&self.free, 0)
-                && let Err(e) = sim.advance_to(target, &motion)
-            {
+            let stepped = if coupled(&self.free, 0) {
+                Ok(())
+            } else if implicit {
+                let h_in = target - sim.state.time;
+                self.held_body.step(sim, h_in, motion(target), held)
+            } else {
+                sim.advance_to(target, &motion)
+            };
+            if let Err(e) = stepped {
                 (result, failed_line) = (Err(e), (!self.others.is_empty()).then(|| format!("line '{first_name}': ")));
                 break;
             }
@@ -1107,6 +1150,9 @@ impl Instance {
         }
         if result.is_ok() {
             self.force_mean = impulse / h;
+            if implicit {
+                self.held_base = Some(motion(t_end));
+            }
         }
         let work = self.others.iter().map(|o| o.sim.integrator.work()).fold(sim.integrator.work(), u64::max);
         self.step_work = (work, bound);
@@ -1125,6 +1171,7 @@ impl Instance {
             if let Some(start) = &self.step_start {
                 sim.state.clone_from(start);
             }
+            self.held_body = body_start;
             sim.integrator.invalidate_tangent();
             for o in &mut self.others {
                 o.sim.state.clone_from(&o.step_start);
@@ -1859,6 +1906,8 @@ impl Instance {
             work: [self.run_work.0, self.run_work.1, self.step_work.0, self.step_work.1],
             others: self.others.iter().map(|o| o.sim.state.clone()).collect(),
             points: self.free.as_ref().map_or(Vec::new(), |f| f.points.iter().map(|p| p.values()).collect()),
+            held_body: self.held_body,
+            held_base: self.held_base,
         })
     }
 
@@ -1886,6 +1935,7 @@ impl Instance {
             || !s.points.iter().flatten().all(|x| x.is_finite())
             || !s.inputs.iter().chain(s.force_mean.iter()).all(|x| x.is_finite())
             || !s.ramp_start.is_finite()
+            || !s.held_body.dq.iter().chain(&s.held_body.dq_dot).all(|x| x.is_finite())
         {
             return self.fail("the FMU state holds numbers that are not finite");
         }
@@ -1942,6 +1992,7 @@ impl Instance {
         self.history = s.history;
         self.watch.forget_samples();
         self.force_mean = s.force_mean;
+        (self.held_body, self.held_base) = (s.held_body, s.held_base);
         (self.run_work, self.step_work) = ((s.work[0], s.work[1]), (s.work[2], s.work[3]));
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
@@ -1966,6 +2017,7 @@ impl Instance {
         extra.push(s.ramp_start);
         // the counters as exact integers (below 2^53 in any run)
         extra.extend(s.work.iter().map(|&w| w as f64));
+        extra.extend(held_values(&s.held_body, s.held_base.as_ref()));
         let mut out = Vec::new();
         s.state.write_bytes(&extra, &mut out);
         if s.others.is_empty() && self.free.is_none() {
@@ -2039,6 +2091,7 @@ impl Instance {
                 let ramp_start = extra[n + 6];
                 let count = |x: f64| if (0.0..9.0e15).contains(&x) { x as u64 } else { 0 };
                 let work = [count(extra[n + 7]), count(extra[n + 8]), count(extra[n + 9]), count(extra[n + 10])];
+                let (held_body, held_base) = held_from_values(&extra[n + 11..]);
                 Ok(Saved {
                     state,
                     inputs,
@@ -2052,12 +2105,40 @@ impl Instance {
                     work,
                     others,
                     points,
+                    held_body,
+                    held_base,
                 })
             }
             Ok(_) => Err(self.fail("serialized FMU state has an unexpected layout")),
             Err(e) => Err(self.fail(&format!("cannot read the serialized FMU state: {e}"))),
         }
     }
+}
+
+/// The vessel's answer inside the steps as the numbers of a serialized
+/// state ([`HELD_VALUES`]).
+fn held_values(body: &HeldBody, base: Option<&HangOff>) -> Vec<f64> {
+    let mut v = Vec::with_capacity(HELD_VALUES);
+    v.extend_from_slice(&body.dq);
+    v.extend_from_slice(&body.dq_dot);
+    v.push(if base.is_some() { 1.0 } else { 0.0 });
+    let b = base.copied().unwrap_or_default();
+    v.extend(b.displacement.iter().chain(&b.velocity).chain(b.rotation.iter()).chain(&b.angular_velocity));
+    v
+}
+
+/// [`held_values`] read back (the inertias are the parameters', set at the next step).
+fn held_from_values(x: &[f64]) -> (HeldBody, Option<HangOff>) {
+    let body =
+        HeldBody { inertia: [0.0; 6], dq: std::array::from_fn(|i| x[i]), dq_dot: std::array::from_fn(|i| x[6 + i]) };
+    let v3 = |k: usize| V3::new(x[k], x[k + 1], x[k + 2]);
+    let base = (x[12] == 1.0).then(|| HangOff {
+        displacement: v3(13),
+        velocity: v3(16),
+        rotation: crate::math::M3::from_column_slice(&x[19..28]),
+        angular_velocity: v3(28),
+    });
+    (body, base)
 }
 
 #[cfg(test)]

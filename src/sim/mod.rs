@@ -9,6 +9,7 @@ pub mod error;
 pub mod error_estimate;
 pub mod fatigue;
 pub mod modes;
+pub mod monolithic;
 pub mod report;
 pub mod system;
 pub mod system_dynamics;

@@ -7,6 +7,18 @@ pub mod reference;
 pub mod spectral;
 
 use riser::math::V3;
+
+/// A light elastic line's properties (scene TOML): EA 1e6 N, 0.01 kg/m, no
+/// bending, no torsion, no drag, no added mass: a taut spring of EA/L.
+pub const LIGHT_ELASTIC_LINE: &str = "mass_per_length = 0.01
+outer_diameter = 0.001
+axial_stiffness = 1.0e6
+bending_stiffness = 0.0
+torsional_stiffness = 0.0
+cd_normal = 0.0
+cd_tangential = 0.0
+ca_normal = 0.0
+";
 use riser::model::cable::CableModel;
 use riser::model::{DynamicOptions, HangOff, State};
 use riser::scene::Scene;

@@ -32,6 +32,7 @@ COMMANDS = {
     "cosim": ("riser_tools.studies.cosim", "co-simulation fidelity against the communication step"),
     "coupling": ("riser_tools.coupling_analysis", "the input path in a vessel–riser loop: stability, noise (docs/coupling.md)"),
     "coupling-loop": ("riser_tools.coupling_loop", "two-way runs of riser with a vessel and a buoy (Jacobi master loop)"),
+    "coupling-mono": ("riser_tools.coupling_mono", "two-way libcosim runs of a heave–pitch body against the monolithic reference (issue 53, docs/coupling.md)"),
     "rho": ("riser_tools.studies.rho", "choosing rho_infinity"),
     "physics-switches": ("riser_tools.studies.physics_switches", "the cost of each physics switch"),
     "moordyn": ("riser_tools.studies.moordyn_compare", "MoorDyn on the catenary scene (make moordyn)"),
