@@ -24,7 +24,7 @@ pub enum RiserError {
     /// `accuracy` cannot choose the numerics (docs/theory.md §16.12).
     Accuracy(AccuracyError),
     /// A system's free points did not balance their lines in a step (§17.7).
-    Points(super::system_dynamics::PointsDiverged),
+    Points(PointsDiverged),
 }
 
 impl std::fmt::Display for RiserError {
@@ -97,5 +97,28 @@ impl std::fmt::Display for AccuracyError {
                 write!(f, "accuracy: the pilots measured no {quantity} ({why})")
             }
         }
+    }
+}
+
+/// The free points' positions did not balance their lines within
+/// `iterations` Newton iterations; `residual` the largest point's net force
+/// relative to its scale; the state kept at `time`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointsDiverged {
+    pub time: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub point: String,
+}
+
+impl std::fmt::Display for PointsDiverged {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let PointsDiverged { time, iterations, residual, point } = self;
+        write!(
+            f,
+            "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
+             iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is kept \
+             at t = {time:.6} s (try a smaller time_step)"
+        )
     }
 }

@@ -257,28 +257,7 @@ pub enum SystemStepError {
     Points(PointsDiverged),
 }
 
-/// The free points' positions did not balance their lines within
-/// `iterations` Newton iterations; `residual` the largest point's net force
-/// relative to its scale; the state kept at `time`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PointsDiverged {
-    pub time: f64,
-    pub iterations: usize,
-    pub residual: f64,
-    pub point: String,
-}
-
-impl std::fmt::Display for PointsDiverged {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let PointsDiverged { time, iterations, residual, point } = self;
-        write!(
-            f,
-            "time step from t = {time:.6} s failed: the free points' Newton did not converge in {iterations} \
-             iterations (point '{point}' out of balance by {residual:.3e} of its force scale); the state is kept \
-             at t = {time:.6} s (try a smaller time_step)"
-        )
-    }
-}
+pub use super::error::PointsDiverged;
 
 impl std::fmt::Display for SystemStepError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
