@@ -23,7 +23,9 @@
 //! 4n₀ or Δt₀/4), (16.17) extrapolates an order beyond where it was seen: a
 //! new round of pilots is run with its base at the choice, up to
 //! [`MAX_ROUNDS`] rounds, so the numerics chosen are those of the last
-//! round's pilots or between them. An axis whose triplet does not converge
+//! round's pilots or between them; where nothing a round's pilots reach
+//! meets the target, the next round is about finer numerics (twice the
+//! elements, half the step, on the axes that do not converge). An axis whose triplet does not converge
 //! monotonically (contact can make refinement oscillate) has no order: it is
 //! said with its numbers, its finest pilot level is taken, and its error is
 //! the last change, |q₂ − q₃| ([`Axis::Unconverged`]); an axis whose finer
@@ -504,7 +506,23 @@ pub fn choose(
             best = Some(Pick { numerics, models: models.clone(), base, round: rounds.len() - 1 });
         }
         // beyond the pilots: a proposal the next round measures, if it is cheaper
-        let Some((n, dt)) = cheapest(&models, target, base, ladders, true) else { break };
+        let Some((n, dt)) = cheapest(&models, target, base, ladders, true) else {
+            // nothing this round's pilots reach meets the target: a round about
+            // finer numerics, on the axes that do not converge (both if none)
+            let unconverged =
+                |axis: fn(&QuantityModel) -> Axis| models.iter().any(|m| matches!(axis(m), Axis::Unconverged { .. }));
+            let (mesh, step) = (unconverged(|m| m.mesh), unconverged(|m| m.step));
+            let either = !(mesh || step);
+            let next = (
+                if !pinned.n_elements && (mesh || either) { 2 * base.0 } else { base.0 },
+                if !pinned.time_step && (step || either) { base.1 / 2.0 } else { base.1 },
+            );
+            if rounds.len() >= MAX_ROUNDS || next == base || best.is_some() {
+                break;
+            }
+            base = next;
+            continue;
+        };
         if rounds.len() >= MAX_ROUNDS || best.as_ref().is_some_and(|b| cost(b.numerics) <= cost((n, dt))) {
             break;
         }
