@@ -299,11 +299,11 @@ def test_the_accuracy_study_s_accounting_of_a_measured_choice(monkeypatch):
 
 
 def test_the_accuracy_study_s_later_phases_start_from_the_committed_runs(riser_bin, tmp_path, monkeypatch):
-    """riser-tools accuracy --phase doc (or ladder, verify) on a fresh checkout, without
+    """riser-tools accuracy --phase doc (or verify, scenes) on a fresh checkout, without
     out/accuracy/grid.csv: it starts from docs/accuracy_runs.csv, which it writes back unchanged, and
-    hands every committed run to the document (write_doc, stubbed here: it asks the binary for
-    hundreds of predictions); it once started from nothing and would have written the phase's runs
-    alone over the committed ones."""
+    hands every committed run to the document (write_doc, stubbed here: its figure takes tens of
+    seconds); it once started from nothing and would have written the phase's runs alone over the
+    committed ones."""
     import csv
     import shutil
 

@@ -35,6 +35,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -496,13 +497,29 @@ def fmt(v, spec=".2g"):
         return v or ""
 
 
+def short_note(note):
+    """A note of riser's choice in a few words: "min mesh: oscillatory, R -0.34" for a triplet that does not
+    converge monotonically; another note's first 120 characters."""
+    m = re.match(r"top_tension_(\w+): (mesh|step)[^:]*: refinement does not converge monotonically \((\w+), "
+                 r"R = ([-+\d.e]+)\)", note.strip())
+    if m:
+        return f"{m[1]} {m[2]}: {m[3]}, R {float(m[4]):.2g}"
+    return note.strip()[:120]
+
+
+def in_order(table):
+    """Rows by the cases' order (CASES, then SCENE_CASES), each case's targets from the loosest."""
+    order = {c: i for i, c in enumerate(list(CASES) + list(SCENE_CASES))}
+    return sorted(table, key=lambda r: (order.get(r["case"], len(order)), -float(r["target"])))
+
+
 def measured_table(table):
     """The markdown table of rows of docs/accuracy_measured.csv."""
     lines = ["| case | target | chosen n, Δt s, tol | error e | estimate | estimate / e | met | pilots (rounds) | "
              "finest pilot | reference | pilots' wall s (elapsed) | run's wall s | work | cheapest grid cell | "
              "work ratio | pilots / 3 h run: wall (element-steps) | orders h / t per quantity; notes |",
              "|---|" + "---|" * 16]
-    for r in table:
+    for r in in_order(table):
         if not r.get("n_elements"):
             lines.append(f"| {r['case']} | {fmt(r['target'], 'g')} | {r.get('notes', '')} |" + " |" * 14)
             continue
@@ -515,7 +532,7 @@ def measured_table(table):
             f"{fmt(r['run_wall_s'], '.2g')} | {fmt(r['work'], '.3g')} | {r['grid_cell']} | "
             f"{fmt(r['work_ratio'])} | {fmt(r['pilots_share_3h'], '.1%')} "
             f"({fmt(r['pilots_share_3h_element_steps'], '.1%')}) | {r['orders']}"
-            + (f"; {r['notes']}" if r["notes"] else "") + " |")
+            + "".join(f"; {short_note(n)}" for n in r["notes"].split(" / ") if n.strip()) + " |")
     return lines
 
 
