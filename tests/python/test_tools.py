@@ -282,7 +282,7 @@ def test_the_accuracy_study_s_accounting_of_a_measured_choice(monkeypatch):
     assert r["pilots"] == 2 and r["rounds"] == 2 and r["finest_pilot"] == "60 el., 0.05 s"
     assert r["pilots_share_3h"] == pytest.approx(3.0 / (0.5 * 10800 / 80), rel=1e-12)
     assert r["pilots_share_3h_element_steps"] == pytest.approx((30 * 800 + 60 * 1600) / (30 * 10800 / 0.1), rel=1e-12)
-    assert r["orders"] == "max h2.0 t-" and r["notes"] == "min: not converged"
+    assert r["orders"] == "max h2.0 t-" and r["notes"] == "min: not converged" and r["reference_finer"]
     # 1e-4: the 80 elements at 0.2 s (work 64000) reach it, cheaper than the 40 at 0.05 s (128000)
     r4 = A.measured_row("catenary", 1e-4, d, ref, rows)
     assert not r4["met"] and r4["grid_cell"] == "80 el., 0.2 s" and r4["work_ratio"] == pytest.approx(60000 / 64000)
@@ -296,6 +296,7 @@ def test_the_accuracy_study_s_accounting_of_a_measured_choice(monkeypatch):
     big = dict(d, accuracy=dict(d["accuracy"], pilots=pilots + [dict(pilots[1], n_elements=120, time_step=0.0125)]))
     A.pilots_reference("bin", None, rows, "catenary", [big])
     assert asked == [("catenary", "reference_pilots", 240, 0.00625, 1e-10)]
+    assert not A.measured_row("catenary", 1e-3, big, ref, rows)["reference_finer"]
 
 
 def test_the_accuracy_study_s_later_phases_start_from_the_committed_runs(riser_bin, tmp_path, monkeypatch):

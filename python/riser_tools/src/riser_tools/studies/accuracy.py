@@ -284,7 +284,7 @@ MAX_ELEMENTS = 2000
 # a 3-hour run (the pilots' cost is stated against it, issue 51)
 THREE_HOURS = 10800.0
 MEASURED_FIELDS = ["case", "target", "n_elements", "time_step", "newton_tolerance", "error", "estimate",
-                   "estimate_over_error", "met", "orders", "notes", "pilots", "rounds", "finest_pilot", "reference",
+                   "estimate_over_error", "met", "orders", "notes", "pilots", "rounds", "finest_pilot", "reference", "reference_finer",
                    "pilots_wall_s", "pilots_elapsed_s", "run_wall_s", "work", "grid_cell", "grid_work", "work_ratio",
                    "pilots_share_3h", "pilots_share_3h_element_steps"]
 
@@ -325,9 +325,11 @@ def finer_than(ref, n, dt):
     return int(ref["n_elements"]) >= n and float(ref["time_step"]) <= dt * (1 + 1e-9)
 
 
-def pilots_reference(binary, path, rows, case, choices):
+def pilots_reference(binary, path, rows, case, choices, run_new=True):
     """The case's reference for the measured choices: the grid's where it has at least twice the
-    finest pilot's elements and half its shortest step, else one run at those (tolerance 1e-10)."""
+    finest pilot's elements and half its shortest step, else one run at those (tolerance 1e-10; stored,
+    kind reference_pilots). With run_new False a reference not stored is not run: the grid's is taken
+    (the table's reference column says which)."""
     ref = next((r for r in rows if r["case"] == case and r["kind"] == "reference"), None)
     n, dt = finest_pilot(choices)
     if ref is not None and finer_than(ref, min(2 * n, MAX_ELEMENTS), dt / 2):
@@ -335,7 +337,10 @@ def pilots_reference(binary, path, rows, case, choices):
     n_ref, dt_ref = min(2 * n, MAX_ELEMENTS), dt / 2
     if ref is not None:
         n_ref, dt_ref = max(n_ref, int(ref["n_elements"])), min(float(ref["time_step"]), dt_ref)
-    return one(binary, path, rows, case, "reference_pilots", n_ref, float(f"{dt_ref:.4g}"), 1e-10)
+    dt_ref = float(f"{dt_ref:.4g}")
+    if not run_new and ref is not None and have(rows, case, "reference_pilots", n_ref, dt_ref, 1e-10) is None:
+        return ref
+    return one(binary, path, rows, case, "reference_pilots", n_ref, dt_ref, 1e-10)
 
 
 def pilot_element_steps(acc):
@@ -369,6 +374,7 @@ def measured_row(case, target, d, ref, rows):
             "orders": orders(acc), "notes": " / ".join(acc["notes"]), "pilots": len(acc["pilots"]),
             "rounds": max(p["round"] for p in acc["pilots"]), "finest_pilot": f"{n_f} el., {dt_f:g} s",
             "reference": f"{ref['n_elements']} el., {float(ref['time_step']):g} s",
+            "reference_finer": finer_than(ref, min(2 * n_f, MAX_ELEMENTS), dt_f / 2),
             "pilots_wall_s": pilots_wall, "pilots_elapsed_s": acc["wall_s"], "run_wall_s": d["solve_wall_time"],
             "work": w, "grid_cell": f"{cell['n_elements']} el., {cell['time_step']} s" if cell else "none",
             "grid_work": front if front is not None else "", "work_ratio": w / front if front else "",
@@ -391,7 +397,7 @@ def cheapest_cell(rows, case, target, ref):
     return min(ok, key=work) if ok else None
 
 
-def measure(binary, out, path, rows, cases, jobs=2):
+def measure(binary, out, path, rows, cases, jobs=2, run_new=True):
     """The measured choice of every case of `cases` at its targets (`jobs` runs at a time), each case
     against a reference finer than its pilots (pilots_reference); the rows of
     docs/accuracy_measured.csv."""
@@ -405,7 +411,7 @@ def measure(binary, out, path, rows, cases, jobs=2):
         for case in cases:
             choices = [got[(case, t)] for t in targets_of(case)]
             if any(choices):
-                refs[case] = pool.submit(pilots_reference, binary, path, rows, case, choices)
+                refs[case] = pool.submit(pilots_reference, binary, path, rows, case, choices, run_new)
     table = []
     for case in cases:
         if case not in refs:
@@ -527,7 +533,8 @@ def measured_table(table):
             f"| {r['case']} | {fmt(r['target'], 'g')} | {r['n_elements']}, {fmt(r['time_step'], 'g')}, "
             f"{fmt(r['newton_tolerance'], 'g')} | {fmt(r['error'], '.1e')} | {fmt(r['estimate'], '.1e')} | "
             f"{fmt(r['estimate_over_error'])} | {'yes' if str(r['met']) == 'True' else '**no**'} | "
-            f"{r['pilots']} ({r['rounds']}) | {r['finest_pilot']} | {r['reference']} | "
+            f"{r['pilots']} ({r['rounds']}) | {r['finest_pilot']} | {r['reference']}"
+            f"{'' if str(r['reference_finer']) == 'True' else ' (the grid’s: not finer)'} | "
             f"{fmt(r['pilots_wall_s'], '.3g')} ({fmt(r['pilots_elapsed_s'], '.3g')}) | "
             f"{fmt(r['run_wall_s'], '.2g')} | {fmt(r['work'], '.3g')} | {r['grid_cell']} | "
             f"{fmt(r['work_ratio'])} | {fmt(r['pilots_share_3h'], '.1%')} "
@@ -641,6 +648,9 @@ def main(argv=None):
     ap.add_argument("--phase", choices=["grid", "verify", "scenes", "all", "doc"], default="all")
     ap.add_argument("--case", action="append", help="only these cases (default: all)")
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (default 2)")
+    ap.add_argument("--grid-references", action="store_true",
+                    help="verify, scenes: where a reference finer than the pilots is not stored, take the grid's "
+                         "rather than run one")
     args = ap.parse_args(argv)
     out, docs = Path(args.out), Path(args.docs)
     out.mkdir(parents=True, exist_ok=True)
@@ -657,9 +667,11 @@ def main(argv=None):
     if args.phase in ("grid", "all"):
         grid(args.bin, path, rows, cases)
     if args.phase in ("verify", "all"):
-        merge_measured(measure(args.bin, out, path, rows, cases, args.jobs), docs / "accuracy_measured.csv")
+        merge_measured(measure(args.bin, out, path, rows, cases, args.jobs, not args.grid_references),
+                       docs / "accuracy_measured.csv")
     if args.phase in ("scenes", "all"):
-        merge_measured(measure(args.bin, out, path, rows, scenes, args.jobs), docs / "accuracy_measured.csv")
+        merge_measured(measure(args.bin, out, path, rows, scenes, args.jobs, not args.grid_references),
+                       docs / "accuracy_measured.csv")
     shutil.copy(path, docs / "accuracy_runs.csv")
     write_doc(rows, docs, args.bin)
 
