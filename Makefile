@@ -67,9 +67,9 @@ moordyn-seabed: build venv fmu
 lowe-langley: build venv
 	$(TOOLS) lowe-langley
 
-# The accuracy knob (issue 28): the calibration grid of its error model and
-# the check of its choices, docs/accuracy.md and docs/accuracy_runs.csv
-# (about 10 minutes; a rerun reuses out/accuracy/grid.csv).
+# The accuracy study (issues 28, 51): the grid of the scheme's orders and the
+# measured choice on its cases and on new scenes, docs/accuracy.md, docs/accuracy_runs.csv and docs/accuracy_measured.csv
+# (about an hour on 2 cores; a rerun reuses out/accuracy/grid.csv and out/accuracy/measured/).
 accuracy: build venv
 	$(TOOLS) accuracy --bin $(BIN)
 

@@ -248,12 +248,63 @@ def test_the_accuracy_figure_s_frontier_is_the_cheapest_cell_reaching_each_targe
     assert (tmp_path / "cost.png").stat().st_size > 10_000
 
 
+def test_the_accuracy_study_s_accounting_of_a_measured_choice(monkeypatch):
+    """riser-tools accuracy, verify phase (measured_row): on a `--json` of the shape `riser run --set
+    accuracy=T` prints and a grid whose every figure is set by hand, the error e (the largest of the
+    window's min, mean and max off the reference, over its max), met (e <= target), the estimate over e,
+    the work ratio over the cheapest grid cell reaching the target against the same reference, and the
+    pilots' share of a 3-hour run (by wall time: their summed wall over the run's wall x 10800 s / its
+    duration; by element-steps) are the hand-computed ones; a target no cell reaches has no ratio."""
+    from riser_tools.studies import accuracy as A
+
+    def row(kind, n, dt, nps, dmin, dmax):
+        return {"case": "catenary", "kind": kind, "n_elements": str(n), "time_step": str(dt), "newton_tolerance":
+                "1e-08", "accuracy": "", "tt_min": str(100e3 + dmin), "tt_mean": "110000", "tt_max": str(120e3 + dmax),
+                "wall_s": "0.1", "newton_per_step": str(nps), "completed": "True"}
+
+    ref = row("reference", 160, 0.0125, 3, 0, 0)
+    # the catenary case runs 80 s: work = n x 80 / dt x iterations a step
+    rows = [ref, row("grid", 10, 0.2, 2, -240, 0),  # e 2e-3, work 8000
+            row("grid", 20, 0.1, 2, 0, 14.4),  # e 1.2e-4, work 32000
+            row("grid", 40, 0.05, 2, 6, 0),  # e 5e-5, work 128000
+            row("grid", 80, 0.2, 2, 0, 2.4)]  # e 2e-5, work 64000: cheaper than the 40 at 0.05 s
+    pilots = [{"round": 1, "n_elements": 30, "time_step": 0.1, "values": {}, "wall_s": 1.0},
+              {"round": 2, "n_elements": 60, "time_step": 0.05, "values": {}, "wall_s": 2.0}]
+    d = {"n_elements": 30, "time_step": 0.1, "newton_tolerance": 1e-6, "iterations_per_step": 2.5, "duration": 80.0,
+         "solve_wall_time": 0.5, "steady": {"top_tension": [100e3 - 36, 110e3 + 6, 120e3 + 12]},
+         "accuracy": {"estimate": 4.5e-4, "notes": ["min: not converged"], "pilots": pilots, "pilot_window": [40, 80],
+                      "wall_s": 2.2, "met": True, "orders": {"top_tension_max": {"mesh": 2.0, "step": None}}}}
+    r = A.measured_row("catenary", 1e-3, d, ref, rows)
+    assert r["error"] == pytest.approx(36 / 120e3, rel=1e-12) and r["met"]
+    assert r["estimate_over_error"] == pytest.approx(4.5e-4 / 3e-4, rel=1e-12)
+    assert r["work"] == pytest.approx(30 * 800 * 2.5) and r["grid_cell"] == "20 el., 0.1 s"
+    assert r["work_ratio"] == pytest.approx(60000 / 32000, rel=1e-12)
+    assert r["pilots"] == 2 and r["rounds"] == 2 and r["finest_pilot"] == "60 el., 0.05 s"
+    assert r["pilots_share_3h"] == pytest.approx(3.0 / (0.5 * 10800 / 80), rel=1e-12)
+    assert r["pilots_share_3h_element_steps"] == pytest.approx((30 * 800 + 60 * 1600) / (30 * 10800 / 0.1), rel=1e-12)
+    assert r["orders"] == "max h2.0 t-" and r["notes"] == "min: not converged" and r["reference_finer"]
+    # 1e-4: the 80 elements at 0.2 s (work 64000) reach it, cheaper than the 40 at 0.05 s (128000)
+    r4 = A.measured_row("catenary", 1e-4, d, ref, rows)
+    assert not r4["met"] and r4["grid_cell"] == "80 el., 0.2 s" and r4["work_ratio"] == pytest.approx(60000 / 64000)
+    r5 = A.measured_row("catenary", 1e-5, d, ref, rows)
+    assert r5["grid_cell"] == "none" and r5["work_ratio"] == ""
+    # the reference of the pilots: the grid's when finer than twice the finest pilot's elements and half its
+    # step, else the run it asks for (recorded, not run: `one` stubbed)
+    asked = []
+    monkeypatch.setattr(A, "one", lambda *a: asked.append(a[3:]) or ref)
+    assert A.pilots_reference("bin", None, rows, "catenary", [d]) is ref and asked == []
+    big = dict(d, accuracy=dict(d["accuracy"], pilots=pilots + [dict(pilots[1], n_elements=120, time_step=0.0125)]))
+    A.pilots_reference("bin", None, rows, "catenary", [big])
+    assert asked == [("catenary", "reference_pilots", 240, 0.00625, 1e-10)]
+    assert not A.measured_row("catenary", 1e-3, big, ref, rows)["reference_finer"]
+
+
 def test_the_accuracy_study_s_later_phases_start_from_the_committed_runs(riser_bin, tmp_path, monkeypatch):
-    """riser-tools accuracy --phase doc (or ladder, verify) on a fresh checkout, without
+    """riser-tools accuracy --phase doc (or verify, scenes) on a fresh checkout, without
     out/accuracy/grid.csv: it starts from docs/accuracy_runs.csv, which it writes back unchanged, and
-    hands every committed run to the document (write_doc, stubbed here: it asks the binary for
-    hundreds of predictions); it once started from nothing and would have written the phase's runs
-    alone over the committed ones."""
+    hands every committed run to the document (write_doc, stubbed here: its figure takes tens of
+    seconds); it once started from nothing and would have written the phase's runs alone over the
+    committed ones."""
     import csv
     import shutil
 

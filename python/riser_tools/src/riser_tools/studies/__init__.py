@@ -40,7 +40,7 @@ COMMANDS = {
     "moordyn-system": ("riser_tools.studies.moordyn_system", "OC3-Hywind's mooring under a prescribed vessel motion against "
                                                             "MoorDyn-C (docs/system_moordyn.md)"),
     "lowe-langley": ("riser_tools.studies.lowe_langley", "the Lowe & Langley jumper (make lowe-langley)"),
-    "accuracy": ("riser_tools.studies.accuracy", "calibration and check of the accuracy knob (make accuracy)"),
+    "accuracy": ("riser_tools.studies.accuracy", "the accuracy study: the grid of orders, the measured choice on its cases and new scenes (make accuracy)"),
     "accuracy-ref": ("riser_tools.studies.accuracy_ref", "the accuracy study's references at shorter steps: the references' floor (docs/accuracy.md)"),
     "bench-sweep": ("riser_tools.studies.bench_sweep", "riser-sweep against a plain loop (make bench-sweep)"),
     "bench-cli": ("riser_tools.studies.bench_cli", "the command line against an earlier build, interleaved: wall time, "

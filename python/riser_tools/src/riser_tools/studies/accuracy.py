@@ -1,10 +1,11 @@
-"""The `accuracy` knob (issue 28): the calibration grid of its error model and the check of what
-it chooses. `riser-tools accuracy [--bin target/fasttest/riser] [--phase grid|verify|all]`.
+"""The accuracy measured on the user's scene (issue 51): the study's grid of the scheme's orders and its
+references, and the check of what `--set accuracy=T` chooses. `riser-tools accuracy [--bin target/fasttest/riser]
+[--phase grid|verify|scenes|doc|all] [--case C ...] [--jobs 2]`.
 
-The error (docs/theory.md, "The accuracy knob"): `riser run SCENE --heave A,T --duration 4T
---json` (the default ramp of one period and the default steady window, from 2T to 4T; the cases of
-LATE_WINDOW run 2T longer per period of delay, with `--window` two periods long after it); its
-`steady.top_tension` [min, mean, max] against the same of a converged reference run:
+The error (docs/theory.md, eq. 16.1): `riser run SCENE --heave A,T --duration 4T --json` (the default ramp of
+one period and the default steady window, from 2T to 4T; the cases of LATE_WINDOW run 2T longer per period of
+delay, with `--window` two periods long after it); its `steady.top_tension` [min, mean, max] against the same of
+a converged reference run:
 
     e = max(|min - min_ref|, |mean - mean_ref|, |max - max_ref|) / max_ref.
 
@@ -12,20 +13,21 @@ In waves (WAVE_CASES, docs/theory.md section 16.4): `riser run SCENE [--heave A,
 --window T0,T1 --json`, the same error over the case's own window (a regular wave: 20 to 40 s; an irregular
 sea: 20 to 220 s, 20 Tp, so that the window's extremes are those of the sea's largest wave groups).
 
-Ladder phase (LADDER): the heave cases' chosen and coarsest meshes at every step of the knob's own
-ladder from 0.2 to 0.01 s, against the model's prediction for the same numerics: the points between the
-grid's four steps that the choice may land on (docs/theory.md §16.3).
+Grid phase: per case, the reference (2x the grid's finest mesh, 0.0125 s, tolerance 1e-10), two checks of it
+(half the elements, twice the step) and the grid elements x time step at tolerance 1e-8; rows appended to
+out/accuracy/grid.csv as they come (a rerun reuses them), copied to docs/accuracy_runs.csv. The grid calibrated
+the retired model of issue 28; it stays as the evidence of the scheme's orders and as the cases' references.
 
-Grid phase: per calibration case, the reference (the finest mesh and step below, tolerance
-1e-10), two checks of it (half the elements, twice the step) and the grid elements x time step
-at tolerance 1e-8; rows appended to out/accuracy/grid.csv as they come (a rerun reuses them; the verify phase's
-runs are always made afresh, replacing the stored ones),
-copied to docs/accuracy_runs.csv. Verify phase: the same runs with only `--set accuracy=...`
-(1e-2, 1e-3, 1e-4; the heave cases without a sea also INTERMEDIATE_TARGETS, 5e-3 to 1.2e-4, between
-them) against the same reference: what riser chose, its error and its wall time
-against the cheapest grid cell that reaches the target; the same csv and
-docs/accuracy.md. The ladder, verify and doc phases alone on a fresh checkout (no
-out/accuracy/grid.csv) start from the committed runs, docs/accuracy_runs.csv.
+Verify phase: every case at TARGETS (in waves and still water WAVE_TARGETS) with only `--set accuracy=T`, riser's
+pilots choosing (docs/theory.md §16.12); each `--json` kept in out/accuracy/measured/CASE@T.json (a rerun reuses
+it; delete them to measure a new binary). Each case's reference is the grid's where it has at least twice the
+finest pilot's elements and half its shortest step, else a run at those (kind reference_pilots). Per run
+(measured_row): the chosen numerics, e against that reference, riser's estimate and estimate / e, met (e <= T),
+the pilots and their wall time, the work against the cheapest grid cell reaching T (cost_frontier), and the
+pilots' share of a 3-hour run at the chosen numerics. Scenes phase: the same for SCENE_CASES (the scenes the
+calibrated model refused), each against a reference of its own. Both write docs/accuracy_measured.csv; every
+phase writes docs/accuracy.md (the doc phase only that). The verify, scenes and doc phases on a fresh checkout
+(no out/accuracy/grid.csv) start from the committed runs, docs/accuracy_runs.csv.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -79,30 +82,34 @@ WAVE_CASES = {
     "catenary_still": ("catenary", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
     "lazy_wave_still": ("lazy_wave", 0.0, 10.0, [10, 20, 40, 80], [], 40.0, (20.0, 40.0)),
 }
+# The scenes the calibrated model refused (issue 51, evidence 2; the scenes phase): name -> (scene, the
+# run's arguments besides its numerics, duration s, steady window (t0, t1) s). No grid: each against a
+# reference of its own at twice the finest pilot's elements and half its shortest step (SCENE_TARGETS).
+SCENE_CASES = {
+    # the lazy wave whose 15 buoyancy modules are bodies on a [[section]] (mass, drag, added mass)
+    "lazy_wave_sections": ("docs/cases/lazy_wave_modules.toml", ["--heave", "2.5,10"], 40.0, (20.0, 40.0)),
+    # the hang-off 30 m forward of the vessel's reference point, the vessel pitching 0.05 rad at 10 s
+    "catenary_pitch_offset": ("catenary", ["--pitch", "0.05,10", "--set", "hang_off_x=30"], 40.0, (20.0, 40.0)),
+    # structural damping (Kelvin-Voigt) of 2 ms, the peers' comparison physics
+    "catenary_damped": ("catenary", ["--heave", "2.5,10", "--set", "structural_damping=0.002"], 40.0,
+                        (20.0, 40.0)),
+    # the cable model (tension-only segments) on the steel catenary's seabed, its 120 m touchdown zone
+    "steel_catenary_cable": ("steel_catenary", ["--heave", "2.5,15", "--set", "model=cable"], 60.0, (30.0, 60.0)),
+    # the irregular sea of the wave cases from 45 degrees
+    "catenary_jonswap_45": ("catenary", [a for s in JONSWAP + ["wave_direction=45"] for a in ("--set", s)], 220.0,
+                            WINDOW_IRREGULAR),
+}
+SCENE_TARGETS = [1e-2, 1e-3]
 # the cases without a motion or a sea: no period to take steps of
 STILL_CASES = ("catenary_still", "lazy_wave_still")
 CASES.update({k: v[:4] for k, v in WAVE_CASES.items()})
 STEPS = [0.2, 0.1, 0.05, 0.025]
-# The ladder (docs/theory.md §16.3, "Between the grid's steps"): the knob chooses its step from
-# src/sim/accuracy.rs STEP_LADDER, not only from the grid's four; the heave cases' meshes it chooses
-# (and the grid's coarsest) at every ladder step from 0.2 to 0.0125 s (the ladder's shortest, the
-# references' step) and at 0.01 s, the step below it that the knob no longer takes, with at least 75
-# steps a period, against the model's own prediction for those numerics (tolerance 1e-9, the knob's at 1e-4
-# until 2026-11-27, 1e-8 since)
-LADDER_STEPS = [0.2, 0.15, 0.1, 0.075, 0.05, 0.04, 0.03, 0.025, 0.02, 0.015, 0.0125, 0.01]
-LADDER = {"catenary": [10, 20], "catenary_T10": [10, 20], "lazy_wave": [20, 40], "steel_catenary": [30, 50, 100, 160],
-          "lowe_langley_jumper": [10, 16, 20], "lazy_wave_T10": [20, 40], "lowe_langley_jumper_T10": [10, 20],
-          "steel_catenary_T10": [30, 50, 80, 160]}
-LADDER_TOL = 1e-9
 REF_STEP = 0.0125
 TARGETS = [1e-2, 1e-3, 1e-4]
-# targets between the three (docs/theory.md §16.3, "Between the targets"): the knob must meet every target it
-# accepts, not only the three; each heave case (without a sea) is run at each of these as well
-INTERMEDIATE_TARGETS = [5e-3, 2e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1.2e-4]
-EXTRA_TARGETS = {c: INTERMEDIATE_TARGETS for c in
-                 ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
-                  "steel_catenary_T10", "lowe_langley_jumper_T10")}
 FLOOR_HEADING = "## The references' floor, examined"
+# the hand-written sections kept at the end of docs/accuracy.md when the study rewrites it, from the first
+# of these present: the reading of the measured runs, then the references' floor (riser-tools accuracy-ref)
+FINDINGS_HEADING = "## What the measured runs show"
 FIELDS = ["case", "kind", "n_elements", "time_step", "newton_tolerance", "accuracy", "tt_min", "tt_mean",
           "tt_max", "wall_s", "newton_per_step", "completed"]
 
@@ -126,6 +133,9 @@ def heave_window(case):
 def command(binary, case):
     """`riser run` of a case without its numerics: the heave (if any), the sea (if any), the duration
     and, in waves or in LATE_WINDOW, the steady window."""
+    if case in SCENE_CASES:
+        scene, args, duration, (t0, t1) = SCENE_CASES[case]
+        return [binary, "run", scene, *args, "--duration", f"{duration:g}", "--window", f"{t0:g},{t1:g}", "--json"]
     scene, amp, period, _ = CASES[case]
     if case not in WAVE_CASES:
         t0, t1 = heave_window(case)
@@ -140,8 +150,8 @@ def command(binary, case):
     return cmd
 
 
-# the fewest steps a period the knob takes (src/sim/accuracy.rs MIN_STEPS_PER_PERIOD): the grid cells it
-# covers, for the second cost ratio
+# the fewest steps a period the retired model of issue 28 took: the grid cells it covered, for the
+# covered-cells ratio of riser-tools accuracy-ref's report (the references' floor)
 STEPS_PER_PERIOD = 75.0
 # the grid's Newton tolerance
 GRID_TOL = 1e-8
@@ -155,6 +165,8 @@ def shortest_period(case):
 
 
 def duration_of(case):
+    if case in SCENE_CASES:
+        return SCENE_CASES[case][2]
     return WAVE_CASES[case][5] if case in WAVE_CASES else heave_window(case)[1]
 
 
@@ -202,37 +214,32 @@ def append(path, row):
         w.writerow(row)
 
 
-def have(rows, case, kind, n, dt, tol, acc=""):
+def have(rows, case, kind, n, dt, tol):
     for r in rows:
-        if (r["case"], r["kind"], r["n_elements"], r["time_step"], r["newton_tolerance"], r["accuracy"]) == (
-                case, kind, str(n), str(dt), str(tol), str(acc)):
+        if (r["case"], r["kind"], r["n_elements"], r["time_step"], r["newton_tolerance"]) == (
+                case, kind, str(n), str(dt), str(tol)):
             return r
     return None
 
 
-def one(binary, path, rows, case, kind, n, dt, tol, acc=""):
-    r = have(rows, case, kind, n, dt, tol, acc) if acc == "" else None
+def one(binary, path, rows, case, kind, n, dt, tol):
+    """The run of `case` at n elements, step dt and Newton tolerance tol (kind: reference, grid, ...),
+    reused where stored, else run and appended to `path`."""
+    r = have(rows, case, kind, n, dt, tol)
     if r is not None:
         return r
-    sets = {"accuracy": acc} if acc != "" else {"n_elements": n, "time_step": dt, "newton_tolerance": tol}
-    out = run(binary, case, sets)
-    if acc != "" and out["completed"]:
-        n, dt, tol = out["n"], out["dt"], out["tol"]
-    row = {"case": case, "kind": kind, "n_elements": n, "time_step": dt, "newton_tolerance": tol, "accuracy": acc,
+    out = run(binary, case, {"n_elements": n, "time_step": dt, "newton_tolerance": tol})
+    row = {"case": case, "kind": kind, "n_elements": n, "time_step": dt, "newton_tolerance": tol, "accuracy": "",
            "completed": out["completed"]}
     if out["completed"]:
         row.update(tt_min=out["tt"][0], tt_mean=out["tt"][1], tt_max=out["tt"][2], wall_s=out["wall"],
                    newton_per_step=out["iters"])
     else:
         row.update(tt_min="", tt_mean="", tt_max="", wall_s="", newton_per_step="")
-        print(case, kind, n, dt, tol, acc, "failed:", out["stderr"][-300:], flush=True)
-    if acc != "":
-        row["n_elements"], row["time_step"], row["newton_tolerance"] = (
-            (n, dt, tol) if out["completed"] else ("refused", "", ""))
-        row["kind"] = kind
+        print(case, kind, n, dt, tol, "failed:", out["stderr"][-300:], flush=True)
     append(path, row)
     rows.append({k: str(v) for k, v in row.items()})
-    print(case, kind, n, dt, tol, acc, row.get("tt_max"), row.get("wall_s"), flush=True)
+    print(case, kind, n, dt, tol, row.get("tt_max"), row.get("wall_s"), flush=True)
     return rows[-1]
 
 
@@ -241,8 +248,9 @@ def reference(binary, path, rows, case):
     return one(binary, path, rows, case, "reference", n_ref, REF_STEP, 1e-10)
 
 
-def grid(binary, path, rows):
-    for case, (_, _, _, elements) in CASES.items():
+def grid(binary, path, rows, cases=None):
+    for case in cases or CASES:
+        elements = CASES[case][3]
         ref = reference(binary, path, rows, case)
         n_ref = int(ref["n_elements"])
         one(binary, path, rows, case, "check_mesh", n_ref // 2, REF_STEP, 1e-10)
@@ -252,124 +260,193 @@ def grid(binary, path, rows):
                 one(binary, path, rows, case, "grid", n, dt, GRID_TOL)
 
 
-def ladder(binary, path, rows):
-    for case, meshes in LADDER.items():
-        if case not in CASES:
-            continue
-        for n in meshes:
-            for dt in LADDER_STEPS:
-                if dt * STEPS_PER_PERIOD <= shortest_period(case) * (1 + 1e-9):
-                    one(binary, path, rows, case, "ladder", n, dt, LADDER_TOL)
-
-
-def verify(binary, path, rows):
-    """The knob's runs, always afresh (they check the present model; the grid's are reused): the
-    stored ones of these cases are dropped first. Where the knob's Newton tolerance is not the grid's,
-    the grid's cells reaching the target are run again at the knob's tolerance, cheapest first, until
-    one reaches it there (kind grid_tol): the like-for-like cost ratio of docs/accuracy.md."""
-    rows[:] = [r for r in rows if r["kind"] != "accuracy" or r["case"] not in CASES]
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, FIELDS)
-        w.writeheader()
-        w.writerows({k: r.get(k, "") for k in FIELDS} for r in rows)
-    for case in CASES:
-        for acc in TARGETS + EXTRA_TARGETS.get(case, []):
-            r = one(binary, path, rows, case, "accuracy", "", "", "", acc)
-            if r["completed"] == "True" and not same_tolerance(float(r["newton_tolerance"]), GRID_TOL):
-                grid_at_tolerance(binary, path, rows, case, float(acc), float(r["newton_tolerance"]))
-
-
-def grid_at_tolerance(binary, path, rows, case, target, tol):
-    """The cheapest grid cell reaching `target` when run at the Newton tolerance `tol`: the cells
-    reaching it at the grid's tolerance, cheapest first, each run at `tol` (kind grid_tol, reused where
-    stored) until one reaches it; that row, or None."""
-    ref = next((r for r in rows if r["case"] == case and r["kind"] == "reference" and r["completed"] == "True"), None)
-    if ref is None:
-        return None
-    cells = sorted((g for g in rows if g["case"] == case and g["kind"] == "grid" and g["completed"] == "True"
-                    and error(g, ref) <= target), key=work)
-    for g in cells:
-        r = one(binary, path, rows, case, "grid_tol", int(g["n_elements"]), float(g["time_step"]), tol)
-        if r["completed"] == "True" and error(r, ref) <= target:
-            return r
-    return None
-
-
-def same_tolerance(a, b):
-    return abs(a / b - 1) < 1e-9
-
-
-def cheapest_at_tolerance(rows, case, ref, target, tol):
-    """The cheapest stored grid_tol run of `case` at tolerance `tol` within `target` (None: none)."""
-    ok = [g for g in rows if g["case"] == case and g["kind"] == "grid_tol" and g["completed"] == "True"
-          and same_tolerance(float(g["newton_tolerance"]), tol) and error(g, ref) <= target]
-    return min(ok, key=work) if ok else None
-
-
-def json_of(cmd):
-    """The `--json` object a riser command prints (its line starting with "{"); the command must succeed."""
-    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    return json.loads(next(line for line in p.stdout.splitlines() if line.startswith("{")))
-
-
-def choice(binary, case, sets):
-    """The knob's choice for a case, the `accuracy` object of its `--json` (a 0.2 s run reports it),
-    with `sets` (NAME=VALUE, accuracy among them) given; None where riser refuses."""
-    cmd = command(binary, case)
-    cmd[cmd.index("--duration") + 1] = "0.2"
-    if "--window" in cmd:
-        i = cmd.index("--window")
-        del cmd[i:i + 2]
-    for s in sets:
-        cmd += ["--set", s]
-    try:
-        return json_of(cmd)["accuracy"]
-    except (subprocess.CalledProcessError, StopIteration):
-        return None
-
-
-def predicted(binary, case, target, pinned=None):
-    """The error model's prediction for a case and target; with pinned = (n, dt), its prediction for
-    those numerics."""
-    sets = [f"{k}={v}" for k, v in zip(("n_elements", "time_step"), pinned or ())] + [f"accuracy={target}"]
-    c = choice(binary, case, sets)
-    return c["predicted_error"] if c else None
-
-
-# the lazy waves grow a high-frequency oscillation below the references' step (docs/accuracy.md, "The
-# references' floor"): their fine references are not references
-NO_FINE_REFERENCE = ("lazy_wave", "lazy_wave_T10")
-
-
-def finest_reference(docs, case):
-    """The case's reference at the shortest step of `riser-tools accuracy-ref`
-    (docs/accuracy_references_fine.csv), or None (none run, or the case in NO_FINE_REFERENCE)."""
-    path = Path(docs) / "accuracy_references_fine.csv"
-    if case in NO_FINE_REFERENCE or not path.exists():
-        return None
-    fine = [r for r in load(path) if r["case"] == case and r["completed"] == "True"]
-    return min(fine, key=lambda r: float(r["time_step"])) if fine else None
-
-
 # the heave cases of the figure: the aim's (the built-in scenes and the jumper at their own motions), then
 # the design motion on each line
 FIGURE_CASES = ("catenary", "lazy_wave", "steel_catenary", "lowe_langley_jumper", "catenary_T10", "lazy_wave_T10",
                 "steel_catenary_T10", "lowe_langley_jumper_T10")
 
 
-def cost_frontier(rows, case, targets):
-    """For each target, the work of the cheapest grid cell (at the grid's tolerance) whose error is at
-    or below it (None where no cell reaches it)."""
-    ref = next(r for r in rows if r["case"] == case and r["kind"] == "reference")
+def cost_frontier(rows, case, targets, ref=None):
+    """For each target, the work of the cheapest grid cell (at the grid's tolerance) whose error against
+    `ref` (default: the case's reference) is at or below it (None where no cell reaches it)."""
+    ref = ref or next(r for r in rows if r["case"] == case and r["kind"] == "reference")
     cells = [(error(g, ref), work(g)) for g in rows
              if g["case"] == case and g["kind"] == "grid" and g["completed"] == "True"]
     return [min((w for e, w in cells if e <= t), default=None) for t in targets]
 
 
-def plot_cost(rows, dst):
-    """docs/figures/accuracy_cost.png: for each heave case, the knob's work at each target it was
-    checked at against the cheapest grid cell reaching that target (the aim: within 2 times), and the
-    knob's measured error against the target."""
+# ------------------------------------------------------------------ the measured choice (issue 51)
+# The verify phase: every case at each of its targets with only `--set accuracy=T` (riser's pilots choose;
+# src/sim/accuracy.rs, docs/theory.md §16.12), the raw `--json` of each kept in out/accuracy/measured/, the
+# table in docs/accuracy_measured.csv. Each case's reference is the grid's (2x its finest mesh, 0.0125 s,
+# tolerance 1e-10) where it is finer than every pilot of every target, else one run here at twice the finest
+# pilot's elements and half its shortest step (kind reference_pilots in out/accuracy/grid.csv).
+WAVE_TARGETS = [1e-2, 1e-3]
+# the most elements a scene takes (src/sim/accuracy.rs MAX_ELEMENTS): a reference's cap
+MAX_ELEMENTS = 2000
+# a 3-hour run (the pilots' cost is stated against it, issue 51)
+THREE_HOURS = 10800.0
+MEASURED_FIELDS = ["case", "target", "n_elements", "time_step", "newton_tolerance", "error", "estimate",
+                   "estimate_over_error", "met", "riser_met", "orders", "notes", "pilots", "rounds", "finest_pilot", "reference", "reference_finer",
+                   "pilots_wall_s", "pilots_elapsed_s", "run_wall_s", "work", "grid_cell", "grid_work", "work_ratio",
+                   "pilots_share_3h", "pilots_share_3h_element_steps"]
+
+
+def targets_of(case):
+    if case in SCENE_CASES:
+        return SCENE_TARGETS
+    return WAVE_TARGETS if case in WAVE_CASES else TARGETS
+
+
+def choose(binary, out, case, target):
+    """`riser run` of `case` with only `--set accuracy=target`, its `--json` object (stored in
+    out/measured/CASE@TARGET.json and reused); None where it failed (its stderr stored beside)."""
+    path = Path(out) / "measured" / f"{case}@{target:g}.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    path.parent.mkdir(parents=True, exist_ok=True)
+    p = subprocess.run(command(binary, case) + ["--set", f"accuracy={target:g}"], capture_output=True, text=True)
+    path.with_suffix(".err").write_text(p.stderr)
+    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("{")), None)
+    if p.returncode != 0 or line is None:
+        print(case, target, "failed:", p.stderr.strip()[-300:], flush=True)
+        return None
+    path.write_text(line)
+    d = json.loads(line)
+    print(case, target, "chose", d["n_elements"], d["time_step"], flush=True)
+    return d
+
+
+def finest_pilot(choices):
+    """The most elements and the shortest step of the pilots of all `choices` (the `--json` objects)."""
+    pilots = [p for d in choices if d for p in d["accuracy"]["pilots"]]
+    return max(p["n_elements"] for p in pilots), min(p["time_step"] for p in pilots)
+
+
+def finer_than(ref, n, dt):
+    """True where the reference row has at least n elements and at most step dt."""
+    return int(ref["n_elements"]) >= n and float(ref["time_step"]) <= dt * (1 + 1e-9)
+
+
+def pilots_reference(binary, path, rows, case, choices, run_new=True):
+    """The case's reference for the measured choices: the grid's where it has at least twice the
+    finest pilot's elements and half its shortest step, else one run at those (tolerance 1e-10; stored,
+    kind reference_pilots). With run_new False a reference not stored is not run: the grid's is taken
+    (the table's reference column says which)."""
+    ref = next((r for r in rows if r["case"] == case and r["kind"] == "reference"), None)
+    n, dt = finest_pilot(choices)
+    if ref is not None and finer_than(ref, min(2 * n, MAX_ELEMENTS), dt / 2):
+        return ref
+    n_ref, dt_ref = min(2 * n, MAX_ELEMENTS), dt / 2
+    if ref is not None:
+        n_ref, dt_ref = max(n_ref, int(ref["n_elements"])), min(float(ref["time_step"]), dt_ref)
+    dt_ref = float(f"{dt_ref:.4g}")
+    if not run_new and ref is not None and have(rows, case, "reference_pilots", n_ref, dt_ref, 1e-10) is None:
+        return ref
+    return one(binary, path, rows, case, "reference_pilots", n_ref, dt_ref, 1e-10)
+
+
+def pilot_element_steps(acc):
+    """The pilots' work in element-steps (the chooser's cost unit, n/Δt over their simulated time)."""
+    t = acc["pilot_window"][1]
+    return sum(p["n_elements"] * round(t / p["time_step"]) for p in acc["pilots"])
+
+
+def measured_row(case, target, d, ref, rows):
+    """One row of docs/accuracy_measured.csv: the choice `d` (a `--json` object) against `ref` (its
+    error e, the study's), the estimate over e, the work of the choice against the cheapest grid cell
+    reaching the target against the same reference (cost_frontier), and the pilots' wall time against
+    a 3-hour run at the chosen numerics (pilot wall / (run wall x 10800 / run duration); also in
+    element-steps, which a shared machine does not perturb)."""
+    acc = d["accuracy"]
+    tt = d["steady"]["top_tension"]
+    run = {"case": case, "n_elements": d["n_elements"], "time_step": d["time_step"],
+           "newton_per_step": d["iterations_per_step"], "tt_min": tt[0], "tt_mean": tt[1], "tt_max": tt[2]}
+    e = error(run, ref)
+    w = work(run)
+    front = cost_frontier(rows, case, [target], ref)[0]
+    cell = cheapest_cell(rows, case, target, ref)
+    duration = float(d["duration"])
+    pilots_wall = sum(p["wall_s"] for p in acc["pilots"])
+    run_3h = float(d["solve_wall_time"]) * THREE_HOURS / duration
+    steps_3h = d["n_elements"] * THREE_HOURS / d["time_step"]
+    n_f, dt_f = finest_pilot([d])
+    return {"case": case, "target": target, "n_elements": d["n_elements"], "time_step": d["time_step"],
+            "newton_tolerance": d["newton_tolerance"], "error": e, "estimate": acc["estimate"],
+            "estimate_over_error": acc["estimate"] / e if e > 0 else float("inf"), "met": e <= target,
+            "riser_met": acc["met"],
+            "orders": orders(acc), "notes": " / ".join(acc["notes"]), "pilots": len(acc["pilots"]),
+            "rounds": max(p["round"] for p in acc["pilots"]), "finest_pilot": f"{n_f} el., {dt_f:g} s",
+            "reference": f"{ref['n_elements']} el., {float(ref['time_step']):g} s",
+            "reference_finer": finer_than(ref, min(2 * n_f, MAX_ELEMENTS), dt_f / 2),
+            "pilots_wall_s": pilots_wall, "pilots_elapsed_s": acc["wall_s"], "run_wall_s": d["solve_wall_time"],
+            "work": w, "grid_cell": f"{cell['n_elements']} el., {cell['time_step']} s" if cell else "none",
+            "grid_work": front if front is not None else "", "work_ratio": w / front if front else "",
+            "pilots_share_3h": pilots_wall / run_3h, "pilots_share_3h_element_steps": pilot_element_steps(acc) / steps_3h}
+
+
+def orders(acc):
+    """The observed orders of mesh (h) and step (t) of each quantity of the target, "-" where none (the
+    triplet at the pilots' floor, or not monotone): "max h2.0 t-; min ..."."""
+    def o(x):
+        return "-" if x is None else f"{x:.1f}"
+    return "; ".join(f"{q.removeprefix('top_tension_')} h{o(v['mesh'])} t{o(v['step'])}"
+                     for q, v in sorted(acc["orders"].items()))
+
+
+def cheapest_cell(rows, case, target, ref):
+    """The cheapest grid cell (by work) whose error against `ref` is within `target`, or None."""
+    ok = [g for g in rows if g["case"] == case and g["kind"] == "grid" and g["completed"] == "True"
+          and error(g, ref) <= target]
+    return min(ok, key=work) if ok else None
+
+
+def measure(binary, out, path, rows, cases, jobs=2, run_new=True):
+    """The measured choice of every case of `cases` at its targets (`jobs` runs at a time), each case
+    against a reference finer than its pilots (pilots_reference); the rows of
+    docs/accuracy_measured.csv."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    todo = [(c, t) for c in cases for t in targets_of(c)]
+    with ThreadPoolExecutor(jobs) as pool:
+        got = dict(zip(todo, pool.map(lambda ct: choose(binary, out, *ct), todo)))
+    refs = {}
+    with ThreadPoolExecutor(jobs) as pool:
+        for case in cases:
+            choices = [got[(case, t)] for t in targets_of(case)]
+            if any(choices):
+                refs[case] = pool.submit(pilots_reference, binary, path, rows, case, choices, run_new)
+    table = []
+    for case in cases:
+        if case not in refs:
+            continue
+        ref = refs[case].result()
+        for t in targets_of(case):
+            d = got[(case, t)]
+            table.append(measured_row(case, t, d, ref, rows) if d and ref["completed"] == "True"
+                         else {"case": case, "target": t, "notes": "failed" if not d else "its reference failed"})
+    return table
+
+
+def merge_measured(table, dst):
+    """docs/accuracy_measured.csv with the rows of `table`'s cases replaced by its rows."""
+    cases = {r["case"] for r in table}
+    kept = [r for r in load(dst) if r["case"] not in cases]
+    write_measured(kept + table, dst)
+
+
+def write_measured(table, dst):
+    with open(dst, "w", newline="") as f:
+        w = csv.DictWriter(f, MEASURED_FIELDS)
+        w.writeheader()
+        for r in table:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
+
+
+def plot_cost(rows, dst, measured=()):
+    """docs/figures/accuracy_cost.png: for each heave case of FIGURE_CASES, the cheapest grid cell reaching
+    each target (the frontier; dashed: twice it, issue 51's bound) and the measured choice's work at each
+    target (`measured`: rows of docs/accuracy_measured.csv; a cross where its error is above the target)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -378,21 +455,19 @@ def plot_cost(rows, dst):
     fig, axes = plt.subplots(2, 4, figsize=(16, 7.5), sharex=True)
     grid_t = np.logspace(-4, -2, 200)
     for ax, case in zip(axes.flat, FIGURE_CASES):
-        mine = [r for r in rows if r["case"] == case]
-        ref = next(r for r in mine if r["kind"] == "reference")
-        front = cost_frontier(rows, case, grid_t)
+        # the measured choices' reference (finer than their pilots) where run, else the grid's
+        finer = [r for r in rows if r["case"] == case and r["kind"] == "reference_pilots" and r["completed"] == "True"]
+        front = cost_frontier(rows, case, grid_t, max(finer, key=lambda r: int(r["n_elements"])) if finer else None)
         ok = [(t, w) for t, w in zip(grid_t, front) if w is not None]
         ax.step([t for t, _ in ok], [w for _, w in ok], where="post", color="0.3",
-                label="cheapest grid cell reaching the target")
+                label="cheapest grid cell reaching the target (against the choices' reference)")
         ax.step([t for t, _ in ok], [2 * w for _, w in ok], where="post", color="0.3", ls="--", lw=0.8,
-                label="2 x that (the aim)")
-        knob = sorted(((float(r["accuracy"]), work(r), error(r, ref)) for r in mine
-                       if r["kind"] == "accuracy" and r["completed"] == "True"), key=lambda x: x[0])
-        within = [(t, w) for t, w, e in knob if e <= t]
-        above = [(t, w) for t, w, e in knob if e > t]
-        ax.plot(*zip(*within), "o", color="tab:blue", label="the knob's choice (error within the target)")
-        if above:
-            ax.plot(*zip(*above), "x", color="tab:red", ms=8)
+                label="2 x that (issue 51's bound)")
+        mine = [r for r in measured if r["case"] == case and r.get("work")]
+        for met, mark, color in ((True, "o", "tab:blue"), (False, "x", "tab:red")):
+            pts = [(float(r["target"]), float(r["work"])) for r in mine if (str(r["met"]) == "True") == met]
+            if pts:
+                ax.plot(*zip(*pts), mark, color=color, ms=7)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(case, fontsize=10)
@@ -400,82 +475,157 @@ def plot_cost(rows, dst):
     for ax in axes[1]:
         ax.set_xlabel("target: relative error of the top tension")
     fig.supylabel("work (elements x steps x Newton iterations)", fontsize=10)
-    axes.flat[0].plot([], [], "x", color="tab:red", ms=8,
-                      label="the knob's choice, above the target against the 0.0125 s reference")
+    axes.flat[0].plot([], [], "o", color="tab:blue", label="the measured choice, within its target")
+    axes.flat[0].plot([], [], "x", color="tab:red", label="the measured choice, above its target")
     fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="lower center", ncol=4, fontsize=8)
-    fig.suptitle("The accuracy knob's cost against the study's grid (riser-tools accuracy; the grid at its "
-                 "tolerance 1e-8, the knob at its own)", fontsize=11)
+    fig.suptitle("The measured choice's cost against the study's grid (riser-tools accuracy; the grid at its "
+                 "tolerance 1e-8, the choice at its own)", fontsize=11)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     Path(dst).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(dst, dpi=110)
     plt.close(fig)
 
 
+def describe(case):
+    """A case's run in words: scene, motion, sea, duration and window."""
+    if case in SCENE_CASES:
+        scene, args, duration, (t0, t1) = SCENE_CASES[case]
+        return f"`{scene} {' '.join(args)}`, {duration:g} s, window {t0:g} to {t1:g} s"
+    scene, amp, period, _ = CASES[case]
+    if case in WAVE_CASES:
+        *_, sea, duration, (t0, t1) = WAVE_CASES[case]
+        return (f"`{scene}`, " + (f"heave {amp} m / {period:g} s, " if amp > 0 else "no heave, ")
+                + (f"`--set {','.join(sea)}`, " if sea else "still water, ")
+                + f"{duration:g} s, steady window {t0:g} to {t1:g} s")
+    t0, t1 = heave_window(case)
+    return f"`{scene}`, heave {amp} m / {period:g} s, {t1:g} s, window {t0:g} to {t1:g} s"
+
+
+def fmt(v, spec=".2g"):
+    """A csv cell as a number in `spec`, or as it is (blank, "none")."""
+    try:
+        return format(float(v), spec)
+    except (TypeError, ValueError):
+        return v or ""
+
+
+def short_note(note):
+    """A note of riser's choice in a few words: "min mesh: oscillatory, R -0.34" for a triplet that does not
+    converge monotonically; another note's first 120 characters."""
+    m = re.match(r"top_tension_(\w+): (mesh|step)[^:]*: refinement does not converge monotonically \((\w+), "
+                 r"R = ([-+\d.e]+)\)", note.strip())
+    if m:
+        return f"{m[1]} {m[2]}: {m[3]}, R {float(m[4]):.2g}"
+    return note.strip()[:120]
+
+
+def in_order(table):
+    """Rows by the cases' order (CASES, then SCENE_CASES), each case's targets from the loosest."""
+    order = {c: i for i, c in enumerate(list(CASES) + list(SCENE_CASES))}
+    return sorted(table, key=lambda r: (order.get(r["case"], len(order)), -float(r["target"])))
+
+
+def measured_table(table):
+    """The markdown table of rows of docs/accuracy_measured.csv."""
+    lines = ["| case | target | chosen n, Δt s, tol | error e | estimate | estimate / e | met | pilots (rounds) | "
+             "finest pilot | reference | pilots' wall s (elapsed) | run's wall s | work | cheapest grid cell | "
+             "work ratio | pilots / 3 h run: wall (element-steps) | orders h / t per quantity; notes |",
+             "|---|" + "---|" * 16]
+    for r in in_order(table):
+        if not r.get("n_elements"):
+            lines.append(f"| {r['case']} | {fmt(r['target'], 'g')} | {r.get('notes', '')} |" + " |" * 14)
+            continue
+        lines.append(
+            f"| {r['case']} | {fmt(r['target'], 'g')} | {r['n_elements']}, {fmt(r['time_step'], 'g')}, "
+            f"{fmt(r['newton_tolerance'], 'g')} | {fmt(r['error'], '.1e')} | {fmt(r['estimate'], '.1e')} | "
+            f"{fmt(r['estimate_over_error'])} | {'yes' if str(r['met']) == 'True' else '**no**'}"
+            f"{'' if str(r['riser_met']) == 'True' else ' (riser: not met)'} | "
+            f"{r['pilots']} ({r['rounds']}) | {r['finest_pilot']} | {r['reference']}"
+            f"{'' if str(r['reference_finer']) == 'True' else ' (the grid’s: not finer)'} | "
+            f"{fmt(r['pilots_wall_s'], '.3g')} ({fmt(r['pilots_elapsed_s'], '.3g')}) | "
+            f"{fmt(r['run_wall_s'], '.2g')} | {fmt(r['work'], '.3g')} | {r['grid_cell']} | "
+            f"{fmt(r['work_ratio'])} | {fmt(r['pilots_share_3h'], '.1%')} "
+            f"({fmt(r['pilots_share_3h_element_steps'], '.1%')}) | {r['orders']}"
+            + "".join(f"; {short_note(n)}" for n in r["notes"].split(" / ") if n.strip()) + " |")
+    return lines
+
+
+def summary(table):
+    """One sentence of figures over the rows: targets met, estimate / e, work ratio, pilots' share."""
+    done = [r for r in table if r.get("n_elements")]
+    if not done:
+        return "No runs."
+    met = sum(str(r["met"]) == "True" for r in done)
+    ratio = [float(r["estimate_over_error"]) for r in done]
+    work_r = [float(r["work_ratio"]) for r in done if r["work_ratio"] not in ("", None)]
+    share = [float(r["pilots_share_3h"]) for r in done]
+    share_s = [float(r["pilots_share_3h_element_steps"]) for r in done]
+    failed = len(table) - len(done)
+    return (f"Targets met: {met} of {len(done)}" + (f" ({failed} runs failed)" if failed else "")
+            + f"; estimate / measured error {min(ratio):.2f} to {max(ratio):.2f}"
+            + (f"; work over the cheapest grid cell reaching the target {min(work_r):.2f} to {max(work_r):.2f}"
+               f" ({sum(w <= 2 for w in work_r)} of {len(work_r)} within 2)" if work_r else "")
+            + f"; the pilots' share of a 3-hour run {min(share):.1%} to {max(share):.1%} by wall time, "
+            f"{min(share_s):.1%} to {max(share_s):.1%} by element-steps.")
+
+
 def write_doc(rows, docs, binary):
-    lines = ["# The accuracy knob: calibration grid and check", "",
-             "Made by `riser-tools accuracy` (riser_tools.studies.accuracy; the model is in "
-             "[theory.md](theory.md) §16). Each run: `riser run SCENE --heave A,T --duration 4T` "
-             "(ramp one period, steady window 2T to 4T; lowe_langley_jumper_T10 runs 6T with the window 4T to 6T: its "
-             "start's ringing, docs/theory.md §16.10); error e = the largest of the steady window's min, time "
-             "mean and max top tension's differences from the reference's, over the reference's max (a miss is "
-             "also measured against the finest reference of `riser-tools accuracy-ref` where the case has one). "
-             "Cost: the work, "
-             "elements x steps x Newton iterations per step (the wall time, in brackets, is of a shared 2-core "
-             "machine and only indicative); the cost ratio is the choice's work over the cheapest grid cell's "
-             "whose error is at or below the target (the second ratio: over the cheapest of the cells with at "
-             "least 75 steps a period of the case's shortest motion, those the model covers; in waves and at 10 s, "
-             "dt 0.1 s and below; the third: over the cheapest grid cell that reaches the target when run at the "
-             "knob's own Newton tolerance where it is not the grid's 1e-8, the cells reaching it at 1e-8 run again "
-             "cheapest first, kind grid_tol, docs/theory.md §16.3 \"The Newton tolerance\"). The cases in waves "
-             "(from catenary_airy on; docs/theory.md "
-             "§16.4) run the sea given with `--set` over their own duration and steady window (a regular wave: 20 to "
-             "40 s; an irregular sea: 20 to 220 s, 20 Tp), with the heave if given; their runs at accuracy 1e-4 are "
-             "refused (the model covers 1e-3 and above in waves), and the runs without heave are chosen for no "
-             "hang-off motion, as `riser run` without a motion chooses (`riser statics` and the FMU choose for the "
-             "design motion, 2.5 m at 10 s unless accuracy_motion_amplitude and accuracy_motion_period give "
-             "another). catenary_still and lazy_wave_still: still water, no motion, the window 20 to 40 s: with "
-             "the current grown over its first 10 s (current_ramp) the mesh's static error alone (docs/theory.md "
-             "§16.7; with the current in full from t = 0 the window held what was left of its jolt, the floor "
-             "E_s F_c of §16.2); the model covers every step there. catenary_A10 (10 m at "
-             "20 s) is refused by the knob (docs/theory.md eq. 16.5: the motion takes the line taut); its grid shows "
-             "why: the top tension snatches between 3 and 537 kN and its reference is converged to 5e-3 only. "
-             "lazy_wave_T10, steel_catenary_T10 and lowe_langley_jumper_T10: the design motion (2.5 m at 10 s, what "
-             "`riser statics` and the FMU choose for) on the other lines, in the calibration since the mesh term of the "
-             "motion (docs/theory.md §16.2, C_d). The ladder "
-             "tables (the heave cases without a sea): the meshes the knob chooses and the grid's coarsest at every step of "
-             "the knob's own ladder from 0.2 to 0.01 s (at least 75 steps a period), each against the model's prediction "
-             "for the same numerics (`--set accuracy=1e-2` with n_elements and time_step pinned): the points between the "
-             "grid's four steps a choice may land on (docs/theory.md §16.3); 0.01 s, below the knob's shortest step "
-             "(0.0125 s, the references'), shows why it is not taken. The heave cases without a sea are also checked "
-             "between the targets, at " + ", ".join(f"{t:g}" for t in INTERMEDIATE_TARGETS) + " (each case's last table, "
-             "by target).", "",
-             "![The knob's work at each target against the cheapest grid cell reaching it]"
-             "(figures/accuracy_cost.png)", "",
-             "The figure: each heave case's knob runs (dots; a cross where a run is above its target against the "
-             "0.0125 s reference) against the cheapest grid cell reaching each target (solid; dashed: twice it, "
-             "the aim), both by the work at their own Newton tolerance (the table's first cost ratio; its last "
-             "column compares like for like, the grid run again at the knob's tolerance).", ""]
-    if all(any(r["case"] == c and r["kind"] == "reference" for r in rows) for c in FIGURE_CASES):
-        plot_cost(rows, docs / "figures" / "accuracy_cost.png")
-    for case, (scene, amp, period, _) in CASES.items():
+    """docs/accuracy.md: the measured choice on the study's cases and on the refused scenes (from
+    docs/accuracy_measured.csv), the figure, and the grid of each case (evidence of the orders and the
+    references); the hand-written section from FLOOR_HEADING on is kept."""
+    measured = load(docs / "accuracy_measured.csv")
+    study = [r for r in measured if r["case"] in CASES]
+    scenes = [r for r in measured if r["case"] in SCENE_CASES]
+    lines = [
+        "# Accuracy, measured: the choice on the study's cases and on new scenes, and the grid", "",
+        "Made by `riser-tools accuracy` (riser_tools.studies.accuracy). With `--set accuracy=ε` riser measures its "
+        "error on the scene as given: pilot runs of the scene's own motion and sea, in rounds, each axis' observed "
+        "order, and the cheapest numerics whose estimate meets the target (docs/theory.md §16.12, (16.17)–(16.18); "
+        "src/sim/accuracy.rs). The calibrated model of issue 28 (forty constants fitted to the grid below, coverage "
+        "ranges and refusals) is retired (issue 51); its grid stays as the evidence of the scheme's orders and as "
+        "the cases' references.", "",
+        "Each row: `riser run` of the case with only `--set accuracy=T` (the verify phase; the scenes phase for the "
+        "scenes), its `--json` kept in out/accuracy/measured/. Error e: the largest of the steady window's min, "
+        "time mean and max top tension's differences from the reference's, over the reference's max (the quantity "
+        "the target is on by default, `accuracy_quantity=top_tension`). The reference: the grid's (2x its finest "
+        "mesh, 0.0125 s, Newton 1e-10) where it has at least twice the finest pilot's elements and half its "
+        "shortest step, else a run made at those (kind reference_pilots in [accuracy_runs.csv](accuracy_runs.csv); "
+        "the same window, Newton 1e-10). Estimate: riser's, the `accuracy.estimate` of its `--json`. Work: "
+        "elements x steps x Newton iterations per step; the work ratio is the choice's over the cheapest grid cell "
+        "(at the grid's tolerance 1e-8) whose error against the same reference is within the target "
+        "(cost_frontier). The pilots' share of a 3-hour run: their wall time, summed over the pilots (they run "
+        "on two threads; the elapsed time in brackets), over the run's solve wall time scaled to 10800 s of "
+        "simulated time, and the same in element-steps (the pilots' n x steps against the chosen n x 10800 s / "
+        "Δt: not perturbed by the shared 2-core machine the walls were measured on). A 3-hour run's pilots are "
+        "these: they span the window's first three periods of the slowest forcing whatever the run's length. "
+        "Orders: per quantity of the target (top tension max, min, mean) the observed order of the mesh (h) and "
+        "the step (t) of the round the choice came from, – where the triplet's spread is at the pilots' floor or "
+        "it did not converge monotonically (the notes say which). Rows: "
+        "[accuracy_measured.csv](accuracy_measured.csv).", "",
+        "## The study's cases", "",
+        "Every case of the study at 1e-2, 1e-3 and 1e-4 (in waves and still water: 1e-2 and 1e-3), as in the "
+        "grid sections below. " + summary(study), "",
+        *measured_table(study), "",
+        "![The measured choice's work at each target against the cheapest grid cell reaching it]"
+        "(figures/accuracy_cost.png)", "",
+        "## Scenes the calibrated model refused", "",
+        "Each at 1e-2 and 1e-3, against a reference run here at twice the finest pilot's elements and half its "
+        "shortest step (Newton 1e-10, the same window); no grid. " + summary(scenes), "",
+    ]
+    lines += [f"* {c}: {describe(c)}." for c in SCENE_CASES] + [""] + measured_table(scenes) + [""]
+    lines += ["## The grid: the scheme's orders and the references", "",
+              "Each case: its reference, the reference's two checks (half its mesh; twice its step), and the grid "
+              "(tolerance 1e-8): e against the reference (the solve wall time in brackets, of a shared machine).",
+              ""]
+    plot_cost(rows, docs / "figures" / "accuracy_cost.png", measured)
+    for case in CASES:
         mine = [r for r in rows if r["case"] == case]
         ref = next((r for r in mine if r["kind"] == "reference"), None)
         if ref is None or ref["completed"] != "True":
             continue
-        if case in WAVE_CASES:
-            *_, sea, duration, (t0, t1) = WAVE_CASES[case]
-            what = (f"`{scene}`, " + (f"heave {amp} m / {period:g} s, " if amp > 0 else "no heave, ")
-                    + (f"`--set {','.join(sea)}`, " if sea else "still water, ")
-                    + f"{duration:g} s, steady window {t0:g} to {t1:g} s")
-        else:
-            t0, t1 = heave_window(case)
-            what = f"`{scene}`, heave {amp} m / {period:g} s, {t1:g} s" + (
-                f", steady window {t0:g} to {t1:g} s (its start's ringing, docs/theory.md §16.10)"
-                if case in LATE_WINDOW else "")
-        lines += [f"## {case}", "", f"{what}; reference "
-                  f"{ref['n_elements']} elements, dt {ref['time_step']} s, tolerance 1e-10 (steady top tension "
-                  f"{float(ref['tt_min']) / 1e3:.3f} / {float(ref['tt_mean']) / 1e3:.3f} / "
-                  f"{float(ref['tt_max']) / 1e3:.3f} kN).", ""]
+        lines += [f"### {case}", "", f"{describe(case)}; reference {ref['n_elements']} elements, dt "
+                  f"{ref['time_step']} s, tolerance 1e-10 (steady top tension {float(ref['tt_min']) / 1e3:.3f} / "
+                  f"{float(ref['tt_mean']) / 1e3:.3f} / {float(ref['tt_max']) / 1e3:.3f} kN).", ""]
         for kind in ("check_mesh", "check_step"):
             c = next((r for r in mine if r["kind"] == kind and r["completed"] == "True"), None)
             if c:
@@ -489,70 +639,12 @@ def write_doc(rows, docs, binary):
                 cells.append(f"{error(r, ref):.1e} ({float(r['wall_s']):.2f} s)" if r and r["completed"] == "True"
                              else "failed" if r else "")
             lines.append(f"| {n} | " + " | ".join(cells) + " |")
-        lad = [r for r in mine if r["kind"] == "ladder"]
-        if lad:
-            meshes = sorted({int(r["n_elements"]) for r in lad})
-            lines += ["", f"The ladder (tolerance {LADDER_TOL:g}): e against the model's prediction for the same numerics "
-                      "(**above** where the error exceeds it).", "",
-                      "| dt s | " + " | ".join(f"{n} el.: e | predicted" for n in meshes) + " |",
-                      "|---|" + "---|---|" * len(meshes)]
-            for dt in LADDER_STEPS:
-                cells = []
-                for n in meshes:
-                    r = have(mine, case, "ladder", n, dt, LADDER_TOL)
-                    if r is None or r["completed"] != "True":
-                        cells += ["failed" if r else "", ""]
-                        continue
-                    e, pe = error(r, ref), predicted(binary, case, 1e-2, (n, dt))
-                    cells += [f"{e:.1e}" + (" **above**" if pe is not None and e > pe else ""),
-                              f"{pe:.1e}" if pe is not None else "?"]
-                if any(cells):
-                    lines.append(f"| {dt:g} | " + " | ".join(cells) + " |")
-        acc_rows = sorted((r for r in mine if r["kind"] == "accuracy"), key=lambda r: -float(r["accuracy"]))
-        if acc_rows:
-            lines += ["", "| accuracy | chosen n, dt, tol | predicted | error | work (wall) | cheapest grid cell "
-                      "reaching it | its work | cost ratio | cost ratio, covered cells | cost ratio, the grid at "
-                      "the knob's tolerance |",
-                      "|---|---|---|---|---|---|---|---|---|---|"]
-            grid_ok = [r for r in mine if r["kind"] == "grid" and r["completed"] == "True"]
-            covered = [g for g in grid_ok if float(g["time_step"]) * STEPS_PER_PERIOD <= shortest_period(case) + 1e-9]
-            for r in acc_rows:
-                target = float(r["accuracy"])
-                ok = [g for g in grid_ok if error(g, ref) <= target]
-                best = min(ok, key=work) if ok else None
-                ok_cov = [g for g in covered if error(g, ref) <= target]
-                best_cov = min(ok_cov, key=work) if ok_cov else None
-                if r["completed"] != "True":
-                    lines.append(f"| {target:g} | refused | | | | | | | | |")
-                    continue
-                tol = float(r["newton_tolerance"])
-                same = best if same_tolerance(tol, GRID_TOL) else cheapest_at_tolerance(mine, case, ref, target, tol)
-                if same is None:
-                    like = "none"
-                elif same_tolerance(tol, GRID_TOL):
-                    like = f"{work(r) / work(same):.2f}"
-                else:
-                    like = f"{work(r) / work(same):.2f} ({same['n_elements']} el., dt {same['time_step']} s)"
-                e = error(r, ref)
-                pe = predicted(binary, case, target)
-                pe = f"{pe:.1e}" if pe is not None else "?"
-                b = (f"{best['n_elements']} el., dt {best['time_step']} s (e {error(best, ref):.1e})",
-                     f"{work(best):.3g}", f"{work(r) / work(best):.2f}") if best else ("none", "", "")
-                verdict = "ok" if e <= target else "ABOVE TARGET"
-                fine = finest_reference(docs, case) if e > target else None
-                if fine is not None:
-                    # the reference itself is not converged at the target's level: what the finest says
-                    ef = error(r, fine)
-                    verdict += (f" (against the {float(fine['time_step']):g} s reference, {ef:.1e}: "
-                                f"{'ok' if ef <= target else 'above too'})")
-                lines.append(f"| {target:g} | {r['n_elements']}, {r['time_step']} s, {float(r['newton_tolerance']):g} "
-                             f"| {pe} | {e:.1e} {verdict} | {work(r):.3g} "
-                             f"({float(r['wall_s']):.2f} s) | {b[0]} | {b[1]} | {b[2]} | "
-                             + (f"{work(r) / work(best_cov):.2f} |" if best_cov else "none |") + f" {like} |")
         lines.append("")
-    # the hand-written section of `riser-tools accuracy-ref` (the references' floor) is kept at the end
+    # the hand-written sections (the reading of the runs; `riser-tools accuracy-ref`'s references' floor)
+    # are kept at the end
     old = (docs / "accuracy.md").read_text() if (docs / "accuracy.md").exists() else ""
-    kept = old[old.index(FLOOR_HEADING):] if FLOOR_HEADING in old else ""
+    at = [old.index(h) for h in (FINDINGS_HEADING, FLOOR_HEADING) if h in old]
+    kept = old[min(at):] if at else ""
     (docs / "accuracy.md").write_text("\n".join(lines) + "\n" + kept)
 
 
@@ -562,33 +654,34 @@ def main(argv=None):
     ap.add_argument("--bin", default="target/fasttest/riser")
     ap.add_argument("--out", default="out/accuracy")
     ap.add_argument("--docs", default="docs")
-    ap.add_argument("--phase", choices=["grid", "ladder", "verify", "all", "doc"], default="all")
+    ap.add_argument("--phase", choices=["grid", "verify", "scenes", "all", "doc"], default="all")
     ap.add_argument("--case", action="append", help="only these cases (default: all)")
+    ap.add_argument("--jobs", type=int, default=2, help="runs at a time (default 2)")
+    ap.add_argument("--grid-references", action="store_true",
+                    help="verify, scenes: where a reference finer than the pilots is not stored, take the grid's "
+                         "rather than run one")
     args = ap.parse_args(argv)
     out, docs = Path(args.out), Path(args.docs)
     out.mkdir(parents=True, exist_ok=True)
-    every = dict(CASES)
-    if args.case:
-        for c in list(CASES):
-            if c not in args.case:
-                del CASES[c]
+    cases = [c for c in CASES if not args.case or c in args.case]
+    scenes = [c for c in SCENE_CASES if not args.case or c in args.case]
     path = out / "grid.csv"
     committed = docs / "accuracy_runs.csv"
-    if args.phase in ("ladder", "verify", "doc") and not path.exists() and committed.exists():
+    if args.phase in ("verify", "scenes", "doc") and not path.exists() and committed.exists():
         # a phase after the grid on a fresh checkout: from the committed runs, not from nothing (which
         # would write docs/accuracy_runs.csv with this phase's runs alone)
         shutil.copy(committed, path)
         print(f"{path}: from {committed} (the committed runs)", flush=True)
     rows = load(path)
     if args.phase in ("grid", "all"):
-        grid(args.bin, path, rows)
-    if args.phase in ("ladder", "all"):
-        ladder(args.bin, path, rows)
+        grid(args.bin, path, rows, cases)
     if args.phase in ("verify", "all"):
-        verify(args.bin, path, rows)
+        merge_measured(measure(args.bin, out, path, rows, cases, args.jobs, not args.grid_references),
+                       docs / "accuracy_measured.csv")
+    if args.phase in ("scenes", "all"):
+        merge_measured(measure(args.bin, out, path, rows, scenes, args.jobs, not args.grid_references),
+                       docs / "accuracy_measured.csv")
     shutil.copy(path, docs / "accuracy_runs.csv")
-    # the write-up of every case, the ones not run now from their stored runs
-    CASES.update(every)
     write_doc(rows, docs, args.bin)
 
 
