@@ -72,7 +72,7 @@ from typing import Any, TextIO
 import numpy as np
 from distributed import WorkerPlugin
 
-from .spec import SpecError, _suggest, _unknown, coerce
+from .spec import SpecError, _suggest, _unknown, coerce, read_toml, worker_failure
 
 SECONDS_PER_YEAR = 365.25 * 86_400.0  # riser's (src/sim/fatigue.rs)
 SCATTER_REQUIRED = ("hs", "tp", "probability")
@@ -297,12 +297,7 @@ def load_fatigue_spec(path: str | Path, riser_bin: str | None = None) -> Fatigue
     the curve, the wall: riser's own checks; the static touchdown) and `riser waves` per state
     (the RAO table covers each state's sea). Raises SpecError naming the field or row."""
     path = Path(path)
-    try:
-        raw = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise SpecError(f"{path}: no such file") from None
-    except tomllib.TOMLDecodeError as e:
-        raise SpecError(f"{path}: not valid TOML: {e}") from None
+    raw = read_toml(path)
     base = path.resolve().parent
     for k in raw:
         if k not in FATIGUE_TOP:
@@ -670,8 +665,7 @@ def run_fatigue_sweep(spec: FatigueSpec, out_dir: str | Path, scheduler: str | N
                     try:
                         res = fut.result()
                     except Exception as e:  # the worker's or the cluster's failure, not riser's
-                        res = {"status": "error", "error": f"{type(e).__name__}: {e}".replace("\n", " "),
-                               "json": None, "fatigue_csv": None, "wall_s": None}
+                        res = worker_failure(e, json=None, fatigue_csv=None)
                     _save_case(out, st, res)
                     results[st.name()] = res
                     summary.ran += 1

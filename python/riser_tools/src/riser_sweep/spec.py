@@ -354,16 +354,27 @@ def _values(where: str, ftype: str, raw: Any) -> list[Any]:
     raise SpecError(f"{where} = {raw!r}: expected a list or a range table {{start, stop, step|num}}")
 
 
-def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
-    """Read and check a spec: names and types against the FMU's modelDescription,
-    the grid's shape, the motion, the window. Raises SpecError naming the field."""
-    path = Path(path)
+def read_toml(path: Path) -> dict[str, Any]:
+    """A spec file's TOML, or SpecError naming the file (missing, not TOML)."""
     try:
-        raw = tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_text())
     except FileNotFoundError:
         raise SpecError(f"{path}: no such file") from None
     except tomllib.TOMLDecodeError as e:
         raise SpecError(f"{path}: not valid TOML: {e}") from None
+
+
+def worker_failure(e: Exception, **empty: Any) -> dict[str, Any]:
+    """A case's result where the worker or the cluster failed (not riser): status error, the
+    exception in one line, `empty` the result's other keys."""
+    return {"status": "error", "error": f"{type(e).__name__}: {e}".replace("\n", " "), "wall_s": None, **empty}
+
+
+def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
+    """Read and check a spec: names and types against the FMU's modelDescription,
+    the grid's shape, the motion, the window. Raises SpecError naming the field."""
+    path = Path(path)
+    raw = read_toml(path)
     base = path.resolve().parent
     if "fatigue" in raw:
         raise SpecError("[fatigue]: a fatigue sweep over a scatter diagram; riser-sweep runs it, from Python "

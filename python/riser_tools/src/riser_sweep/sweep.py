@@ -32,7 +32,7 @@ from distributed import Client, LocalCluster, as_completed
 from .case import ShipFMU, case_task
 from .progress import Progress
 from .results import ResultsFile, case_key
-from .spec import Case, Spec, _canonical, check_values_with_fmu
+from .spec import Case, Spec, _canonical, check_values_with_fmu, worker_failure
 
 
 @dataclass
@@ -160,8 +160,7 @@ def run_sweep(spec: Spec, out_dir: str | Path, scheduler: str | None = None, wor
                     try:
                         res = fut.result()
                     except Exception as e:  # not the case's own failure: the worker or the cluster's
-                        res = {"status": "error", "error": f"{type(e).__name__}: {e}".replace("\n", " "),
-                               "reductions": {}, "wall_s": None}
+                        res = worker_failure(e, reductions={})
                     results.append(case, res)
                     if res.get("timeseries") is not None:
                         _write_timeseries(out / "cases" / case_file_name(case), res["timeseries"])
