@@ -120,3 +120,39 @@ fn a_systems_do_step_with_free_points_does_not_allocate() {
     assert_eq!(during, 0);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A single line given the vessel's inertias steps with the vessel's
+/// answer inside its steps (docs/theory.md §7.10, `HeldBody`): its body
+/// Newton's trial states and condensed tangent are kept by the instance,
+/// so fmi2DoStep allocates nothing once warmed up.
+#[test]
+fn a_do_step_with_the_vessel_s_answer_inside_does_not_allocate() {
+    use riser::fmi::instance::{Instance, Status, Value};
+    use riser::fmi::vars::{GUID, vr_of};
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
+    assert_eq!(i.set_param(vr_of("n_elements").unwrap(), Value::Integer(10)), Status::Ok);
+    assert_eq!(i.set_param(vr_of("vessel_mass_heave").unwrap(), Value::Real(2.0e6)), Status::Ok);
+    i.enter_initialization_mode();
+    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+    let (heave, heave_velocity) = (vr_of("heave").unwrap(), vr_of("heave_velocity").unwrap());
+    let h = 0.1;
+    let step = |i: &mut Instance, k: u64| {
+        let t = k as f64 * h;
+        let w = 2.0 * std::f64::consts::PI / 10.0;
+        let ramp = (t / 10.0).min(1.0);
+        assert_eq!(i.set_real(heave, 1.0 * ramp * (w * t).sin()), Status::Ok);
+        assert_eq!(i.set_real(heave_velocity, 1.0 * ramp * w * (w * t).cos()), Status::Ok);
+        assert_eq!(i.do_step(t, h), Status::Ok, "t = {t} s");
+    };
+    for k in 0..40 {
+        step(&mut i, k);
+    }
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for k in 40..140 {
+        step(&mut i, k);
+    }
+    let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    eprintln!("fmi2DoStep with the vessel's answer inside (§7.10): allocations in 100 steps: {during}");
+    assert_eq!(during, 0);
+}

@@ -13,7 +13,7 @@ use crate::scene::{Scene, SceneError, ranges};
 use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
-use crate::sim::monolithic::HeldBody;
+use crate::sim::monolithic::{HeldBody, HeldScratch};
 use crate::sim::system_dynamics::{POINT_VALUES, SystemStepError};
 use std::path::PathBuf;
 
@@ -248,6 +248,8 @@ pub struct Instance {
     /// ended (a single line given the vessel's inertias, §7.10).
     held_body: HeldBody,
     held_base: Option<HangOff>,
+    /// What the held body's step works in (allocated on its first step).
+    held_scratch: HeldScratch,
     /// What `accuracy` chose and its estimate (None: the numerics are the
     /// master's or the scene's; docs/theory.md §16.12): `error_estimate`.
     knob: Option<crate::sim::accuracy::Choice>,
@@ -384,6 +386,7 @@ impl Instance {
             warned_split: false,
             held_body: Default::default(),
             held_base: None,
+            held_scratch: HeldScratch::default(),
             knob: None,
             hf_watch: None,
             sim: None,
@@ -1122,7 +1125,7 @@ impl Instance {
                 Ok(())
             } else if implicit {
                 let h_in = target - sim.state.time;
-                self.held_body.step(sim, h_in, motion(target), held)
+                self.held_body.step(sim, &mut self.held_scratch, h_in, motion(target), held)
             } else {
                 sim.advance_to(target, &motion)
             };

@@ -173,6 +173,11 @@ impl Engine {
         with_integrator!(self, i => i.condensed_fixed_tangent(prev, cfg, h, target))
     }
 
+    /// See [`Integrator::fixed_unknowns`].
+    pub fn fixed_unknowns(&self) -> usize {
+        with_integrator!(self, i => i.fixed_unknowns())
+    }
+
     /// See [`Integrator::condensed_fixed_tangent_into`].
     pub fn condensed_fixed_tangent_into(
         &mut self,

@@ -275,13 +275,32 @@ pub struct HeldBody {
     pub dq_dot: [f64; 6],
 }
 
+/// What [`HeldBody::step`] works in, kept by its caller between steps so
+/// that the step allocates nothing once warmed up (the first step sizes it).
+#[derive(Debug, Clone, Default)]
+pub struct HeldScratch {
+    prev: Option<State>,
+    trial: Option<State>,
+    condensed: Vec<f64>,
+}
+
 impl HeldBody {
     /// One step of h of the line from its state with the body's δq (7.19),
     /// about the path's `base` at the step's end, the vessel holding the
     /// reaction `held` (N). On failure the line and δq are left at the
     /// step's start.
-    pub fn step(&mut self, sim: &mut Simulation, h: f64, base: HangOff, held: V3) -> Result<(), RiserError> {
-        let prev: State = sim.state.clone();
+    pub fn step(
+        &mut self,
+        sim: &mut Simulation,
+        scratch: &mut HeldScratch,
+        h: f64,
+        base: HangOff,
+        held: V3,
+    ) -> Result<(), RiserError> {
+        let HeldScratch { prev, trial, condensed } = scratch;
+        let prev = prev.get_or_insert_with(|| sim.state.clone());
+        prev.clone_from(&sim.state);
+        let prev = &*prev;
         let t0 = prev.time;
         let r = base.rotation * sim.vessel.offset;
         let rot = base.rotation;
@@ -310,8 +329,9 @@ impl HeldBody {
                 rotation: crate::math::rigid::exp_so3(&dth) * rot,
                 angular_velocity: base.angular_velocity + V3::new(v1[3], v1[4], v1[5]),
             };
-            let mut state = prev.clone();
-            sim.integrator.step(&mut state, h, &|_| target)?;
+            let state = trial.get_or_insert_with(|| prev.clone());
+            state.clone_from(prev);
+            sim.integrator.step(state, h, &|_| target)?;
             state.time = t0 + h;
             let p = state.mid_reaction[0];
             let acc = nalgebra::Vector6::from_fn(|i, _| (v1[i] - v0[i]) / h);
@@ -331,13 +351,13 @@ impl HeldBody {
             if worst <= tol {
                 self.dq = q1;
                 self.dq_dot = v1;
-                sim.state = state;
+                sim.state.clone_from(state);
                 return Ok(());
             }
             if it == MAX_BODY_ITERATIONS {
                 break;
             }
-            let s = hang_off_condensed(sim, &prev, &state, h, target)?;
+            let s = hang_off_condensed_into(sim, prev, state, h, target, condensed)?;
             let wc = HELD_BODY_CORNER;
             let mut jac = mass * (2.0 / (h * h) + 2.0 * wc / h + 0.5 * wc * wc);
             for i in 0..6 {
@@ -352,6 +372,7 @@ impl HeldBody {
                 }
                 jac[(i, i)] = 1.0;
             }
+            // (a 6×6 on the stack: nalgebra's fixed-size LU allocates nothing)
             let Some(d) = jac.lu().solve(&(-res)) else { break };
             for (i, qi) in q1.iter_mut().enumerate() {
                 *qi += d[i];
@@ -360,6 +381,33 @@ impl HeldBody {
         let (iterations, residual) = (MAX_BODY_ITERATIONS, worst);
         Err(RiserError::Dynamics(DynamicsError::NotConverged { time: t0, step: h, iterations, residual }))
     }
+}
+
+/// [`hang_off_condensed`] with the condensed tangent in `s` (sized once).
+fn hang_off_condensed_into(
+    sim: &mut Simulation,
+    prev: &State,
+    state: &State,
+    h: f64,
+    target: HangOff,
+    s: &mut Vec<f64>,
+) -> Result<M3, RiserError> {
+    let m = sim.integrator.fixed_unknowns();
+    s.resize(m * m, 0.0);
+    let engine = &mut sim.integrator;
+    engine.condensed_fixed_tangent_into(prev, &state.config, h, target, s).map_err(|error| DynamicsError::Linear {
+        time: prev.time,
+        step: h,
+        error,
+    })?;
+    let local = M3::from_fn(|i, j| s[i * m + j]);
+    let rod = matches!(engine, super::Engine::Rod(_));
+    Ok(if rod && engine.options().corotated_tangent {
+        let d = state.config.d[0];
+        d * local * d.transpose()
+    } else {
+        local
+    })
 }
 
 /// The line's step from `prev` to `state` condensed on its hang-off's
@@ -373,19 +421,5 @@ fn hang_off_condensed(
     h: f64,
     target: HangOff,
 ) -> Result<M3, RiserError> {
-    let engine = &mut sim.integrator;
-    let s = engine.condensed_fixed_tangent(prev, &state.config, h, target).map_err(|error| DynamicsError::Linear {
-        time: prev.time,
-        step: h,
-        error,
-    })?;
-    let m = (s.len() as f64).sqrt().round() as usize;
-    let local = M3::from_fn(|i, j| s[i * m + j]);
-    let rod = matches!(engine, super::Engine::Rod(_));
-    Ok(if rod && engine.options().corotated_tangent {
-        let d = state.config.d[0];
-        d * local * d.transpose()
-    } else {
-        local
-    })
+    hang_off_condensed_into(sim, prev, state, h, target, &mut Vec::new())
 }

@@ -345,6 +345,12 @@ impl<M: StepEquations> Integrator<M> {
         Ok(s)
     }
 
+    /// The number of the step's prescribed (fixed) unknowns, the side of
+    /// [`Integrator::condensed_fixed_tangent`]'s square.
+    pub fn fixed_unknowns(&self) -> usize {
+        self.lin.fixed.len()
+    }
+
     /// [`Integrator::condensed_fixed_tangent`] into `s` (the fixed
     /// unknowns' number squared), allocating nothing once warmed up.
     pub fn condensed_fixed_tangent_into(
