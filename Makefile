@@ -128,15 +128,20 @@ vessel-fmu: venv
 # on a clean clone; the Python tests take as long on either build). The FMU
 # as shipped (release) runs in `make demo`, and all of them in
 # `make fmu-test-release`.
+# Two pytest workers (pytest-xdist), each taking whole test files (--dist loadfile: a
+# file's module fixtures are built once); each file's time against its budget is
+# printed at the end.
+PYTEST_WORKERS ?= 2
 fmu-test: venv check-fmu
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" tests/python
+	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" \
+		-n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 # The long comparisons that `make test` leaves out (tests marked `long`: the FMU's growing
 # high-frequency oscillation over 150 s at 160 elements, ...), against the same FMU.
 .PHONY: check-long
 check-long: venv check-fmu
 	cargo test --profile $(TEST_PROFILE) -- --ignored
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long tests/python
+	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long -n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 fmu-test-release: fmu
 	$(PY) -m pytest -q -m "not long" tests/python
@@ -152,7 +157,7 @@ test: lint doc rust-test fmu-test
 CHECK_DIR := out/check
 check: lint rust-test venv check-fmu
 	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
-		$(PY) -m pytest -q -m "not long" tests/python -k "not fuzz and not sweep and not scatter"
+		$(PY) -m pytest -q -m "not long" -n $(PYTEST_WORKERS) --dist loadfile tests/python -k "not fuzz and not sweep and not scatter"
 
 # The FMU of the fasttest build: the library and the CLI as `cargo test`
 # builds them (its cdylib stays in deps/), not `cargo build`'s, which would

@@ -4,7 +4,7 @@
 //! drag), packaged as an FMI 2.0 Co-Simulation unit.
 //!
 //! Layers, bottom to top; a module imports only from the layers below it
-//! (checked by `tests/layering.rs`):
+//! (checked by `tests/it/layering.rs`):
 //! - [`math`]: small algebra, shape functions and quadrature, the banded system;
 //! - [`scene`]: scene files, built-in scenes, overrides, validation;
 //! - [`loads`]: per unit length, shared by both models: weight and buoyancy,

@@ -2749,7 +2749,7 @@ mod anchor_tests {
 
     /// The steel catenary anchored at 320 m (35 m on the seabed at rest),
     /// surged 15 m at 30 s grown over 10 s: its anchor lifts off the
-    /// seabed from about 17 s (`riser run` says the same, tests/cli.rs);
+    /// seabed from about 17 s (`riser run` says the same, tests/it/cli.rs);
     /// the FMU's log says so once. Anchored at 292 m (the scene's own) it
     /// does not.
     #[test]

@@ -5,7 +5,7 @@
 //!
 //! The bounds are engineering ranges, wide enough for every line the model is
 //! meant for and narrow enough that the statics and the time stepping work at
-//! them in double precision (tests/parameter_ranges.rs runs the default scene
+//! them in double precision (tests/it/parameter_ranges.rs runs the default scene
 //! at each bound and refuses a value just outside it).
 
 include!("range_table.rs");

@@ -40,7 +40,7 @@ use super::error_estimate::{Convergence, ErrorEstimate, Quantity, RunSpec, Tripl
 use crate::scene::{AccuracyQuantity, Scene};
 
 /// The safety factor S of (16.18): the estimate of the pilots is within
-/// 0.65–1.64 of the measured error on the cases of tests/error_estimate.rs.
+/// 0.65–1.64 of the measured error on the cases of tests/it/error_estimate.rs.
 pub const SAFETY: f64 = 1.5;
 /// Rounds of pilots at most (the first at the scene's numerics).
 pub const MAX_ROUNDS: usize = 3;

@@ -38,7 +38,7 @@ os.environ.setdefault("PYTHONHASHSEED", "0")
 # check-long`, not in `make test`.
 BUDGETS = {
     "test_accuracy.py": 40, "test_cosim_inputs.py": 30, "test_coupling.py": 45, "test_coupling6.py": 30,
-    "test_coupling_buoy.py": 30, "test_coupling_mono.py": 25, "test_directional_derivative.py": 10, "test_fatigue.py": 10,
+    "test_coupling_buoy.py": 30, "test_coupling_mono.py": 25, "test_directional_derivative.py": 10, "test_fatigue.py": 10, "test_fmpy_logging.py": 10,
     "test_fmu.py": 45, "test_fuzz.py": 35, "test_guide.py": 30, "test_interface_doc.py": 5, "test_masters.py": 15,
     "test_model_structure.py": 5, "test_parameter_ranges.py": 10, "test_scatter_fatigue.py": 20, "test_sweep.py": 60,
     "test_system_coupling.py": 15, "test_system_free_fmu.py": 10, "test_system_moordyn.py": 15, "test_tools.py": 20,

@@ -5,7 +5,7 @@ of freedom held; riser given the body's mass and inertias, `vessel_mass_*`, `ves
 filter), against the same body integrated inside riser's own step (examples/monolithic_body.rs,
 riser::sim::monolithic). riser, given the body's inertias, also takes the body's answer to the line's
 force beyond the held one inside its own steps (docs/theory.md §7.10). References: the monolithic run (converged: its window within 4e-6 between
-0.05 s and 0.01 s, tests/monolithic_body.rs for its own checks) and the body alone's closed form.
+0.05 s and 0.01 s, tests/it/monolithic_body.rs for its own checks) and the body alone's closed form.
 
 What the ports exchange: riser's `work_top` (the vessel's work on the line) against minus the vessel's
 `work` (riser's held force on the vessel's displacement). With the force held over each step the two

@@ -428,7 +428,7 @@ def run_heave_child(fmu_path, unzipped, cases):
     return results
 
 
-@pytest.mark.long  # 160 elements at 0.00625 s for 150 s, twice; the CLI's test of the same watch: tests/cli.rs
+@pytest.mark.long  # 160 elements at 0.00625 s for 150 s, twice; the CLI's test of the same watch: tests/it/cli.rs
 def test_the_log_warns_once_of_a_growing_high_frequency_oscillation(fmu_path, unzipped):
     """docs/theory.md §5.10: the lazy wave heaved 2.5 m / 30 s (grown over a period) in its current,
     in full from t = 0 (current_ramp 0: its jolt seeds the oscillation; grown over the default 10 s

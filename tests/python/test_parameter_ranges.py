@@ -2,7 +2,7 @@
 one table in src/scene/ranges.rs), through fmpy as a master drives it: at each
 bound the instance initialises and takes three steps with finite outputs; just
 outside, fmi2SetReal / fmi2SetInteger returns fmi2Error and the logged message
-names the parameter and the range. (tests/parameter_ranges.rs does the same
+names the parameter and the range. (tests/it/parameter_ranges.rs does the same
 through the command line, for the rod and the cable.)
 """
 import json
@@ -32,7 +32,7 @@ CALLBACKS.allocateMemory = defaultCallbacks.allocateMemory
 CALLBACKS.freeMemory = defaultCallbacks.freeMemory
 addLoggerProxy(byref(CALLBACKS))
 
-# parameters a bound needs to make a line at all (as in tests/parameter_ranges.rs)
+# parameters a bound needs to make a line at all (as in tests/it/parameter_ranges.rs)
 COMPANIONS = {
     ("length", "min"): {"anchor_x": 0.6, "anchor_z": -0.7},
     ("length", "max"): {"anchor_x": 15000.0, "anchor_z": -10000.0},

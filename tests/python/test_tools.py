@@ -62,7 +62,7 @@ def test_moordyn_run_holds_a_still_line_at_its_static_force(tmp_path):
 # --------------------------------------------------------------------------- the references
 
 def test_the_references_agree_with_riser_statics(riser_bin):
-    """The Python port of tests/common/reference.rs against riser's cable statics: the catenary
+    """The Python port of tests/it/common/reference.rs against riser's cable statics: the catenary
     (no seabed) within 3e-4 of H and V at the scene's 60 elements, the steel catenary on a
     frictionless seabed within 5e-4 (the Rust tests' tolerances are 2e-4 on the rod)."""
     for scene, sets, ref in (

@@ -135,7 +135,7 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
     """Run one case; returns {"reductions": {column: float}, "wall_s", "status",
     "error", "timeseries" (a structured array, when the job asks for it)}."""
     from fmpy import read_model_description, simulate_fmu
-    from fmpy.simulation import instantiate_fmu
+    from riser_tools.fmpy_logging import instantiate_logged
 
     t0 = time.perf_counter()
     out: dict[str, Any] = {"reductions": {}, "status": "ok", "error": "", "timeseries": None}
@@ -164,7 +164,7 @@ def run_case(unzipdir: str, job: dict[str, Any], model_description: Any = None,
         if job.get("vessel_error"):
             return fail(job["vessel_error"])
         signal = motion_signal(job["motion"], duration, h, job.get("vessel"))
-        fmu = instantiate_fmu(unzipdir, md, "CoSimulation", debug_logging=True, logger=logger)
+        fmu = instantiate_logged(unzipdir, md, logger, debug_logging=True)
         fmu.setDebugLogging(True, LOG_CATEGORIES)
         state: dict[str, Any] = {"time": 0.0, "stopped": ""}
         timeout = job.get("timeout")

@@ -608,7 +608,7 @@ def check_values_with_fmu(spec: Spec, unzipdir: str) -> None:
     only the whole case can tell (statics that fail, a scene a line cannot reach) is
     a case's error row instead."""
     from fmpy import read_model_description
-    from fmpy.simulation import instantiate_fmu
+    from riser_tools.fmpy_logging import instantiate_logged
 
     md = read_model_description(unzipdir)
     vr = {v.name: v.valueReference for v in md.modelVariables}
@@ -631,7 +631,7 @@ def check_values_with_fmu(spec: Spec, unzipdir: str) -> None:
     try:
         for where, name, value in todo:
             if fmu is None:
-                fmu = instantiate_fmu(unzipdir, md, "CoSimulation", logger=logger)
+                fmu = instantiate_logged(unzipdir, md, logger)
                 fmu.setupExperiment(startTime=0.0)
                 fmu.enterInitializationMode()
             ftype = spec.variables.parameters[name]

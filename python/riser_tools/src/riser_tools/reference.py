@@ -1,4 +1,4 @@
-"""Closed-form references, ported from tests/common/reference.rs (the Rust
+"""Closed-form references, ported from tests/it/common/reference.rs (the Rust
 tests' independent solutions; plain Python and math here too, sharing no code
 with riser or MoorDyn).
 

@@ -35,7 +35,7 @@ surface 5 m above it). Runs (each from the static state):
   and structural_damping=7.18e-4 (MoorDyn's axial damping BA = 359035 N s
   over EA) (MoorDyn's sea on riser's axes: the hang-off at the origin with
   MoorDyn's x and y, riser's time = MoorDyn's, the paper's t = t - 20 s; the
-  reasoning is in tests/free_surface.rs), and for case 5 the variants
+  reasoning is in tests/it/free_surface.rs), and for case 5 the variants
   without the axial damping, Wheeler stretching, a 10 s ramp, dt 0.025 and
   0.0125 s, 68 elements, deep water. A binary that refuses waves (before the water's
   force with waves) lists them as not run;
@@ -192,7 +192,7 @@ def motion_run(bin_, out, name, motion, extra, log):
 
 
 def wave_sets(direction, phase, extra=()):
-    """MoorDyn's sea of cases 4-6 as riser's --set (docstring; tests/free_surface.rs)."""
+    """MoorDyn's sea of cases 4-6 as riser's --set (docstring; tests/it/free_surface.rs)."""
     return ["wave_kind=airy", f"wave_height={H_W:g}", f"wave_period={T_W:g}", f"wave_direction={direction:g}",
             f"wave_phase={phase:g}", "wave_ramp=0", "wave_stretching=none", "water_depth=100",
             f"structural_damping={ETA_MD:.6g}", *extra]

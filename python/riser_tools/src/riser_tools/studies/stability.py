@@ -139,7 +139,7 @@ def main(argv=None):
                 "output finite and the energy balance closed to ≤ 1e-6 of the energy exchanged; *clean stop* = "
                 "the run stopped with a typed error and the state kept (the message is the reason). A crash, a "
                 "hang or a NaN would be a failure of the cell. The cheap cells run in `make test` "
-                "(`tests/stability.rs`).\n\n")
+                "(`tests/it/stability.rs`).\n\n")
         f.write("| axis | cell | outcome | reason | top tension min / max (kN) | energy balance | wall (s) |\n")
         f.write("|---|---|---|---|---|---|---|\n")
         for r in rows:

@@ -3,9 +3,9 @@
 //! emerged part and the wet weight of the rest (closed form); the energy
 //! balance closes while the line crosses the surface; the step tangent with
 //! elements in the band against finite differences (the rod's is in
-//! tests/dynamics_tangent.rs).
+//! tests/it/dynamics_tangent.rs).
 
-mod common;
+use crate::common;
 
 use riser::scene::Scene;
 use riser::sim::{Heave, Simulation};

@@ -223,7 +223,7 @@ fn the_modes_refuse_free_points_naming_them_and_the_fmu_takes_them() {
     let sys = case("bridle_mooring");
     let m = riser::sim::system_dynamics::free_points_refused(&sys, "the modes").expect("refused");
     assert!(m.contains("joint") && m.contains("not yet"), "{m}");
-    // `riser run` and the FMU run them (tests/system_free_dynamics.rs, src/fmi/instance.rs)
+    // `riser run` and the FMU run them (tests/it/system_free_dynamics.rs, src/fmi/instance.rs)
     assert!(riser::sim::system_dynamics::unsupported(&sys).is_none());
     // the FMU's path: the system with the master's numerics besides its lines' scenes
     let built = riser::fmi::system::line_scenes(&sys, &[]).unwrap();

@@ -5,7 +5,7 @@
 //! the line is a light taut spring: the body on its own stiffness plus the
 //! line's static stiffness at the hang-off (§8.3) through the lever.
 
-mod common;
+use crate::common;
 
 use riser::math::V3;
 use riser::scene::Scene;

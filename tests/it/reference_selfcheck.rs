@@ -1,8 +1,8 @@
-mod common;
+use crate::common;
 use common::reference::*;
 
 // Self-checks of the independent reference solutions in
-// `tests/common/reference.rs` against literature values, closed forms and
+// `tests/it/common/reference.rs` against literature values, closed forms and
 // each other. Every assertion states its tolerance; run with `--nocapture`
 // to see the computed values.
 

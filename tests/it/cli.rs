@@ -126,7 +126,7 @@ fn modes_json_gives_the_periods_and_the_shapes() {
     let periods = numbers("periods");
     assert_eq!(periods.len(), 4);
     assert!(periods.iter().all(|t| t.is_finite() && *t > 0.0), "{periods:?}");
-    // lowest frequency first: the periods decrease; the catenary's first period (tests/modes.rs: 11.04 s)
+    // lowest frequency first: the periods decrease; the catenary's first period (tests/it/modes.rs: 11.04 s)
     assert!(periods.windows(2).all(|w| w[0] > w[1]), "{periods:?}");
     assert!(periods[0] > 5.0 && periods[0] < 30.0);
     let freq = numbers("frequencies");

@@ -13,7 +13,7 @@ use riser::sim::Simulation;
 use riser::sim::system_dynamics::{SystemRun, energy_balance_residual};
 use riser::sim::vessel::VesselMotion;
 
-const OC3: &str = include_str!("../docs/cases/oc3_hywind_mooring.toml");
+const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
 
 /// The OC3 mooring with coarser chains (`n` elements each) and step `dt`.
 fn oc3(n: usize, dt: f64) -> SystemScene {

@@ -1,12 +1,12 @@
 //! Seabed contact (issue 17, docs/theory.md §9), rod and cable: the statics
 //! of a line resting on the seabed against the elastic catenary with a
-//! length on a frictionless seabed (tests/common/reference.rs, independent of
+//! length on a frictionless seabed (tests/it/common/reference.rs, independent of
 //! the crate); the cable's step tangent with contact, damping and friction
-//! against finite differences (the rod's is in tests/dynamics_tangent.rs);
+//! against finite differences (the rod's is in tests/it/dynamics_tangent.rs);
 //! energy conserved by the elastic seabed and only dissipated by its damping
 //! and friction, the balance closing with `work_seabed`; bad input.
 
-mod common;
+use crate::common;
 
 use common::reference::catenary_on_seabed;
 use riser::scene::Scene;

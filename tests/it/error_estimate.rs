@@ -246,7 +246,7 @@ fn the_command_line_reports_the_estimate() {
 }
 
 /// Issue 51's evidence on scenes the accuracy knob refuses (a long test:
-/// `cargo test --profile fasttest --test error_estimate -- --ignored
+/// `cargo test --profile fasttest --test it -- error_estimate:: --ignored
 /// --nocapture`): the catenary with structural damping, in a regular sea
 /// travelling at 45°, and as the cable model, each at 20 elements and 0.1 s
 /// heaved 2.5 m / 10 s; the estimate (16.16) of every quantity against the

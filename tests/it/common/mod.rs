@@ -80,8 +80,8 @@ pub fn cable_step_tangent_error(scene: &Scene) -> f64 {
 /// A neutrally buoyant vertical line (the catenary's D with its displaced
 /// mass, 81.0 kg/m) stretched 1 cm between its ends: T = EA δL/L = 79.6 kN
 /// along it; EI 1e6 N m² gives a bending length λ = √(EI/T) = 3.5 m; 200
-/// elements (h = λ/7); `sets` overrides on top (tests/hang_off_end.rs,
-/// tests/hang_off_stiffness6.rs).
+/// elements (h = λ/7); `sets` overrides on top (tests/it/hang_off_end.rs,
+/// tests/it/hang_off_stiffness6.rs).
 pub fn taut_vertical_line(sets: &[&str]) -> Scene {
     let mass = 1025.0 * std::f64::consts::PI * 0.3172f64.powi(2) / 4.0;
     let mut all = vec![

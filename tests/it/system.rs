@@ -1,5 +1,5 @@
 //! A system of lines on one vessel (issue 49, statics without free points,
-//! which tests/system_free_points.rs tests; docs/guide/systems.md, docs/theory.md §17): the format's
+//! which tests/it/system_free_points.rs tests; docs/guide/systems.md, docs/theory.md §17): the format's
 //! checks, the OC3-Hywind spar's mooring against its published surge
 //! stiffness, the 6×6 stiffness against central differences of the
 //! system's own statics, and the command line.
@@ -9,7 +9,7 @@ use riser::scene::system::SystemScene;
 use riser::scene::{Scene, SceneError};
 use riser::sim::system::{perturbed_pose, solve_system};
 
-const OC3: &str = include_str!("../docs/cases/oc3_hywind_mooring.toml");
+const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
 
 fn oc3() -> SystemScene {
     SystemScene::from_toml(OC3, "oc3").expect("the OC3 scene is valid")
@@ -105,7 +105,7 @@ fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
 
 #[test]
 fn bad_systems_are_named() {
-    // a free point's keys on a vessel point (free points: tests/system_free_points.rs)
+    // a free point's keys on a vessel point (free points: tests/it/system_free_points.rs)
     let e = invalid(&OC3.replacen("kind = \"vessel\"", "kind = \"vessel\"\nmass = 1.0", 1));
     assert!(has(&e, "point.fairlead1.mass", "only a free point"), "{e:?}");
     // an unknown point, an unknown type

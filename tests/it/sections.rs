@@ -1,12 +1,12 @@
 //! Line sections and buoyancy modules (issue 17, docs/theory.md §11), rod
 //! and cable: a two-section line's statics against the piecewise elastic
-//! catenary (tests/common/reference.rs, independent of the crate); the
+//! catenary (tests/it/common/reference.rs, independent of the crate); the
 //! lazy wave built with physical modules against today's bare 670 N/m load
 //! when the modules' drag and added mass are off; the equivalent line's
 //! weight and buoyancy against the modules counted one by one; energy
 //! conserved on a sectioned line; bad input.
 
-mod common;
+use crate::common;
 
 use common::reference::{joined_strings_frequencies, piecewise_catenary_sections};
 use riser::scene::Scene;

@@ -2,7 +2,7 @@
 //! docs/theory.md §13): a nearly rigid vertical line, pinned at the seabed
 //! and just below the trough, in a regular wave. The sum of its end
 //! reactions against the closed-form Morison force on a fixed vertical
-//! cylinder (tests/common/reference.rs, `morison_vertical_cylinder`): the
+//! cylinder (tests/it/common/reference.rs, `morison_vertical_cylinder`): the
 //! inertia and drag amplitudes and the phase, rod and cable. Run with
 //! `--nocapture` to see the measured figures.
 //!
@@ -76,7 +76,7 @@
 //! per cent it is not, and the choice (volume held, or area held as drag
 //! assumes) would want stating in theory §13.6.
 
-mod common;
+use crate::common;
 use common::reference::{self, MorisonAmplitudes};
 
 use riser::model::HangOff;

@@ -2,7 +2,7 @@
 //! string, the hanging chain and the cantilever, rod and cable; the mass
 //! matrix against the kinetic energy; mesh convergence.
 
-mod common;
+use crate::common;
 
 use riser::loads::fluid::Fluid;
 use riser::loads::weight::VerticalLoad;

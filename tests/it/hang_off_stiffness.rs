@@ -7,7 +7,7 @@
 //!   the static equations re-solved — the meaning of "the tangent stiffness
 //!   at the current state" (docs/theory.md §8.3).
 
-mod common;
+use crate::common;
 
 use riser::math::{M3, V3};
 use riser::model::RodConfig;

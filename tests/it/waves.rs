@@ -1,11 +1,11 @@
 //! Waves (issue 27; docs/theory.md §13): the kinematics of a regular wave
-//! against the closed form of tests/common/reference.rs, Wheeler stretching
+//! against the closed form of tests/it/common/reference.rs, Wheeler stretching
 //! under a crest, the ramp; the spectra's realisation (Hs, Tp, seeds, the
 //! variance of a long record); bad input named by its field; `riser waves`
 //! and the refusal of a dynamic run with waves until the water's force with
 //! waves is built. Run with `--nocapture` to see the measured figures.
 
-mod common;
+use crate::common;
 use common::reference;
 
 use riser::loads::waves::{Sea, sea_of};

@@ -5,7 +5,7 @@
 //! series with that boundary layer; the energy balance of a clamped line and
 //! of a flex joint in motion; the cable refuses both; bad joint tables.
 
-mod common;
+use crate::common;
 
 use riser::math::V3;
 use riser::model::State;

@@ -3,12 +3,12 @@
 //! solutions with the hang-off moved by ±δ along x, y, z and the vessel's
 //! frame turned by ±ε about x, y, z (global): for a clamped end the end's
 //! frame turned with it (imposed on the held director node, as
-//! tests/hang_off_end.rs does), for a flex joint the joint's vessel frame
+//! tests/it/hang_off_end.rs does), for a flex joint the joint's vessel frame
 //! turned. The force and the end moment of the support on the line: the
 //! residual's rows at the hang-off's position and, for the clamp, at its
 //! rotation; for the joint, minus the joint's moment on the vessel.
 
-mod common;
+use crate::common;
 
 use riser::math::rigid::rot_y;
 use riser::math::{M3, M6, V3, cayley};
@@ -23,7 +23,7 @@ use riser::sim::{Engine, Simulation};
 use riser::solve::eigen::{hang_off_stiffness, hang_off_stiffness6};
 
 /// Newton with backtracking from `q` to the round-off floor (as
-/// tests/hang_off_stiffness.rs) of R_free(q) = `target` (the dead loads of a
+/// tests/it/hang_off_stiffness.rs) of R_free(q) = `target` (the dead loads of a
 /// frozen state; zero at a static state), the supports held where `q` has them;
 /// converged: the free residual's largest within 1e-9 of the reaction.
 fn solve_static(p: &StaticProblem, q: RodConfig, target: &[f64]) -> RodConfig {
@@ -138,7 +138,7 @@ fn catenary(sets: &[&str]) -> Scene {
 /// m (the rotation's 1e-4 rad): the taut line's stretch is 1 cm, and its
 /// central differences' O(δ²) error is 1.05e-4 of the moment-translation
 /// block at 3e-4 m, 1.2e-5 at 1e-4 m, 1.05e-6 at 3e-5 m (measured), so 3e-5 m
-/// there; 1e-3 m on the catenary as tests/hang_off_stiffness.rs.
+/// there; 1e-3 m on the catenary as tests/it/hang_off_stiffness.rs.
 fn case(what: &str, scene: &Scene, turn: Option<f64>, delta: f64) -> M6 {
     let sim = Simulation::from_scene(scene).unwrap();
     let loads = scene_static_loads(scene);
@@ -170,7 +170,7 @@ fn case(what: &str, scene: &Scene, turn: Option<f64>, delta: f64) -> M6 {
     s
 }
 
-/// K_b = √(EI T)/(1 − λ/L) of tests/hang_off_end.rs (theory §15), T the
+/// K_b = √(EI T)/(1 − λ/L) of tests/it/hang_off_end.rs (theory §15), T the
 /// static top tension.
 fn boundary_layer(scene: &Scene) -> f64 {
     let t = Simulation::from_scene(scene).unwrap().statics.top_tension;
@@ -198,7 +198,7 @@ fn flex_joint_catenary_6x6_is_the_derivative_of_the_statics() {
 fn clamped_taut_line_6x6_is_the_derivative_of_the_statics() {
     let s = case("taut, clamped", &common::taut_vertical_line(&["hang_off_end=clamped"]), None, 3e-5);
     // the clamp's boundary layer: δM = δθ √(EI T)/(1 − λ/L) about a transverse axis
-    // (measured within 3e-6, held to 5e-5 as (15.5) in tests/hang_off_end.rs)
+    // (measured within 3e-6, held to 5e-5 as (15.5) in tests/it/hang_off_end.rs)
     let kb = boundary_layer(&common::taut_vertical_line(&["hang_off_end=clamped"]));
     eprintln!("taut, clamped: S_yy of the rotation {:.5e} against K_b {kb:.5e}", s[(4, 4)]);
     assert!((s[(4, 4)] / kb - 1.0).abs() < 5e-5 && (s[(3, 3)] / kb - 1.0).abs() < 5e-5);

@@ -4,7 +4,7 @@
 //! buoy; one and two threads give the same bits; a mass between two taut
 //! elastic lines oscillates at sqrt(2k/(m + m_a)).
 
-mod common;
+use crate::common;
 
 use riser::math::V3;
 use riser::scene::system::SystemScene;

@@ -1,8 +1,8 @@
 //! Evidence 3–6 of the statics issue: the rod against closed forms and
-//! independent cable calculations (tests/common/reference.rs shares no code
+//! independent cable calculations (tests/it/common/reference.rs shares no code
 //! with the crate).
 
-mod common;
+use crate::common;
 use common::reference::{cantilever_elastica, elastic_catenary, piecewise_catenary};
 use nalgebra::Vector3;
 use riser::loads::weight::VerticalLoad;

@@ -4,11 +4,11 @@
 //! clamp moment P L (1 − u)), the stress of a straight tensioned line (a
 //! vertical line stretched between its ends: T(s) = T_b + w (L − s)), and the
 //! touchdown point and hang-off angle of the catenary with touchdown
-//! (tests/common/reference.rs, independent of the crate); and the anchor
+//! (tests/it/common/reference.rs, independent of the crate); and the anchor
 //! lifted off its seabed by a line too short to touch down (issue 52): its
 //! uplift angle against Irvine's elastic catenary.
 
-mod common;
+use crate::common;
 
 use common::reference::{cantilever_elastica, catenary_on_seabed, elastic_catenary};
 use nalgebra::Vector3;

@@ -1,10 +1,10 @@
 //! The cable model (issue 5, docs/theory.md §6): its internal force and
 //! tangents against finite differences, its statics against the elastic and
-//! the piecewise catenary (tests/common/reference.rs, independent of the
+//! the piecewise catenary (tests/it/common/reference.rs, independent of the
 //! crate), its dynamics against the hanging-chain frequencies, and the
 //! energy–momentum properties of the scheme.
 
-mod common;
+use crate::common;
 
 use common::reference::{bessel_j0_zeros, elastic_catenary, piecewise_catenary};
 use riser::loads::fluid::Fluid;

@@ -4,7 +4,7 @@
 //! Fourier transform evaluated on a fine frequency grid (peak refined to
 //! 1e-5 Hz), so the resolution is far below the 0.5–1 % tolerances.
 
-mod common;
+use crate::common;
 
 use riser::loads::fluid::Fluid;
 use riser::loads::weight::VerticalLoad;
