@@ -167,6 +167,10 @@ const HELD_VALUES: usize = 31;
 /// The parameter that chooses which inputs drive the hang-off.
 const COUPLING: &str = "coupling_inputs";
 
+/// The outputs of the line's stresses, computed when read (docs/theory.md §12.4).
+const STRESS_OUTPUTS: [&str; 4] =
+    ["max_von_mises", "max_utilisation", "max_utilisation_api_rp_2rd", "max_utilisation_dnv_os_f201"];
+
 /// The vessel's mass with its added mass per input axis (heave, surge,
 /// sway), for the path's account of the vessel's answer to riser's own
 /// force (input_path, docs/theory.md §7.8).
@@ -1251,6 +1255,21 @@ impl Instance {
         }
     }
 
+    /// A stress output (`max_von_mises`, the utilisations): the largest
+    /// along the line now, computed when read (docs/theory.md §12.4); a
+    /// DNV-OS-F201 check the scene asks for but that is not made (no net
+    /// internal overpressure somewhere) is logged once.
+    fn stress_output(&mut self, name: &str) -> f64 {
+        let peaks = match (&self.scene, &self.sim) {
+            (Some(scene), Some(sim)) => crate::sim::design::line_stress_peaks(scene, sim),
+            _ => None,
+        };
+        if let Some(why) = peaks.and_then(|p| p.lrfd).and_then(|l| l.not_reported()) {
+            self.log_once(Status::Warning, Category::Warning, &format!("{why}; max_utilisation_dnv_os_f201 reads 0"));
+        }
+        crate::sim::design::line_stress_output(peaks, name)
+    }
+
     fn output_value(&self, name: &str) -> f64 {
         let Some(o) = &self.outputs else { return 0.0 };
         match name {
@@ -1289,10 +1308,6 @@ impl Instance {
             "step_newton_iterations" => self.step_work.0 as f64,
             "step_newton_bound" => self.step_work.1 as f64,
             "error_estimate" => self.knob.as_ref().map_or(0.0, |c| c.estimate()),
-            "max_von_mises" | "max_utilisation" => match (&self.scene, &self.sim) {
-                (Some(scene), Some(sim)) => crate::sim::design::line_stress_output(scene, sim, name),
-                _ => 0.0,
-            },
             _ => {
                 // shape[k].c
                 let inner = name.strip_prefix("shape[").unwrap_or("");
@@ -1330,7 +1345,10 @@ impl Instance {
                         return Err(st);
                     }
                 }
-                self.output_value(v.name)
+                match v.name {
+                    name if STRESS_OUTPUTS.contains(&name) => self.stress_output(name),
+                    _ => self.output_value(v.name),
+                }
             }
             Causality::Parameter => match self.param_value(vr, v)? {
                 Value::Real(x) => x,

@@ -81,6 +81,61 @@ pub struct Line {
     /// survival or test); default 1.0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design_case_factor: Option<f64>,
+    /// Tensile strength of the wall (SMTS, the characteristic f_u), Pa:
+    /// DNV-OS-F201's LRFD check's, with `yield_stress` and `safety_class`
+    /// (unset or 0: none), docs/theory.md §12.4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tensile_strength: Option<f64>,
+    /// DNV-OS-F201's safety class, whose γ_SC the LRFD check takes (unset:
+    /// no LRFD check).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub safety_class: Option<SafetyClass>,
+    /// DNV-OS-F201's load effect factor on the functional load effects γ_F;
+    /// default [`crate::sim::lrfd::FUNCTIONAL_LOAD_FACTOR`] (ULS).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_factor_functional: Option<f64>,
+    /// DNV-OS-F201's load effect factor on the environmental load effects
+    /// γ_E; default [`crate::sim::lrfd::ENVIRONMENTAL_LOAD_FACTOR`] (ULS).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_factor_environmental: Option<f64>,
+    /// DNV-OS-F201's material resistance factor γ_m; default
+    /// [`crate::sim::lrfd::MATERIAL_RESISTANCE_FACTOR`] (ULS and ALS).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material_resistance_factor: Option<f64>,
+}
+
+/// DNV-OS-F201's safety class: the consequence of a failure (docs/theory.md
+/// §12.4), which sets the resistance factor γ_SC of the LRFD check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SafetyClass {
+    Low,
+    Normal,
+    High,
+}
+
+impl SafetyClass {
+    pub const ALL: [SafetyClass; 3] = [SafetyClass::Low, SafetyClass::Normal, SafetyClass::High];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            SafetyClass::Low => "low",
+            SafetyClass::Normal => "normal",
+            SafetyClass::High => "high",
+        }
+    }
+
+    /// The class named `text`, or None for `none` (no LRFD check).
+    pub fn parse(text: &str) -> Result<Option<SafetyClass>, String> {
+        if text == "none" {
+            return Ok(None);
+        }
+        SafetyClass::ALL
+            .into_iter()
+            .find(|c| c.name() == text)
+            .map(Some)
+            .ok_or_else(|| format!("'{text}' is not a safety class: low, normal, high (or none: no DNV-OS-F201 check)"))
+    }
 }
 
 /// Anchor position, m (the hang-off is at the origin).

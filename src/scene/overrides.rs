@@ -8,7 +8,7 @@ use super::{
 };
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 65] = [
+pub const PARAMETER_NAMES: [(&str, &str); 70] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -74,6 +74,11 @@ pub const PARAMETER_NAMES: [(&str, &str); 65] = [
     ("internal_fluid_density", "kg/m^3"),
     ("internal_pressure", "Pa"),
     ("design_case_factor", "-"),
+    ("tensile_strength", "Pa"),
+    ("safety_class", "none | low | normal | high"),
+    ("load_factor_functional", "-"),
+    ("load_factor_environmental", "-"),
+    ("material_resistance_factor", "-"),
 ];
 
 /// The seabed the `seabed_*` parameters act on: a scene without one gets a
@@ -248,6 +253,14 @@ pub(super) fn set(s: &mut Scene, name: &str, value: &str) -> Result<(), SceneErr
         "internal_fluid_density" => s.line.internal_fluid_density = Some(num()?),
         "internal_pressure" => s.line.internal_pressure = Some(num()?),
         "design_case_factor" => s.line.design_case_factor = Some(num()?),
+        "tensile_strength" => s.line.tensile_strength = Some(num()?),
+        "safety_class" => {
+            s.line.safety_class = super::SafetyClass::parse(value)
+                .map_err(|message| SceneError::Override { name: name.into(), message })?
+        }
+        "load_factor_functional" => s.line.load_factor_functional = Some(num()?),
+        "load_factor_environmental" => s.line.load_factor_environmental = Some(num()?),
+        "material_resistance_factor" => s.line.material_resistance_factor = Some(num()?),
         "water_density" => s.environment.water_density = num()?,
         "water_surface_z" => s.environment.water_surface_z = num()?,
         "gravity" => s.environment.gravity = num()?,
@@ -350,6 +363,17 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "internal_fluid_density" => num(s.line.internal_fluid_density.unwrap_or(0.0)),
         "internal_pressure" => num(s.line.internal_pressure.unwrap_or(0.0)),
         "design_case_factor" => num(s.line.design_case_factor.unwrap_or(1.0)),
+        "tensile_strength" => num(s.line.tensile_strength.unwrap_or(0.0)),
+        "safety_class" => Some(s.line.safety_class.map_or("none", |c| c.name()).into()),
+        "load_factor_functional" => {
+            num(s.line.load_factor_functional.unwrap_or(crate::sim::lrfd::FUNCTIONAL_LOAD_FACTOR))
+        }
+        "load_factor_environmental" => {
+            num(s.line.load_factor_environmental.unwrap_or(crate::sim::lrfd::ENVIRONMENTAL_LOAD_FACTOR))
+        }
+        "material_resistance_factor" => {
+            num(s.line.material_resistance_factor.unwrap_or(crate::sim::lrfd::MATERIAL_RESISTANCE_FACTOR))
+        }
         "water_density" => num(s.environment.water_density),
         "water_surface_z" => num(s.environment.water_surface_z),
         "gravity" => num(s.environment.gravity),

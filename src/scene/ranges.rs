@@ -76,6 +76,7 @@ mod tests {
                 "wave_stretching",
                 "rotation_order",
                 "accuracy_quantity",
+                "safety_class",
             ];
             assert!(non_numeric.contains(&name) || of_parameter(name).is_some(), "{name} has no range");
         }

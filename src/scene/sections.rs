@@ -76,6 +76,9 @@ pub struct SectionSpec {
     /// The wall's yield stress, Pa (default `[line]`'s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub yield_stress: Option<f64>,
+    /// The wall's tensile strength, Pa (default `[line]`'s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tensile_strength: Option<f64>,
 }
 
 /// Default normal drag coefficient of a buoyancy module: a short cylinder
@@ -198,6 +201,8 @@ pub struct LineProperties {
     pub wall: Option<Wall>,
     /// The wall's yield stress, Pa, when the scene gives one.
     pub yield_stress: Option<f64>,
+    /// The wall's tensile strength, Pa, when the scene gives one.
+    pub tensile_strength: Option<f64>,
 }
 
 /// A piece of line [start, end] (m of unstretched arc length from the hang-off).
@@ -241,10 +246,15 @@ impl SectionSpec {
             wall_thickness: self.wall_thickness.or(line.wall_thickness),
             youngs_modulus: self.youngs_modulus.or(line.youngs_modulus),
             yield_stress: self.yield_stress.or(line.yield_stress),
+            tensile_strength: self.tensile_strength.or(line.tensile_strength),
             // the contents and the load case are the line's: one fluid column
             internal_fluid_density: line.internal_fluid_density,
             internal_pressure: line.internal_pressure,
             design_case_factor: line.design_case_factor,
+            safety_class: line.safety_class,
+            load_factor_functional: line.load_factor_functional,
+            load_factor_environmental: line.load_factor_environmental,
+            material_resistance_factor: line.material_resistance_factor,
         }
     }
 }
@@ -273,6 +283,7 @@ pub fn bare_properties(line: &Line) -> LineProperties {
         pipe_diameter: d,
         wall: line.wall(),
         yield_stress: line.yield_stress.filter(|y| *y > 0.0),
+        tensile_strength: line.tensile_strength.filter(|u| *u > 0.0),
     }
 }
 
@@ -396,6 +407,7 @@ pub fn element_properties(pieces: &[Piece], a: f64, b: f64) -> LineProperties {
         pipe_diameter: mean(|p| p.pipe_diameter),
         wall: dominant.wall,
         yield_stress: dominant.yield_stress,
+        tensile_strength: dominant.tensile_strength,
     }
 }
 

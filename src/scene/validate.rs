@@ -30,6 +30,10 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
         ("internal_fluid_density", l.internal_fluid_density),
         ("internal_pressure", l.internal_pressure),
         ("design_case_factor", l.design_case_factor),
+        ("tensile_strength", l.tensile_strength),
+        ("load_factor_functional", l.load_factor_functional),
+        ("load_factor_environmental", l.load_factor_environmental),
+        ("material_resistance_factor", l.material_resistance_factor),
     ];
     let mut pipe_ok = true;
     for (k, v) in pipe_keys {
@@ -129,6 +133,9 @@ pub(super) fn check(s: &Scene) -> Vec<FieldError> {
         }
     }
     check_sections(&mut c, s, length_ok);
+    if c.0.is_empty() {
+        check_lrfd(&mut c, s);
+    }
     if let Some(b) = &s.seabed {
         let ok = c.range("seabed.z", b.z) & c.range("seabed.slope", b.slope);
         c.range("seabed.stiffness", b.stiffness);
@@ -257,6 +264,47 @@ fn check_wall(c: &mut Checker, l: &super::Line, at: &str) {
     }
 }
 
+/// DNV-OS-F201's LRFD check (docs/theory.md §12.4): asked for by
+/// `safety_class`, it needs every piece of line (`[line]`, or each section)
+/// to be a tube with a yield stress and a tensile strength no lower than it;
+/// a tensile strength without a safety class asks for nothing and is refused.
+fn check_lrfd(c: &mut Checker, s: &Scene) {
+    let l = &s.line;
+    let pieces: Vec<(String, super::Line)> = if s.section.is_empty() {
+        vec![("line".to_string(), l.clone())]
+    } else {
+        s.section.iter().enumerate().map(|(i, sec)| (format!("section[{i}]"), sec.bare_line(l))).collect()
+    };
+    for (at, p) in &pieces {
+        let (fy, fu) = (p.yield_stress.filter(|v| *v > 0.0), p.tensile_strength.filter(|v| *v > 0.0));
+        match (l.safety_class, fy, fu) {
+            (None, _, Some(_)) => c.err(
+                "line.safety_class",
+                format!(
+                    "{at}.tensile_strength is DNV-OS-F201's: give safety_class (low, normal or high) for its LRFD \
+                     check, or leave tensile_strength out"
+                ),
+            ),
+            (Some(_), None, _) | (Some(_), _, None) => c.err(
+                &format!("{at}.{}", if fy.is_none() { "yield_stress" } else { "tensile_strength" }),
+                "missing: DNV-OS-F201's LRFD check (safety_class) needs the wall's yield_stress and tensile_strength"
+                    .to_string(),
+            ),
+            (Some(_), Some(y), Some(u)) if u < y => c.err(
+                &format!("{at}.tensile_strength"),
+                format!("{u} Pa is below the yield stress {y} Pa: the tensile strength (SMTS) is the larger"),
+            ),
+            (Some(_), Some(_), Some(_)) if p.bore_diameter().is_none() => c.err(
+                &format!("{at}.wall_thickness"),
+                "DNV-OS-F201's LRFD check (safety_class) needs the pipe's wall: give wall_thickness (EA, EI and the \
+                 outer diameter are not those of a homogeneous tube)"
+                    .to_string(),
+            ),
+            _ => {}
+        }
+    }
+}
+
 /// Line sections (docs/theory.md §11): each key in its `[line]` range, the
 /// modules complete and physical, and the lengths adding up to the line's.
 fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
@@ -280,6 +328,7 @@ fn check_sections(c: &mut Checker, s: &Scene, length_ok: bool) {
             ("wall_thickness", sec.wall_thickness),
             ("youngs_modulus", sec.youngs_modulus),
             ("yield_stress", sec.yield_stress),
+            ("tensile_strength", sec.tensile_strength),
         ];
         if c.optional(&keys, f, |k| format!("line.{k}")) {
             check_wall(c, &sec.bare_line(&s.line), &format!("section[{i}]"));

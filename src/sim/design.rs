@@ -4,6 +4,7 @@
 //! warnings of a model that is implausible or under-resolved.
 
 use super::Engine;
+use super::lrfd::{LRFD_CHECK, LrfdFactors, LrfdWall};
 use crate::math::V3;
 use crate::model::outputs::LinePoint;
 use crate::model::sections::{self, PerElement};
@@ -53,6 +54,8 @@ pub struct Tube {
     pub external_area: f64,
     /// Yield stress σ_y, Pa, when the scene gives one.
     pub yield_stress: Option<f64>,
+    /// Tensile strength f_u, Pa, when the scene gives one.
+    pub tensile_strength: Option<f64>,
 }
 
 impl Tube {
@@ -84,6 +87,19 @@ impl Tube {
             shear_modulus: p.torsional_stiffness / polar,
             external_area,
             yield_stress: p.yield_stress,
+            tensile_strength: p.tensile_strength,
+        })
+    }
+
+    /// The wall as DNV-OS-F201's LRFD check sees it: D = 2 r_o, t₂ = r_o −
+    /// r_i and the strengths; None without a yield stress or a tensile
+    /// strength.
+    pub fn lrfd_wall(&self) -> Option<LrfdWall> {
+        Some(LrfdWall {
+            diameter: 2.0 * self.outer_radius,
+            thickness: self.outer_radius - self.inner_radius,
+            yield_strength: self.yield_stress?,
+            tensile_strength: self.tensile_strength?,
         })
     }
 
@@ -236,7 +252,7 @@ pub const API_ALLOWABLE_FRACTION: f64 = 2.0 / 3.0;
 pub const API_CHECK: &str = "API RP 2RD von Mises (sigma_vm <= C_f 2/3 sigma_y)";
 
 /// A code check's largest utilisation along the line: its value, the check
-/// ([`API_CHECK`]) and its arc length, m.
+/// ([`API_CHECK`], [`LRFD_CHECK`]) and its arc length, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Utilisation {
     pub value: f64,
@@ -244,24 +260,81 @@ pub struct Utilisation {
     pub s: f64,
 }
 
-/// The largest von Mises stress (Pa) and utilisation along a line in one
+/// The larger of two utilisations (the first of equals).
+fn larger(a: Option<Utilisation>, b: Option<Utilisation>) -> Option<Utilisation> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(if b.value > a.value { b } else { a }),
+        (a, b) => a.or(b),
+    }
+}
+
+/// DNV-OS-F201's LRFD check along a line (docs/theory.md §12.4): its
+/// largest utilisation, or, where a point has no net internal overpressure
+/// (p_i ≤ p_e, whose criterion riser does not implement), none: the first
+/// such point's arc length, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LrfdPeak {
+    Utilisation(Utilisation),
+    ExternalOverpressure { s: f64 },
+}
+
+impl LrfdPeak {
+    /// The larger of two (over the line, over time): none once a point had
+    /// no net internal overpressure.
+    pub fn max(self, other: LrfdPeak) -> LrfdPeak {
+        match (self, other) {
+            (LrfdPeak::Utilisation(a), LrfdPeak::Utilisation(b)) => {
+                LrfdPeak::Utilisation(if b.value > a.value { b } else { a })
+            }
+            (LrfdPeak::ExternalOverpressure { s }, _) | (_, LrfdPeak::ExternalOverpressure { s }) => {
+                LrfdPeak::ExternalOverpressure { s }
+            }
+        }
+    }
+
+    /// The utilisation, if reported.
+    pub fn utilisation(self) -> Option<Utilisation> {
+        match self {
+            LrfdPeak::Utilisation(u) => Some(u),
+            LrfdPeak::ExternalOverpressure { .. } => None,
+        }
+    }
+
+    /// Why it is not reported, if it is not.
+    pub fn not_reported(self) -> Option<String> {
+        match self {
+            LrfdPeak::Utilisation(_) => None,
+            LrfdPeak::ExternalOverpressure { s } => Some(format!(
+                "DNV-OS-F201 LRFD combined loading not reported: no net internal overpressure at S = {s:.1} m \
+                 (p_i <= p_e), whose criterion (with the collapse resistance) riser does not implement"
+            )),
+        }
+    }
+}
+
+/// The largest von Mises stress (Pa) and utilisations along a line in one
 /// state, each with its arc length (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StressPeaks {
     pub von_mises: (f64, f64),
-    /// None when no element has a yield stress.
+    /// The larger of the checks' (`max_utilisation`); None when none is made.
     pub utilisation: Option<Utilisation>,
+    /// API RP 2RD's (12.9); None when no element has a yield stress.
+    pub api: Option<Utilisation>,
+    /// DNV-OS-F201's LRFD check's (12.10); None when the scene asks for none.
+    pub lrfd: Option<LrfdPeak>,
 }
 
 impl StressPeaks {
     /// The larger of each of two peaks (over time).
     pub fn max(self, other: StressPeaks) -> StressPeaks {
         let von_mises = if other.von_mises.0 > self.von_mises.0 { other.von_mises } else { self.von_mises };
-        let utilisation = match (self.utilisation, other.utilisation) {
-            (Some(a), Some(b)) => Some(if b.value > a.value { b } else { a }),
+        let lrfd = match (self.lrfd, other.lrfd) {
+            (Some(a), Some(b)) => Some(a.max(b)),
             (a, b) => a.or(b),
         };
-        StressPeaks { von_mises, utilisation }
+        let api = larger(self.api, other.api);
+        StressPeaks { von_mises, utilisation: larger(api, lrfd.and_then(LrfdPeak::utilisation)), api, lrfd }
     }
 }
 
@@ -295,9 +368,14 @@ pub struct DesignNumbers {
     /// Largest von Mises stress (12.8), Pa, and its arc length, m; None
     /// when the line has no wall.
     pub max_von_mises: Option<(f64, f64)>,
-    /// Largest utilisation of the code check ([`API_CHECK`]) and where;
-    /// None without a wall or a yield stress.
+    /// Largest utilisation of the code checks ([`API_CHECK`],
+    /// [`LRFD_CHECK`]: the larger) and where; None without a wall or a
+    /// yield stress.
     pub max_utilisation: Option<Utilisation>,
+    /// API RP 2RD's largest utilisation (12.9).
+    pub api_utilisation: Option<Utilisation>,
+    /// DNV-OS-F201's LRFD check (12.10), when the scene asks for it.
+    pub lrfd: Option<LrfdPeak>,
 }
 
 /// What the design numbers of a scene need: each element's properties and
@@ -315,6 +393,8 @@ pub struct Design {
     fluids: Fluids,
     /// API RP 2RD's design case factor C_f.
     case_factor: f64,
+    /// DNV-OS-F201's LRFD factors, when the scene asks for the check.
+    lrfd: Option<LrfdFactors>,
 }
 
 impl Design {
@@ -326,6 +406,7 @@ impl Design {
             seabed: scene.seabed.clone(),
             fluids: Fluids::of(scene),
             case_factor: scene.line.design_case_factor.unwrap_or(1.0),
+            lrfd: LrfdFactors::of(&scene.line),
             ..d
         }
     }
@@ -333,13 +414,28 @@ impl Design {
     /// The design numbers of a line of `n_el` elements with these properties.
     pub fn of_properties(props: PerElement<LineProperties>, model: Model, length: f64, n_el: usize) -> Self {
         let tubes = props.map(Tube::of);
-        Design { props, tubes, model, length, n_el, seabed: None, fluids: Fluids::default(), case_factor: 1.0 }
+        Design {
+            props,
+            tubes,
+            model,
+            length,
+            n_el,
+            seabed: None,
+            fluids: Fluids::default(),
+            case_factor: 1.0,
+            lrfd: None,
+        }
     }
 
     /// The same design with the water and contents `fluids` and API RP
     /// 2RD's design case factor C_f `case_factor` (12.5, 12.9).
     pub fn with_fluids(self, fluids: Fluids, case_factor: f64) -> Self {
         Design { fluids, case_factor, ..self }
+    }
+
+    /// The same design with DNV-OS-F201's LRFD check of `factors` (12.10).
+    pub fn with_lrfd(self, factors: LrfdFactors) -> Self {
+        Design { lrfd: Some(factors), ..self }
     }
 
     /// The tube of element `e` (None: not a homogeneous tube, or the cable's
@@ -395,16 +491,32 @@ impl Design {
         tube.max_von_mises(tube.wall_tension(p.tension, pressures), k, twist, pressures)
     }
 
-    /// The largest von Mises stress and utilisation of the line whose
-    /// points are `points`, its hang-off at `hang_off_z` (m); None when the
-    /// line has no wall (§12.4). The FMU's `max_von_mises` and
-    /// `max_utilisation`, `riser run`'s over the steady window.
+    /// The largest von Mises stress and utilisations of the line whose
+    /// points are `points` in a static state, its hang-off at `hang_off_z`
+    /// (m): [`Design::stress_peaks_over`] with the state its own functional
+    /// state.
     pub fn stress_peaks(&self, points: &[LinePoint], hang_off_z: f64) -> Option<StressPeaks> {
+        self.stress_peaks_over(points, points, hang_off_z)
+    }
+
+    /// The largest von Mises stress and utilisations of the line whose
+    /// points are `points`, its hang-off at `hang_off_z` (m), the static
+    /// state's points `functional` (the same points: the functional load
+    /// effects of DNV-OS-F201's check, the environmental ones the
+    /// difference, (12.14)); None when the line has no wall (§12.4). The
+    /// FMU's `max_von_mises` and `max_utilisation`, `riser run`'s over the
+    /// steady window.
+    pub fn stress_peaks_over(
+        &self,
+        points: &[LinePoint],
+        functional: &[LinePoint],
+        hang_off_z: f64,
+    ) -> Option<StressPeaks> {
         if !self.has_stresses() {
             return None;
         }
-        let mut peaks = StressPeaks { von_mises: (f64::NEG_INFINITY, 0.0), utilisation: None };
-        for p in points {
+        let mut peaks = StressPeaks { von_mises: (f64::NEG_INFINITY, 0.0), utilisation: None, api: None, lrfd: None };
+        for (p, f) in points.iter().zip(functional) {
             let tube = self.tube(p.element).expect("every element is a tube");
             let vm = self.point_von_mises(&tube, p, hang_off_z);
             if vm > peaks.von_mises.0 {
@@ -412,12 +524,37 @@ impl Design {
             }
             if let Some(sy) = tube.yield_stress {
                 let value = vm / (self.case_factor * API_ALLOWABLE_FRACTION * sy);
-                if peaks.utilisation.is_none_or(|u| value > u.value) {
-                    peaks.utilisation = Some(Utilisation { value, check: API_CHECK, s: p.s });
-                }
+                peaks.api = larger(peaks.api, Some(Utilisation { value, check: API_CHECK, s: p.s }));
+            }
+            if let Some(here) = self.point_lrfd(&tube, p, f, hang_off_z) {
+                peaks.lrfd = Some(peaks.lrfd.map_or(here, |m| m.max(here)));
             }
         }
+        peaks.utilisation = larger(peaks.api, peaks.lrfd.and_then(LrfdPeak::utilisation));
         peaks.von_mises.0.is_finite().then_some(peaks)
+    }
+
+    /// DNV-OS-F201's LRFD check at `p` whose static state is `f` (12.10,
+    /// 12.14): the functional moment EI κ and effective tension are `f`'s,
+    /// the environmental the difference, each factored; None when the scene
+    /// asks for no check or `p`'s wall has no strengths.
+    fn point_lrfd(&self, tube: &Tube, p: &LinePoint, f: &LinePoint, hang_off_z: f64) -> Option<LrfdPeak> {
+        let (factors, wall) = (self.lrfd?, tube.lrfd_wall()?);
+        let pressures = self.fluids.pressures(p.position.z, hang_off_z);
+        let dp = pressures.inside - pressures.outside;
+        if dp <= 0.0 {
+            return Some(LrfdPeak::ExternalOverpressure { s: p.s });
+        }
+        let ei = match self.model {
+            Model::Rod => self.props.at(p.element).bending_stiffness,
+            Model::Cable => 0.0,
+        };
+        let m_f = [ei * f.curvature[0], ei * f.curvature[1]];
+        let m_e = [ei * (p.curvature[0] - f.curvature[0]), ei * (p.curvature[1] - f.curvature[1])];
+        let moment = factors.design_effect(m_f, m_e);
+        let tension = factors.design_effect([f.tension], [p.tension - f.tension]);
+        let value = wall.utilisation(&factors, moment, tension, dp);
+        Some(LrfdPeak::Utilisation(Utilisation { value, check: LRFD_CHECK, s: p.s }))
     }
 
     /// The design numbers of `state`, whose `touchdown_s` output is given (m;
@@ -476,6 +613,8 @@ impl Design {
             max_stress,
             max_von_mises: peaks.map(|p| p.von_mises),
             max_utilisation: peaks.and_then(|p| p.utilisation),
+            api_utilisation: peaks.and_then(|p| p.api),
+            lrfd: peaks.and_then(|p| p.lrfd),
         }
     }
 
@@ -626,16 +765,26 @@ pub fn wall_stiffness_warnings(scene: &Scene) -> Vec<String> {
     w
 }
 
-/// The FMU's outputs `max_von_mises` (Pa) and `max_utilisation` (`name`):
-/// the largest along the line of `sim` now ([`Design::stress_peaks`]); 0
-/// without a wall (a flexible pipe), and the utilisation 0 without a yield
-/// stress. Computed when read: it builds the scene's [`Design`].
-pub fn line_stress_output(scene: &Scene, sim: &super::Simulation, name: &str) -> f64 {
+/// The stress peaks along the line of `sim` now ([`Design::stress_peaks_over`],
+/// its static state the functional one): the FMU's `max_von_mises` and
+/// utilisations. Computed when read: it builds the scene's [`Design`].
+pub fn line_stress_peaks(scene: &Scene, sim: &super::Simulation) -> Option<StressPeaks> {
     let points = sim.integrator.line_points(&sim.state);
-    let peaks = Design::new(scene).stress_peaks(&points, sim.state.config.x[0].z);
+    let functional = sim.integrator.line_points(&sim.functional_state());
+    Design::new(scene).stress_peaks_over(&points, &functional, sim.state.config.x[0].z)
+}
+
+/// The FMU's output `name` of the peaks `peaks` ([`line_stress_peaks`]):
+/// `max_von_mises` (Pa), `max_utilisation` (the larger of the checks),
+/// `max_utilisation_api_rp_2rd`, `max_utilisation_dnv_os_f201`; 0 without a
+/// wall (a flexible pipe), a utilisation 0 where its check is not made.
+pub fn line_stress_output(peaks: Option<StressPeaks>, name: &str) -> f64 {
+    let value = |u: Option<Utilisation>| u.map_or(0.0, |u| u.value);
     match name {
         "max_von_mises" => peaks.map_or(0.0, |p| p.von_mises.0),
-        _ => peaks.and_then(|p| p.utilisation).map_or(0.0, |u| u.value),
+        "max_utilisation_api_rp_2rd" => value(peaks.and_then(|p| p.api)),
+        "max_utilisation_dnv_os_f201" => value(peaks.and_then(|p| p.lrfd).and_then(LrfdPeak::utilisation)),
+        _ => value(peaks.and_then(|p| p.utilisation)),
     }
 }
 

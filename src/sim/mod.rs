@@ -8,6 +8,7 @@ pub mod design;
 pub mod error;
 pub mod error_estimate;
 pub mod fatigue;
+pub mod lrfd;
 pub mod modes;
 pub mod monolithic;
 pub mod report;
@@ -355,6 +356,12 @@ impl Simulation {
         self.statics = statics;
         self.initial_energy = self.integrator.outputs(&self.state).total_energy;
         Ok(())
+    }
+
+    /// The static state the run starts from, at rest: the functional load
+    /// effects of DNV-OS-F201's check (docs/theory.md §12.4, (12.14)).
+    pub fn functional_state(&self) -> State {
+        State::at_rest(self.statics.solution.config.clone(), 0.0)
     }
 
     /// Puts the hang-off on its motion at t = 0 and takes the energy reference there.

@@ -51,6 +51,7 @@ fn tube_properties() -> LineProperties {
         pipe_diameter: D,
         wall: None,
         yield_stress: None,
+        tensile_strength: None,
     }
 }
 

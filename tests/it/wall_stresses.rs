@@ -126,6 +126,7 @@ fn a_straight_pipe_with_pressure_inside_and_out_and_a_twist_has_lame_s_stresses(
         pipe_diameter: D_COATED,
         wall: Some(wall),
         yield_stress: Some(SMYS),
+        tensile_strength: None,
     };
     let fluids = Fluids {
         water_density: 1025.0,

@@ -514,7 +514,37 @@ fn design_json(d: &riser::sim::design::DesignNumbers) -> serde_json::Value {
         "max_von_mises": d.max_von_mises.map(|m| m.0),
         "max_von_mises_s": d.max_von_mises.map(|m| m.1),
         "max_utilisation": utilisation_json(d.max_utilisation),
+        "utilisations": utilisations_json(d.api_utilisation, d.lrfd),
+        "not_reported": not_reported_json(d.lrfd),
     })
+}
+
+/// Each code check's largest utilisation, [{value, check, s}]: API RP 2RD's
+/// with a yield stress, DNV-OS-F201's LRFD check's when the scene asks for
+/// it and it is made.
+fn utilisations_json(
+    api: Option<riser::sim::design::Utilisation>,
+    lrfd: Option<riser::sim::design::LrfdPeak>,
+) -> serde_json::Value {
+    let checks = [api, lrfd.and_then(|l| l.utilisation())];
+    serde_json::Value::Array(checks.into_iter().map(utilisation_json).filter(|v| !v.is_null()).collect())
+}
+
+/// The checks the scene asks for that are not made, each with why.
+fn not_reported_json(lrfd: Option<riser::sim::design::LrfdPeak>) -> serde_json::Value {
+    serde_json::json!(lrfd.and_then(|l| l.not_reported()).into_iter().collect::<Vec<_>>())
+}
+
+/// The text lines of DNV-OS-F201's LRFD check, when the scene asks for it:
+/// each check's utilisation, or why the LRFD one is not made.
+fn lrfd_text(indent: &str, api: Option<riser::sim::design::Utilisation>, lrfd: Option<riser::sim::design::LrfdPeak>) {
+    let Some(lrfd) = lrfd else { return };
+    for u in [api, lrfd.utilisation()].into_iter().flatten() {
+        outln!("{indent}{:.3} at S = {:.1} m ({})", u.value, u.s, u.check);
+    }
+    if let Some(why) = lrfd.not_reported() {
+        outln!("{indent}{why}");
+    }
 }
 
 /// A code check's utilisation as JSON: {value, check, s}, or null.
@@ -557,6 +587,7 @@ fn design_text(d: &riser::sim::design::DesignNumbers) {
         None if d.max_von_mises.is_some() => outln!("  max utilisation n/a (no yield_stress given)"),
         None => {}
     }
+    lrfd_text("    check         ", d.api_utilisation, d.lrfd);
 }
 
 fn warn_all(warnings: &[String]) {
@@ -1171,6 +1202,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
     let mut peaks: Option<riser::sim::design::StressPeaks> = None;
     let mut envelope = riser::sim::design::Envelope::default();
     let track_stress = design.has_stresses();
+    // the static state's points: the functional load effects of DNV-OS-F201's check (§12.4)
+    let functional = sim.integrator.line_points(&sim.functional_state());
     let mut shape_times = shape_times;
     if shape_times.is_empty() {
         let t0 = if period > 0.0 && duration >= period { duration - period } else { 0.0 };
@@ -1220,7 +1253,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         if track_stress {
             let top_z = sim.state.config.x[0].z;
             stress.add(&design, &points, top_z);
-            peaks = design.stress_peaks(&points, top_z);
+            peaks = design.stress_peaks_over(&points, &functional, top_z);
             fatigue_add(&mut fatigue, &mut fatigue_record, &design, &points, top_z, 0.0);
         }
     }
@@ -1243,7 +1276,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             if track_stress {
                 let top_z = sim.state.config.x[0].z;
                 stress.add(&design, &points, top_z);
-                if let Some(now) = design.stress_peaks(&points, top_z) {
+                if let Some(now) = design.stress_peaks_over(&points, &functional, top_z) {
                     peaks = Some(peaks.map_or(now, |p| p.max(now)));
                 }
                 fatigue_add(&mut fatigue, &mut fatigue_record, &design, &points, top_z, o.time);
@@ -1403,6 +1436,8 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
                 "max_von_mises": peaks.map(|p| p.von_mises.0),
                 "max_von_mises_s": peaks.map(|p| p.von_mises.1),
                 "max_utilisation": utilisation_json(peaks.and_then(|p| p.utilisation)),
+                "utilisations": utilisations_json(peaks.and_then(|p| p.api), peaks.and_then(|p| p.lrfd)),
+                "not_reported": not_reported_json(peaks.and_then(|p| p.lrfd)),
                 "fatigue": fatigue.as_ref().map(|f| fatigue_json(f, fatigue_worst, window_read)),
                 "min_tension_s": envelope.is_set().then_some(envelope.min_tension.1),
                 "max_tension": envelope.is_set().then_some(envelope.max_tension.0),
@@ -1522,6 +1557,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
             if let Some(u) = p.utilisation {
                 outln!("    max utilisation          {:.3} at S = {:.1} m ({})", u.value, u.s, u.check);
             }
+            lrfd_text("      check                  ", p.api, p.lrfd);
         }
         if let (Some(f), Some(w)) = (&fatigue, fatigue_worst) {
             let spec = f.spec();
