@@ -443,7 +443,8 @@ fn the_fmu_s_stress_outputs_at_the_static_state_are_riser_statics_s() {
 /// A scene without the new keys moves as before: `riser run` of the steel
 /// catenary (heave 2 m / 12 s, 30 s, 40 elements) gives the same JSON
 /// numbers, bit for bit, as with every key at its "none" value (wall 0,
-/// contents 0, C_f 1, yield 0, the steel diameter the outer one); and in
+/// contents 0, C_f 1, yield 0, the steel diameter the outer one, no tensile
+/// strength, no safety class, DNV-OS-F201's default factors); and in
 /// air (water_density 0, no contents) `max_stress` is the old T/A + E r |κ|
 /// of the points, to the bit.
 #[test]
@@ -457,6 +458,11 @@ fn a_scene_without_the_new_keys_is_unchanged() {
         "yield_stress=0",
         "steel_outer_diameter=0.2731",
         "youngs_modulus=2.07e11",
+        "tensile_strength=0",
+        "safety_class=none",
+        "load_factor_functional=1.1",
+        "load_factor_environmental=1.3",
+        "material_resistance_factor=1.15",
     ];
     let mut with_none: Vec<&str> = base.to_vec();
     for s in &none {
