@@ -306,7 +306,9 @@ fn the_fmu_s_utilisations_at_the_static_state_are_riser_statics_s() {
         checks.iter().find(|c| c["check"].as_str().unwrap().starts_with(name)).unwrap()["value"].as_f64().unwrap()
     };
     let (cli_api, cli_lrfd) = (value("API RP 2RD"), value("DNV-OS-F201"));
-    println!("FMU API {fmu_api:.12}, LRFD {fmu_lrfd:.12}, max {fmu_max:.12}; riser statics {cli_api:.12}, {cli_lrfd:.12}");
+    println!(
+        "FMU API {fmu_api:.12}, LRFD {fmu_lrfd:.12}, max {fmu_max:.12}; riser statics {cli_api:.12}, {cli_lrfd:.12}"
+    );
     assert!((fmu_api / cli_api - 1.0).abs() < 1e-12 && (fmu_lrfd / cli_lrfd - 1.0).abs() < 1e-12);
     assert_eq!(fmu_max, fmu_api.max(fmu_lrfd));
     assert_eq!(v["max_utilisation"]["value"].as_f64().unwrap(), cli_api.max(cli_lrfd));
@@ -340,4 +342,38 @@ fn without_net_internal_overpressure_the_lrfd_check_is_not_reported() {
     assert!(why.contains("DNV-OS-F201") && why.contains("no net internal overpressure"), "{why}");
     assert_eq!(v["utilisations"].as_array().unwrap().len(), 1);
     assert!(v["max_utilisation"]["check"].as_str().unwrap().starts_with("API RP 2RD"));
+}
+
+/// The check's keys: a safety class without the strengths, or on a line
+/// that is no tube (the catenary's flexible pipe), and a tensile strength
+/// below the yield stress are refused naming the key; a tensile strength
+/// without a safety class asks for no check and the statics warn of it.
+#[test]
+fn the_check_s_keys_are_refused_or_warned_of_when_they_ask_for_nothing_made() {
+    let refused = |scene: &str, sets: &[&str], field: &str, part: &str| {
+        let e = Scene::builtin(scene).unwrap().with_overrides(sets).unwrap_err().to_string();
+        println!("{sets:?}: {e}");
+        assert!(e.contains(field) && e.contains(part), "{e}");
+    };
+    refused("steel_catenary", &["safety_class=normal", "yield_stress=448e6"], "line.tensile_strength", "missing");
+    refused("steel_catenary", &["safety_class=high", "tensile_strength=531e6"], "line.yield_stress", "missing");
+    refused(
+        "steel_catenary",
+        &["yield_stress=448e6", "tensile_strength=400e6"],
+        "line.tensile_strength",
+        "below the yield stress",
+    );
+    refused(
+        "catenary",
+        &["safety_class=low", "yield_stress=4e8", "tensile_strength=5e8"],
+        "line.wall_thickness",
+        "needs the pipe's wall",
+    );
+    refused("steel_catenary", &["safety_class=medium"], "safety_class", "not a safety class");
+    let sc = Scene::builtin("steel_catenary").unwrap().with_overrides(&["tensile_strength=531e6"]).unwrap();
+    let sim = Simulation::from_scene(&sc).unwrap();
+    let (d, warnings) = Design::new(&sc).report(&sc, &sim.integrator, &sim.state);
+    println!("{warnings:?}");
+    assert!(warnings.iter().any(|w| w.contains("no safety_class")));
+    assert!(d.lrfd.is_none());
 }

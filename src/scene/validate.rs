@@ -266,8 +266,9 @@ fn check_wall(c: &mut Checker, l: &super::Line, at: &str) {
 
 /// DNV-OS-F201's LRFD check (docs/theory.md §12.4): asked for by
 /// `safety_class`, it needs every piece of line (`[line]`, or each section)
-/// to be a tube with a yield stress and a tensile strength no lower than it;
-/// a tensile strength without a safety class asks for nothing and is refused.
+/// to be a tube with a yield stress and a tensile strength; a tensile
+/// strength is never below the yield stress. (A tensile strength without a
+/// safety class asks for no check: the statics warn of it.)
 fn check_lrfd(c: &mut Checker, s: &Scene) {
     let l = &s.line;
     let pieces: Vec<(String, super::Line)> = if s.section.is_empty() {
@@ -277,30 +278,26 @@ fn check_lrfd(c: &mut Checker, s: &Scene) {
     };
     for (at, p) in &pieces {
         let (fy, fu) = (p.yield_stress.filter(|v| *v > 0.0), p.tensile_strength.filter(|v| *v > 0.0));
-        match (l.safety_class, fy, fu) {
-            (None, _, Some(_)) => c.err(
-                "line.safety_class",
-                format!(
-                    "{at}.tensile_strength is DNV-OS-F201's: give safety_class (low, normal or high) for its LRFD \
-                     check, or leave tensile_strength out"
-                ),
-            ),
-            (Some(_), None, _) | (Some(_), _, None) => c.err(
+        if let (Some(y), Some(u)) = (fy, fu)
+            && u < y
+        {
+            c.err(
+                &format!("{at}.tensile_strength"),
+                format!("{u} Pa is below the yield stress {y} Pa: the tensile strength (SMTS) is the larger"),
+            );
+        } else if l.safety_class.is_some() && (fy.is_none() || fu.is_none()) {
+            c.err(
                 &format!("{at}.{}", if fy.is_none() { "yield_stress" } else { "tensile_strength" }),
                 "missing: DNV-OS-F201's LRFD check (safety_class) needs the wall's yield_stress and tensile_strength"
                     .to_string(),
-            ),
-            (Some(_), Some(y), Some(u)) if u < y => c.err(
-                &format!("{at}.tensile_strength"),
-                format!("{u} Pa is below the yield stress {y} Pa: the tensile strength (SMTS) is the larger"),
-            ),
-            (Some(_), Some(_), Some(_)) if p.bore_diameter().is_none() => c.err(
+            );
+        } else if l.safety_class.is_some() && p.bore_diameter().is_none() {
+            c.err(
                 &format!("{at}.wall_thickness"),
                 "DNV-OS-F201's LRFD check (safety_class) needs the pipe's wall: give wall_thickness (EA, EI and the \
                  outer diameter are not those of a homogeneous tube)"
                     .to_string(),
-            ),
-            _ => {}
+            );
         }
     }
 }

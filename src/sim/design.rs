@@ -693,6 +693,7 @@ impl Design {
         warnings.extend(anchor_lift_static_warning(scene, &outputs));
         warnings.extend(self.buoyant_warning(scene));
         warnings.extend(wall_stiffness_warnings(scene));
+        warnings.extend(lrfd_warning(scene));
         warnings.extend(self.warnings(&numbers, &engine.line_points(state)));
         warnings.extend(crate::loads::waves::warnings(scene));
         if let Ok(Some((_, period))) = crate::loads::waves::ramp_and_period(scene) {
@@ -723,6 +724,18 @@ impl Design {
             )
         })
     }
+}
+
+/// A warning for a tensile strength given without a safety class: it asks
+/// for no DNV-OS-F201 check (docs/theory.md §12.4).
+pub fn lrfd_warning(scene: &Scene) -> Option<String> {
+    let mut given =
+        scene.line.tensile_strength.into_iter().chain(scene.section.iter().filter_map(|s| s.tensile_strength));
+    (scene.line.safety_class.is_none() && given.any(|u| u > 0.0)).then(|| {
+        "tensile_strength is given but no safety_class: DNV-OS-F201's LRFD combined-loading check is not made; give \
+         safety_class (low, normal or high) for it"
+            .to_string()
+    })
 }
 
 /// The relative difference between a line's EA or EI and its wall's above
