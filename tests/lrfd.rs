@@ -37,7 +37,7 @@ const EI: f64 = 2.71e7;
 /// T_k = f_y α_c π (D − t₂) t₂;
 /// U = γ_SC γ_m [(|M_d|/M_k) √(1 − (Δp/p_b)²) + (T_d/T_k)²] + (Δp/p_b)².
 fn by_hand(dp: f64, md: f64, td: f64, gamma: f64) -> f64 {
-    assert!(D / T2 < 15.0);
+    const { assert!(D / T2 < 15.0) };
     let p_b = 2.0 / 3f64.sqrt() * (2.0 * T2 / (D - T2)) * FY.min(FU / 1.15);
     let q_h = dp / p_b * 2.0 / 3f64.sqrt();
     let beta = 0.4 + q_h;
