@@ -587,7 +587,7 @@ fn design_text(d: &riser::sim::design::DesignNumbers) {
         None if d.max_von_mises.is_some() => outln!("  max utilisation n/a (no yield_stress given)"),
         None => {}
     }
-    lrfd_text("    check         ", d.api_utilisation, d.lrfd);
+    lrfd_text("    check              ", d.api_utilisation, d.lrfd);
 }
 
 fn warn_all(warnings: &[String]) {
