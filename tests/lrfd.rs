@@ -9,16 +9,18 @@
 //! the FMU's outputs at the static state against `riser statics`; a line
 //! without net internal overpressure reported as not checked.
 
+mod common;
+
+use common::{fmu_at_static_state, oil_inside_sea_outside, pipe_properties, riser_json};
 use nalgebra::Vector3;
 use riser::model::outputs::LinePoint;
 use riser::model::sections::PerElement;
-use riser::scene::sections::{LineProperties, Wall};
+use riser::scene::sections::Wall;
 use riser::scene::{Model, Scene};
 use riser::sim::Simulation;
-use riser::sim::design::{Design, Fluids, LrfdPeak};
+use riser::sim::design::{Design, LrfdPeak};
 use riser::sim::lrfd::LrfdFactors;
 use std::f64::consts::PI;
-use std::process::Command;
 
 /// 10¾ in X65 steel pipe, 20.6 mm wall (steel_catenary's), E 207 GPa.
 const D: f64 = 0.2731;
@@ -51,31 +53,10 @@ fn by_hand(dp: f64, md: f64, td: f64, gamma: f64) -> f64 {
 /// A one-element line of the pipe, its wall and strengths given, with oil
 /// (800 kg/m³ at 20 MPa at the hang-off) inside and water outside.
 fn one_element(factors: LrfdFactors) -> Design {
-    let props = LineProperties {
-        mass_per_length: 128.3,
-        displaced_area: PI * D * D / 4.0,
-        added_mass_area: 0.0,
-        drag_normal: 0.0,
-        drag_tangential: 0.0,
-        diameter: D,
-        axial_stiffness: 3.38e9,
-        bending_stiffness: EI,
-        torsional_stiffness: 2.0e7,
-        rotary_inertia: 0.0,
-        pipe_diameter: D,
-        wall: Some(Wall { outer_diameter: D, thickness: T2, youngs_modulus: 2.07e11 }),
-        yield_stress: Some(FY),
-        tensile_strength: Some(FU),
-    };
-    let fluids = Fluids {
-        water_density: 1025.0,
-        gravity: 9.81,
-        water_surface_z: 0.0,
-        internal_density: 800.0,
-        internal_pressure: 2e7,
-    };
+    let wall = Wall { outer_diameter: D, thickness: T2, youngs_modulus: 2.07e11 };
+    let props = pipe_properties(D, wall, [3.38e9, EI, 2.0e7], Some(FY), Some(FU));
     Design::of_properties(PerElement::from_elements(vec![props]), Model::Rod, 400.0, 1)
-        .with_fluids(fluids, 1.0)
+        .with_fluids(oil_inside_sea_outside(), 1.0)
         .with_lrfd(factors)
 }
 
@@ -260,20 +241,13 @@ fn the_steel_catenary_with_oil_has_the_lrfd_utilisation_of_its_own_tension_curva
     assert!((hand - static_hand).abs() > 1e-4, "the environmental part is factored apart");
 }
 
-fn riser_json(args: &[&str]) -> serde_json::Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().expect("riser runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("JSON")
-}
-
 /// The FMU's utilisations at its static state (read after initialisation,
 /// before a step) equal `riser statics --json`'s, to 1e-12: the steel
 /// catenary with oil at 20 MPa, high safety class; `max_utilisation` is the
 /// larger of the two checks.
 #[test]
 fn the_fmu_s_utilisations_at_the_static_state_are_riser_statics_s() {
-    use riser::fmi::instance::{Instance, Value};
-    use riser::fmi::vars::{GUID, vr_of};
+    use riser::fmi::vars::vr_of;
     let reals = [
         ("mass_per_length", 128.3),
         ("wall_thickness", 0.0206),
@@ -282,16 +256,7 @@ fn the_fmu_s_utilisations_at_the_static_state_are_riser_statics_s() {
         ("yield_stress", 448e6),
         ("tensile_strength", 531e6),
     ];
-    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
-    let ok = riser::fmi::instance::Status::Ok;
-    assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String("steel_catenary".into())), ok);
-    assert_eq!(i.set_param(vr_of("safety_class").unwrap(), Value::String("high".into())), ok);
-    for (name, v) in reals {
-        assert_eq!(i.set_real(vr_of(name).unwrap(), v), ok, "{name}");
-    }
-    assert_eq!(i.setup_experiment(0.0), ok);
-    assert_eq!(i.enter_initialization_mode(), ok);
-    assert_eq!(i.exit_initialization_mode(), ok);
+    let mut i = fmu_at_static_state("steel_catenary", &[("safety_class", "high")], &reals);
     let mut get = |name: &str| i.get_real(vr_of(name).unwrap()).unwrap();
     let (fmu_max, fmu_api, fmu_lrfd) =
         (get("max_utilisation"), get("max_utilisation_api_rp_2rd"), get("max_utilisation_dnv_os_f201"));

@@ -11,16 +11,18 @@
 //! whose statics and dynamics are those of the keys at their "none" values
 //! and whose `max_stress` in air is the old T/A + E r |κ| to the bit.
 
+mod common;
+
+use common::{fmu_at_static_state, oil_inside_sea_outside, pipe_properties, riser_json};
 use nalgebra::{Rotation3, Unit, Vector3};
 use riser::model::outputs::LinePoint;
 use riser::model::rod::{EndBc, Rod, Stiffness};
 use riser::model::sections::PerElement;
-use riser::scene::sections::{LineProperties, Wall};
+use riser::scene::sections::Wall;
 use riser::scene::{Model, Scene};
 use riser::sim::Simulation;
-use riser::sim::design::{Design, Fluids};
+use riser::sim::design::Design;
 use std::f64::consts::PI;
-use std::process::Command;
 
 /// 10¾ in X65 steel pipe, 20.6 mm wall (steel_catenary's), with a 27 mm
 /// coating (D 0.3271 m) and E 207 GPa, G 79.6 GPa.
@@ -112,29 +114,8 @@ fn a_straight_pipe_with_pressure_inside_and_out_and_a_twist_has_lame_s_stresses(
         *d = Rotation3::from_axis_angle(&axis, phi * s / l).matrix() * *d;
     }
     let wall = Wall { outer_diameter: D_STEEL, thickness: WALL, youngs_modulus: E };
-    let props = LineProperties {
-        mass_per_length: 128.3,
-        displaced_area: PI * D_COATED * D_COATED / 4.0,
-        added_mass_area: 0.0,
-        drag_normal: 0.0,
-        drag_tangential: 0.0,
-        diameter: D_COATED,
-        axial_stiffness: ea,
-        bending_stiffness: ei,
-        torsional_stiffness: gj,
-        rotary_inertia: 0.0,
-        pipe_diameter: D_COATED,
-        wall: Some(wall),
-        yield_stress: Some(SMYS),
-        tensile_strength: None,
-    };
-    let fluids = Fluids {
-        water_density: 1025.0,
-        gravity: 9.81,
-        water_surface_z: 0.0,
-        internal_density: 800.0,
-        internal_pressure: 2e7,
-    };
+    let props = pipe_properties(D_COATED, wall, [ea, ei, gj], Some(SMYS), None);
+    let fluids = oil_inside_sea_outside();
     let case_factor = 1.2;
     let design = Design::of_properties(PerElement::from_elements(vec![props; n]), Model::Rod, l, n)
         .with_fluids(fluids, case_factor);
@@ -387,19 +368,12 @@ fn the_steel_catenary_with_oil_has_the_von_mises_stress_of_its_own_tension_curva
     assert!((peaks.von_mises.0 / vm - 1.0).abs() < 1e-12 && peaks.von_mises.1 == at);
 }
 
-fn riser_json(args: &[&str]) -> serde_json::Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().expect("riser runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("JSON")
-}
-
 /// The FMU's `max_von_mises` and `max_utilisation` at its static state (read
 /// after initialisation, before a step) equal `riser statics --json`'s, to
 /// 1e-12: the steel catenary with oil at 20 MPa.
 #[test]
 fn the_fmu_s_stress_outputs_at_the_static_state_are_riser_statics_s() {
-    use riser::fmi::instance::{Instance, Value};
-    use riser::fmi::vars::{GUID, vr_of};
+    use riser::fmi::vars::vr_of;
     let sets = [
         ("mass_per_length", 128.3),
         ("wall_thickness", 0.0206),
@@ -407,15 +381,7 @@ fn the_fmu_s_stress_outputs_at_the_static_state_are_riser_statics_s() {
         ("internal_pressure", 2e7),
         ("yield_stress", 448e6),
     ];
-    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
-    let ok = riser::fmi::instance::Status::Ok;
-    assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String("steel_catenary".into())), ok);
-    for (name, v) in sets {
-        assert_eq!(i.set_real(vr_of(name).unwrap(), v), ok, "{name}");
-    }
-    assert_eq!(i.setup_experiment(0.0), ok);
-    assert_eq!(i.enter_initialization_mode(), ok);
-    assert_eq!(i.exit_initialization_mode(), ok);
+    let mut i = fmu_at_static_state("steel_catenary", &[], &sets);
     let fmu_vm = i.get_real(vr_of("max_von_mises").unwrap()).unwrap();
     let fmu_u = i.get_real(vr_of("max_utilisation").unwrap()).unwrap();
     let mut args = vec!["statics".to_string(), "steel_catenary".to_string(), "--json".to_string()];
@@ -431,11 +397,7 @@ fn the_fmu_s_stress_outputs_at_the_static_state_are_riser_statics_s() {
     );
     assert!((fmu_vm / cli_vm - 1.0).abs() < 1e-12 && (fmu_u / cli_u - 1.0).abs() < 1e-12);
     // the built-in scene as it is (no wall given, a homogeneous tube): a von Mises stress, no utilisation
-    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
-    assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String("steel_catenary".into())), ok);
-    assert_eq!(i.setup_experiment(0.0), ok);
-    assert_eq!(i.enter_initialization_mode(), ok);
-    assert_eq!(i.exit_initialization_mode(), ok);
+    let mut i = fmu_at_static_state("steel_catenary", &[], &[]);
     assert!(i.get_real(vr_of("max_von_mises").unwrap()).unwrap() > 0.0);
     assert_eq!(i.get_real(vr_of("max_utilisation").unwrap()).unwrap(), 0.0);
 }

@@ -170,3 +170,74 @@ pub fn solve_with_dead_loads<P: riser::model::statics::StaticEquations>(
     }
     (q, rel)
 }
+
+/// `riser` with these arguments (it must succeed); its stdout parsed as JSON.
+pub fn riser_json(args: &[&str]) -> serde_json::Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().expect("riser runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("JSON")
+}
+
+/// An FMU instance of the built-in `scene` with the string parameters
+/// `strings` and the real ones `reals` set, through its initialisation: its
+/// outputs then read the static state.
+pub fn fmu_at_static_state(
+    scene: &str,
+    strings: &[(&str, &str)],
+    reals: &[(&str, f64)],
+) -> riser::fmi::instance::Instance {
+    use riser::fmi::instance::{Instance, Status, Value};
+    use riser::fmi::vars::{GUID, vr_of};
+    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
+    assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String(scene.into())), Status::Ok);
+    for (name, v) in strings {
+        assert_eq!(i.set_param(vr_of(name).unwrap(), Value::String(v.to_string())), Status::Ok, "{name}");
+    }
+    for (name, v) in reals {
+        assert_eq!(i.set_real(vr_of(name).unwrap(), *v), Status::Ok, "{name}");
+    }
+    assert_eq!(i.setup_experiment(0.0), Status::Ok);
+    assert_eq!(i.enter_initialization_mode(), Status::Ok);
+    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+    i
+}
+
+/// The fluids of the wall tests: oil of 800 kg/m³ at 20 MPa at the hang-off
+/// inside, the sea (1025 kg/m³, g 9.81 m/s², its surface at z = 0) outside.
+pub fn oil_inside_sea_outside() -> riser::sim::design::Fluids {
+    riser::sim::design::Fluids {
+        water_density: 1025.0,
+        gravity: 9.81,
+        water_surface_z: 0.0,
+        internal_density: 800.0,
+        internal_pressure: 2e7,
+    }
+}
+
+/// A bare pipe of 128.3 kg/m and outer diameter `d` (m; buoyancy's), its
+/// steel `wall`, stiffnesses [EA, EI, GJ] and strengths f_y, f_u (Pa), with
+/// no drag, added mass or rotary inertia.
+pub fn pipe_properties(
+    d: f64,
+    wall: riser::scene::sections::Wall,
+    [ea, ei, gj]: [f64; 3],
+    yield_stress: Option<f64>,
+    tensile_strength: Option<f64>,
+) -> riser::scene::sections::LineProperties {
+    riser::scene::sections::LineProperties {
+        mass_per_length: 128.3,
+        displaced_area: std::f64::consts::PI * d * d / 4.0,
+        added_mass_area: 0.0,
+        drag_normal: 0.0,
+        drag_tangential: 0.0,
+        diameter: d,
+        axial_stiffness: ea,
+        bending_stiffness: ei,
+        torsional_stiffness: gj,
+        rotary_inertia: 0.0,
+        pipe_diameter: d,
+        wall: Some(wall),
+        yield_stress,
+        tensile_strength,
+    }
+}
