@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{fmu_at_static_state, oil_inside_sea_outside, pipe_properties, riser_json};
+use common::{fmu_at_static_state, fmu_at_static_state_logged, oil_inside_sea_outside, pipe_properties, riser_json};
 use nalgebra::Vector3;
 use riser::model::outputs::LinePoint;
 use riser::model::sections::PerElement;
@@ -285,9 +285,29 @@ fn the_fmu_s_utilisations_at_the_static_state_are_riser_statics_s() {
 /// below the sea's, 1025 kg/m³),
 /// the criterion of net internal overpressure does not apply: riser
 /// reports no LRFD utilisation and says why, in the JSON's `not_reported`
-/// (the API check stays).
+/// (the API check stays), and the FMU's log, once, its output reading 0.
 #[test]
 fn without_net_internal_overpressure_the_lrfd_check_is_not_reported() {
+    use riser::fmi::vars::vr_of;
+    let said = std::sync::Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
+    let log = said.clone();
+    let logger: riser::fmi::instance::Logger =
+        std::sync::Arc::new(move |_, _, m: &str| log.lock().unwrap().push(m.to_string()));
+    let reals = [
+        ("mass_per_length", 128.3),
+        ("wall_thickness", 0.0206),
+        ("internal_fluid_density", 800.0),
+        ("yield_stress", 448e6),
+        ("tensile_strength", 531e6),
+    ];
+    let mut i = fmu_at_static_state_logged("steel_catenary", &[("safety_class", "normal")], &reals, Some(logger));
+    for _ in 0..2 {
+        assert_eq!(i.get_real(vr_of("max_utilisation_dnv_os_f201").unwrap()).unwrap(), 0.0);
+    }
+    let said = said.lock().unwrap();
+    let n = said.iter().filter(|m| m.contains("DNV-OS-F201 LRFD combined loading not reported")).count();
+    println!("FMU log: {n} message(s) of the LRFD check");
+    assert_eq!(n, 1, "{said:?}");
     let mut args = vec!["statics", "steel_catenary", "--json"];
     let sets = [
         "mass_per_length=128.3",

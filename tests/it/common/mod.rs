@@ -186,9 +186,21 @@ pub fn fmu_at_static_state(
     strings: &[(&str, &str)],
     reals: &[(&str, f64)],
 ) -> riser::fmi::instance::Instance {
+    fmu_at_static_state_logged(scene, strings, reals, None)
+}
+
+/// [`fmu_at_static_state`] with logging on to `logger`, when given.
+pub fn fmu_at_static_state_logged(
+    scene: &str,
+    strings: &[(&str, &str)],
+    reals: &[(&str, f64)],
+    logger: Option<riser::fmi::instance::Logger>,
+) -> riser::fmi::instance::Instance {
     use riser::fmi::instance::{Instance, Status, Value};
     use riser::fmi::vars::{GUID, vr_of};
-    let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
+    let on = logger.is_some();
+    let logger = logger.unwrap_or_else(|| std::sync::Arc::new(|_, _, _: &str| {}));
+    let mut i = Instance::new("t", GUID, None, logger, on).unwrap();
     assert_eq!(i.set_param(vr_of("scene").unwrap(), Value::String(scene.into())), Status::Ok);
     for (name, v) in strings {
         assert_eq!(i.set_param(vr_of(name).unwrap(), Value::String(v.to_string())), Status::Ok, "{name}");
