@@ -25,6 +25,7 @@ mod hang_off_stiffness;
 mod hang_off_stiffness6;
 mod input_path_interior;
 mod layering;
+mod lrfd;
 mod modes;
 mod monolithic_body;
 mod parameter_ranges;

@@ -11,9 +11,7 @@
 //! whose statics and dynamics are those of the keys at their "none" values
 //! and whose `max_stress` in air is the old T/A + E r |κ| to the bit.
 
-mod common;
-
-use common::{fmu_at_static_state, oil_inside_sea_outside, pipe_properties, riser_json};
+use crate::common::{fmu_at_static_state, oil_inside_sea_outside, pipe_properties, riser_json};
 use nalgebra::{Rotation3, Unit, Vector3};
 use riser::model::outputs::LinePoint;
 use riser::model::rod::{EndBc, Rod, Stiffness};

@@ -9,9 +9,9 @@
 //! the FMU's outputs at the static state against `riser statics`; a line
 //! without net internal overpressure reported as not checked.
 
-mod common;
-
-use common::{fmu_at_static_state, fmu_at_static_state_logged, oil_inside_sea_outside, pipe_properties, riser_json};
+use crate::common::{
+    fmu_at_static_state, fmu_at_static_state_logged, oil_inside_sea_outside, pipe_properties, riser_json,
+};
 use nalgebra::Vector3;
 use riser::model::outputs::LinePoint;
 use riser::model::sections::PerElement;
