@@ -53,6 +53,11 @@ use crate::scene::Scene;
 
 /// Periods of the slowest forcing the pilots' window spans.
 pub const PILOT_PERIODS: f64 = 3.0;
+/// Peak periods T_p the pilots' window spans in an irregular sea (a
+/// spectrum, a table of components): its extremes are those of the sea's
+/// largest wave groups, which three periods do not hold (docs/theory.md
+/// §16.13: 3 T_p under-estimated the jumper's error 0.27–0.36 times).
+pub const PILOT_PERIODS_IRREGULAR: f64 = 20.0;
 /// Roache's safety factor of the grid convergence index where both triplets
 /// converge monotonically (three levels, the order observed).
 pub const GCI_SAFETY: f64 = 1.25;
@@ -284,8 +289,9 @@ pub fn time_mean(samples: &[(f64, f64)], (t0, t1): (f64, f64)) -> f64 {
 }
 
 /// The pilots' window and duration: the user's window [w0, w1] cut to
-/// [w0, min(w1, w0 + [`PILOT_PERIODS`] T)], T the slowest forcing's period
-/// (the motion's or the sea's); without one the user's window as it is.
+/// [w0, min(w1, w0 + k T)], T the slowest forcing's period (the motion's
+/// or the sea's), k [`PILOT_PERIODS`] ([`PILOT_PERIODS_IRREGULAR`] in an
+/// irregular sea); without a period the user's window as it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PilotPlan {
     pub window: (f64, f64),
@@ -296,11 +302,19 @@ pub struct PilotPlan {
 }
 
 impl PilotPlan {
-    pub fn new(window: (f64, f64), period: Option<f64>) -> PilotPlan {
+    pub fn new(window: (f64, f64), period: Option<f64>, irregular: bool) -> PilotPlan {
         let (w0, w1) = window;
-        let end = period.filter(|p| *p > 0.0).map_or(w1, |p| w1.min(w0 + PILOT_PERIODS * p));
+        let end = period.filter(|p| *p > 0.0).map_or(w1, |p| w1.min(w0 + pilot_periods(irregular) * p));
         PilotPlan { window: (w0, end), duration: end, cut: end < w1 }
     }
+}
+
+/// The periods of the slowest forcing the pilots' window spans:
+/// [`PILOT_PERIODS`], [`PILOT_PERIODS_IRREGULAR`] in an irregular sea.
+pub fn pilot_periods(irregular: bool) -> f64 {
+    // TEMPORARY (measurement): RISER_PILOT_PERIODS_IRREGULAR
+    let env = std::env::var("RISER_PILOT_PERIODS_IRREGULAR").ok().and_then(|v| v.parse().ok());
+    if irregular { env.unwrap_or(PILOT_PERIODS_IRREGULAR) } else { PILOT_PERIODS }
 }
 
 /// A run's motion and window, what the pilots repeat.
@@ -311,6 +325,9 @@ pub struct RunSpec<'a> {
     pub window: (f64, f64),
     /// The slowest forcing's period, s (None: none, the pilots run the window).
     pub period: Option<f64>,
+    /// The sea is irregular (a spectrum, a table of components): the
+    /// pilots span [`PILOT_PERIODS_IRREGULAR`] of its T_p.
+    pub irregular: bool,
     /// Steps a factorised Newton tangent may be reused for (the run's).
     pub max_tangent_age: u32,
     /// The run's fatigue (its curve, SCF, DFF), for [`Quantity::FatigueDamage`].
@@ -452,6 +469,34 @@ impl Estimate {
         }
     }
 
+    /// From the pilots' values of [`Layout::Corner`]: `mesh` at n/4, n/2, n
+    /// (Δt), `step` at 4Δt, 2Δt, Δt (n), the last of each the same pilot,
+    /// whose error (16.15), (16.16) is the estimate's.
+    pub fn of_corner(quantity: Quantity, mesh: [f64; 3], step: [f64; 3]) -> Estimate {
+        let (m, s) = (richardson(mesh, 2.0), richardson(step, 2.0));
+        let value = mesh[2];
+        let extrapolated = m.extrapolated + s.extrapolated - value;
+        let error = value - extrapolated;
+        let notes: Vec<String> = [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")]
+            .into_iter()
+            .flatten()
+            .collect();
+        let bound = (value - m.extrapolated).abs() + (value - s.extrapolated).abs();
+        let safety = if notes.is_empty() { GCI_SAFETY } else { GCI_SAFETY_UNCONVERGED };
+        Estimate {
+            quantity,
+            value,
+            extrapolated,
+            error,
+            relative: error.abs() / extrapolated.abs(),
+            bound,
+            gci: safety * bound,
+            mesh: m,
+            step: s,
+            notes,
+        }
+    }
+
     /// One line: the estimate, the orders, what did not converge.
     pub fn summary(&self) -> String {
         let order = |t: &Triplet| match t.order {
@@ -510,16 +555,61 @@ pub fn pilot_levels(n: usize, dt: f64) -> [(usize, f64); 5] {
     [(n, dt), (n, dt / 2.0), (n, dt / 4.0), (2 * n, dt / 4.0), (4 * n, dt / 4.0)]
 }
 
+/// Where a round's five pilots lie about its base (n₀, Δt₀), the coarsest
+/// level of each triplet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// The triplets through the coarse corner (`--estimate-error`, the
+    /// user's numerics the base): Δt₀, Δt₀/2, Δt₀/4 at n₀ and n₀, 2n₀,
+    /// 4n₀ at Δt₀/4; 31 times the work of the base.
+    Base,
+    /// The triplets through the fine corner (4n₀, Δt₀/4), the candidate a
+    /// round of `accuracy` measures (docs/theory.md §16.13): Δt₀, Δt₀/2,
+    /// Δt₀/4 at 4n₀ and n₀, 2n₀, 4n₀ at Δt₀/4; 40 times the work of the
+    /// base, 2.5 times the candidate's.
+    Corner,
+}
+
+impl Layout {
+    /// The five pilots (elements, step) about the base `n`, `dt`, and the
+    /// indices of the step triplet and of the mesh triplet (coarse to fine;
+    /// their finest, the shared pilot, last).
+    pub fn levels(self, n: usize, dt: f64) -> ([(usize, f64); 5], [usize; 3], [usize; 3]) {
+        match self {
+            Layout::Base => (pilot_levels(n, dt), [0, 1, 2], [2, 3, 4]),
+            Layout::Corner => (
+                [(4 * n, dt), (4 * n, dt / 2.0), (4 * n, dt / 4.0), (2 * n, dt / 4.0), (n, dt / 4.0)],
+                [0, 1, 2],
+                [4, 3, 2],
+            ),
+        }
+    }
+}
+
 /// The estimate of the error of `scene`'s numerics (its n_elements and
 /// time_step) on the run `spec`, its pilots on up to `threads` threads.
 pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<ErrorEstimate, RiserError> {
+    estimate_error_laid(scene, spec, threads, Layout::Base)
+}
+
+/// The pilots of `layout` about `scene`'s numerics (the base) on the run
+/// `spec`, on up to `threads` threads, and the estimates of their triplets:
+/// of the base's error ([`Layout::Base`]) or of the fine corner's
+/// ([`Layout::Corner`]).
+pub fn estimate_error_laid(
+    scene: &Scene,
+    spec: &RunSpec,
+    threads: usize,
+    layout: Layout,
+) -> Result<ErrorEstimate, RiserError> {
     let (n, dt) = (scene.analysis.n_elements, scene.analysis.time_step);
-    let plan = PilotPlan::new(spec.window, spec.period);
-    let levels = pilot_levels(n, dt);
+    let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
+    let (levels, step_at, mesh_at) = layout.levels(n, dt);
     let start = std::time::Instant::now();
     let next = std::sync::atomic::AtomicUsize::new(0);
-    // the costliest first: (4n, Δt/4) is 16 times (n, Δt)
-    let order = [4, 3, 2, 1, 0];
+    // the costliest first
+    let mut order: Vec<usize> = (0..levels.len()).collect();
+    order.sort_by(|&a, &b| (levels[b].0 as f64 / levels[b].1).total_cmp(&(levels[a].0 as f64 / levels[a].1)));
     let results: Vec<(usize, Result<Pilot, RiserError>)> = std::thread::scope(|s| {
         let workers: Vec<_> = (0..threads.clamp(1, levels.len()))
             .map(|_| {
@@ -553,7 +643,11 @@ pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<E
     for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene, spec.fatigue.is_some())) {
         let v = |i: usize| pilots[i].values[q.index()];
         if (0..pilots.len()).all(|i| v(i).is_finite()) {
-            estimates.push(Estimate::of(q, [v(2), v(3), v(4)], [v(0), v(1), v(2)]));
+            let (mesh, step) = (mesh_at.map(v), step_at.map(v));
+            estimates.push(match layout {
+                Layout::Base => Estimate::of(q, mesh, step),
+                Layout::Corner => Estimate::of_corner(q, mesh, step),
+            });
         } else {
             notes.push(format!(
                 "{}: not estimated, a pilot has none over the window (the line off the seabed at a step of it)",
@@ -587,9 +681,12 @@ mod tests {
 
     #[test]
     fn the_plan_cuts_the_window_to_three_periods() {
-        let p = PilotPlan::new((20.0, 200.0), Some(10.0));
+        let p = PilotPlan::new((20.0, 200.0), Some(10.0), false);
         assert_eq!((p.window, p.duration, p.cut), ((20.0, 50.0), 50.0, true));
-        let p = PilotPlan::new((20.0, 40.0), Some(10.0));
+        let p = PilotPlan::new((20.0, 40.0), Some(10.0), false);
         assert_eq!((p.window, p.duration, p.cut), ((20.0, 40.0), 40.0, false));
+        // an irregular sea: twenty peak periods
+        let p = PilotPlan::new((20.0, 400.0), Some(10.0), true);
+        assert_eq!((p.window, p.duration, p.cut), ((20.0, 220.0), 220.0, true));
     }
 }

@@ -102,7 +102,14 @@ fn scene() -> Scene {
 }
 
 fn spec() -> RunSpec<'static> {
-    RunSpec { motion: &motion, window: WINDOW, period: Some(HEAVE.period), max_tangent_age: 20, fatigue: None }
+    RunSpec {
+        motion: &motion,
+        window: WINDOW,
+        period: Some(HEAVE.period),
+        irregular: false,
+        max_tangent_age: 20,
+        fatigue: None,
+    }
 }
 
 fn estimate() -> &'static ErrorEstimate {
@@ -112,7 +119,7 @@ fn estimate() -> &'static ErrorEstimate {
 
 /// The quantities at `n` elements and step `dt`, the pilots' window.
 fn reference(n: usize, dt: f64) -> [f64; 8] {
-    let plan = PilotPlan::new(WINDOW, Some(HEAVE.period));
+    let plan = PilotPlan::new(WINDOW, Some(HEAVE.period), false);
     run_pilot(&scene(), &spec(), &plan, n, dt).unwrap().values
 }
 
@@ -275,11 +282,12 @@ fn long_the_estimate_on_scenes_the_knob_refuses() {
             motion: &motion,
             window: (w0, w0 + 30.0),
             period: Some(period),
+            irregular: false,
             max_tangent_age: 20,
             fatigue: None,
         };
         let e = estimate_error(&scene, &spec, 2).unwrap();
-        let plan = PilotPlan::new(spec.window, spec.period);
+        let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
         let fine = run_pilot(&scene, &spec, &plan, 8 * N, DT / 16.0).unwrap().values;
         eprintln!("{name}: pilots {:.1} s wall, window {:?}", e.wall_s, plan.window);
         for q in TENSION {
@@ -318,7 +326,7 @@ fn long_the_touchdown_and_the_stress_range_on_the_steel_catenary() {
     let curve = riser::sim::fatigue::SnCurve::by_name("D-seawater-cp").unwrap();
     let spec = RunSpec { fatigue: Some(riser::sim::fatigue::FatigueSpec { curve, scf: 1.0, dff: 1.0 }), ..spec() };
     let e = estimate_error(&scene, &spec, 2).unwrap();
-    let plan = PilotPlan::new(spec.window, spec.period);
+    let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
     let fine = run_pilot(&scene, &spec, &plan, 8 * n, DT / 16.0).unwrap().values;
     eprintln!("steel catenary: pilots {:.1} s wall, not estimated: {:?}", e.wall_s, e.notes);
     let mut misses = Vec::new();

@@ -1114,6 +1114,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         motion: &motion_fn,
         window: (w0, w1),
         period: slowest,
+        irregular: riser::loads::waves::irregular(&scene),
         max_tangent_age,
         fatigue: fatigue_asked.clone(),
     };
