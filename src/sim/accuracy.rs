@@ -276,9 +276,9 @@ impl Choice {
         self.estimate() <= self.target
     }
 
-    /// The pilots run, all rounds.
+    /// The pilots run, all rounds (those an earlier round's reused not counted).
     pub fn pilots(&self) -> usize {
-        self.rounds.iter().map(|r| r.pilots.len()).sum()
+        self.rounds.iter().flat_map(|r| &r.pilots).filter(|p| !p.reused).count()
     }
 
     /// One line: the choice, its estimate and what it cost.
@@ -515,12 +515,7 @@ pub fn choose(
     let cost = |(n, dt): (usize, f64)| n as f64 / dt;
     loop {
         let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period, spec.irregular).duration;
-        let work: f64 = layout
-            .levels(base.0, base.1)
-            .0
-            .iter()
-            .map(|&(n, dt)| n as f64 * (duration / dt).ceil())
-            .sum();
+        let work: f64 = layout.levels(base.0, base.1).0.iter().map(|&(n, dt)| n as f64 * (duration / dt).ceil()).sum();
         if !rounds.is_empty() && work > MAX_ROUND_WORK && best.is_some() {
             notes.push(format!(
                 "round {} of pilots about {} elements at {} s ({work:.2e} element-steps) is beyond the bound of \
@@ -542,7 +537,8 @@ pub fn choose(
             base.0,
             base.1,
         ));
-        let round = match estimate_error_laid(&pilot_scene, spec, threads, layout) {
+        let known: Vec<_> = rounds.iter().flat_map(|r| r.pilots.iter().filter(|p| !p.reused).cloned()).collect();
+        let round = match estimate_error_laid(&pilot_scene, spec, threads, layout, &known) {
             Ok(r) => r,
             // a later round's pilots failed (too coarse a step): the choice so far
             Err(e) if best.is_some() => {

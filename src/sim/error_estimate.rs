@@ -312,9 +312,7 @@ impl PilotPlan {
 /// The periods of the slowest forcing the pilots' window spans:
 /// [`PILOT_PERIODS`], [`PILOT_PERIODS_IRREGULAR`] in an irregular sea.
 pub fn pilot_periods(irregular: bool) -> f64 {
-    // TEMPORARY (measurement): RISER_PILOT_PERIODS_IRREGULAR
-    let env = std::env::var("RISER_PILOT_PERIODS_IRREGULAR").ok().and_then(|v| v.parse().ok());
-    if irregular { env.unwrap_or(PILOT_PERIODS_IRREGULAR) } else { PILOT_PERIODS }
+    if irregular { PILOT_PERIODS_IRREGULAR } else { PILOT_PERIODS }
 }
 
 /// A run's motion and window, what the pilots repeat.
@@ -342,7 +340,11 @@ pub struct Pilot {
     /// The quantities, in [`Quantity::ALL`]'s order (NaN: not of this
     /// scene, or the touchdown off the seabed in the window).
     pub values: [f64; 8],
+    /// Its elapsed time, s (0 where reused).
     pub wall_s: f64,
+    /// Run in an earlier round of the same choice and taken from it, not
+    /// run again.
+    pub reused: bool,
 }
 
 /// One pilot: `plan`'s run of `scene` at `n_elements` and `time_step`, the
@@ -416,6 +418,7 @@ pub fn run_pilot(
         time_step,
         values: [max, min, max - min, mean, td(true), td(false), range, damage.map_or(f64::NAN, |w| w.damage)],
         wall_s: start.elapsed().as_secs_f64(),
+        reused: false,
     })
 }
 
@@ -477,10 +480,8 @@ impl Estimate {
         let value = mesh[2];
         let extrapolated = m.extrapolated + s.extrapolated - value;
         let error = value - extrapolated;
-        let notes: Vec<String> = [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")]
-            .into_iter()
-            .flatten()
-            .collect();
+        let notes: Vec<String> =
+            [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")].into_iter().flatten().collect();
         let bound = (value - m.extrapolated).abs() + (value - s.extrapolated).abs();
         let safety = if notes.is_empty() { GCI_SAFETY } else { GCI_SAFETY_UNCONVERGED };
         Estimate {
@@ -589,26 +590,34 @@ impl Layout {
 /// The estimate of the error of `scene`'s numerics (its n_elements and
 /// time_step) on the run `spec`, its pilots on up to `threads` threads.
 pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<ErrorEstimate, RiserError> {
-    estimate_error_laid(scene, spec, threads, Layout::Base)
+    estimate_error_laid(scene, spec, threads, Layout::Base, &[])
 }
 
 /// The pilots of `layout` about `scene`'s numerics (the base) on the run
 /// `spec`, on up to `threads` threads, and the estimates of their triplets:
 /// of the base's error ([`Layout::Base`]) or of the fine corner's
-/// ([`Layout::Corner`]).
+/// ([`Layout::Corner`]). A level among `known` (pilots of the same run and
+/// numerics run before: an earlier round's) is taken from them, not run
+/// again.
 pub fn estimate_error_laid(
     scene: &Scene,
     spec: &RunSpec,
     threads: usize,
     layout: Layout,
+    known: &[Pilot],
 ) -> Result<ErrorEstimate, RiserError> {
     let (n, dt) = (scene.analysis.n_elements, scene.analysis.time_step);
     let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
     let (levels, step_at, mesh_at) = layout.levels(n, dt);
     let start = std::time::Instant::now();
     let next = std::sync::atomic::AtomicUsize::new(0);
-    // the costliest first
-    let mut order: Vec<usize> = (0..levels.len()).collect();
+    let same = |p: &Pilot, (ne, h): (usize, f64)| p.n_elements == ne && (p.time_step / h - 1.0).abs() < 1e-12;
+    let reused: Vec<Option<Pilot>> = levels
+        .iter()
+        .map(|&l| known.iter().find(|p| same(p, l)).map(|p| Pilot { wall_s: 0.0, reused: true, ..p.clone() }))
+        .collect();
+    // the costliest first, those not known
+    let mut order: Vec<usize> = (0..levels.len()).filter(|&i| reused[i].is_none()).collect();
     order.sort_by(|&a, &b| (levels[b].0 as f64 / levels[b].1).total_cmp(&(levels[a].0 as f64 / levels[a].1)));
     let results: Vec<(usize, Result<Pilot, RiserError>)> = std::thread::scope(|s| {
         let workers: Vec<_> = (0..threads.clamp(1, levels.len()))
@@ -627,7 +636,7 @@ pub fn estimate_error_laid(
             .collect();
         workers.into_iter().flat_map(|w| w.join().unwrap_or_default()).collect()
     });
-    let mut pilots: Vec<Option<Pilot>> = vec![None; levels.len()];
+    let mut pilots: Vec<Option<Pilot>> = reused;
     for (i, r) in results {
         let (ne, h) = levels[i];
         pilots[i] = Some(r.map_err(|e| {

@@ -422,7 +422,7 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
                     .collect();
                 serde_json::json!({
                     "round": r + 1, "n_elements": p.n_elements, "time_step": p.time_step,
-                    "values": values, "wall_s": p.wall_s,
+                    "values": values, "wall_s": p.wall_s, "reused": p.reused,
                 })
             })
         })

@@ -347,9 +347,10 @@ def pilots_reference(binary, path, rows, case, choices, run_new=True):
 
 
 def pilot_element_steps(acc):
-    """The pilots' work in element-steps (the chooser's cost unit, n/Δt over their simulated time)."""
+    """The pilots' work in element-steps (the chooser's cost unit, n/Δt over their simulated time); a pilot an
+    earlier round's reused (`reused`) is not counted again."""
     t = acc["pilot_window"][1]
-    return sum(p["n_elements"] * round(t / p["time_step"]) for p in acc["pilots"])
+    return sum(p["n_elements"] * round(t / p["time_step"]) for p in acc["pilots"] if not p.get("reused"))
 
 
 def measured_row(case, target, d, ref, rows):
@@ -375,7 +376,8 @@ def measured_row(case, target, d, ref, rows):
             "newton_tolerance": d["newton_tolerance"], "error": e, "estimate": acc["estimate"],
             "estimate_over_error": acc["estimate"] / e if e > 0 else float("inf"), "met": e <= target,
             "riser_met": acc["met"],
-            "orders": orders(acc), "notes": " / ".join(acc["notes"]), "pilots": len(acc["pilots"]),
+            "orders": orders(acc), "notes": " / ".join(acc["notes"]),
+            "pilots": sum(not p.get("reused") for p in acc["pilots"]),
             "rounds": max(p["round"] for p in acc["pilots"]), "finest_pilot": f"{n_f} el., {dt_f:g} s",
             "reference": f"{ref['n_elements']} el., {float(ref['time_step']):g} s",
             "reference_finer": finer_than(ref, min(2 * n_f, MAX_ELEMENTS), dt_f / 2),
