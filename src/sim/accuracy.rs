@@ -31,6 +31,15 @@
 //! the last change, |q₂ − q₃| ([`Axis::Unconverged`]); an axis whose finer
 //! two pilots agree has nothing left at or finer than 2n₀ (Δt₀/2).
 //!
+//! A round of `accuracy` lays its triplets through the numerics it
+//! measures, its candidate (n_c, Δt_c) = (4n₀, Δt₀/4) ([`Layout::Corner`],
+//! docs/theory.md §16.13, (16.19)–(16.20)): the step triplet at the
+//! candidate's mesh, the mesh triplet at its step, 2.5 times the
+//! candidate's work; a choice is measured only on those two lines, and a
+//! level off them is the next round's candidate. The first candidate is
+//! [`FIRST_CANDIDATE_COARSENING`] coarser than the scene's numerics; an
+//! earlier round's pilots are reused.
+//!
 //! The Newton tolerance is ε² ([`newton_tolerance_for`]), the pilots' too.
 //! Numerics the user set (`--set`, a master's nonzero value) are kept: their
 //! axis has that one level, and the estimate says whether the target is met.

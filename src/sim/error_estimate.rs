@@ -29,8 +29,9 @@
 //! not: [`GCI_SAFETY`], [`GCI_SAFETY_UNCONVERGED`]).
 //!
 //! The pilots are short ([`PilotPlan`]): the user's steady window cut to
-//! [`PILOT_PERIODS`] periods of the slowest forcing from its start, the run
-//! ending there; the ramps and the start are the user's. The estimate is of
+//! [`PILOT_PERIODS`] periods of the slowest forcing from its start
+//! ([`PILOT_PERIODS_IRREGULAR`] of an irregular sea's T_p), the run ending
+//! there; the ramps and the start are the user's. The estimate is of
 //! the error of the quantity over the pilots' window, which stands for the
 //! user's run's (the same motion, mesh and step; a longer window's extremes
 //! come from more cycles of the same response).
@@ -530,10 +531,11 @@ impl Estimate {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ErrorEstimate {
     pub plan: PilotPlan,
-    /// The user's elements and step.
+    /// The base's elements and step (the user's for `--estimate-error`).
     pub n_elements: usize,
     pub time_step: f64,
-    /// (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4), (4n, Δt/4).
+    /// [`Layout::levels`]' order: (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4),
+    /// (4n, Δt/4) about the base of [`Layout::Base`].
     pub pilots: Vec<Pilot>,
     /// The quantities of the scene, in [`Quantity::ALL`]'s order.
     pub estimates: Vec<Estimate>,

@@ -284,7 +284,8 @@ struct RunCli {
     #[arg(long, value_name = "S", requires = "fatigue")]
     fatigue_series: Option<f64>,
     /// Measure the error of this run's numerics on its own motion and sea (issue 51,
-    /// docs/guide/accuracy.md): five short pilots (three periods of the slowest forcing) at
+    /// docs/guide/accuracy.md): five short pilots (three periods of the slowest forcing, twenty of an
+    /// irregular sea's peak period) at
     /// n, 2n, 4n elements and dt, dt/2, dt/4, the observed orders and Richardson's
     /// extrapolation; adds error_estimate to --json and a line to the text.
     #[arg(long)]
