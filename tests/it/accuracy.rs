@@ -108,6 +108,13 @@ fn meets_run(v: &serde_json::Value, case: &str, target: f64) {
     let pilots = a["pilots"].as_array().unwrap();
     assert!(!pilots.is_empty() && pilots.len() % 5 == 0, "{a}");
     assert!(pilots.iter().all(|p| p["values"]["top_tension_max"].as_f64().is_some_and(f64::is_finite)));
+    // no mesh and step run twice: an earlier round's pilot is reused
+    let run: Vec<(u64, u64)> = pilots
+        .iter()
+        .filter(|p| p["reused"] == false)
+        .map(|p| (p["n_elements"].as_u64().unwrap(), p["time_step"].as_f64().unwrap().to_bits()))
+        .collect();
+    assert!(run.iter().enumerate().all(|(i, x)| !run[..i].contains(x)), "a pilot run twice: {a}");
 }
 
 #[test]
