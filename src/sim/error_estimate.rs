@@ -452,25 +452,10 @@ impl Estimate {
     /// Δt/2, Δt/4 (n), the last of each the same pilot.
     pub fn of(quantity: Quantity, mesh: [f64; 3], step: [f64; 3]) -> Estimate {
         let (m, s) = (richardson(mesh, 2.0), richardson(step, 2.0));
-        let extrapolated = m.extrapolated + s.extrapolated - mesh[0];
-        let value = step[0];
-        let error = value - extrapolated;
-        let notes: Vec<String> =
-            [m.note("mesh (n, 2n, 4n elements)"), s.note("step (dt, dt/2, dt/4)")].into_iter().flatten().collect();
+        let notes = [m.note("mesh (n, 2n, 4n elements)"), s.note("step (dt, dt/2, dt/4)")];
+        // the user's numerics the coarse level of the step triplet (16.16)
         let bound = m.error.abs() + s.error.abs();
-        let safety = if notes.is_empty() { GCI_SAFETY } else { GCI_SAFETY_UNCONVERGED };
-        Estimate {
-            quantity,
-            value,
-            extrapolated,
-            error,
-            relative: error.abs() / extrapolated.abs(),
-            bound,
-            gci: safety * bound,
-            mesh: m,
-            step: s,
-            notes,
-        }
+        Estimate::of_triplets(quantity, (m, s), (step[0], mesh[0]), bound, notes)
     }
 
     /// From the pilots' values of [`Layout::Corner`]: `mesh` at n/4, n/2, n
@@ -478,12 +463,25 @@ impl Estimate {
     /// whose error (16.15), (16.16) is the estimate's.
     pub fn of_corner(quantity: Quantity, mesh: [f64; 3], step: [f64; 3]) -> Estimate {
         let (m, s) = (richardson(mesh, 2.0), richardson(step, 2.0));
+        let notes = [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")];
         let value = mesh[2];
-        let extrapolated = m.extrapolated + s.extrapolated - value;
-        let error = value - extrapolated;
-        let notes: Vec<String> =
-            [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")].into_iter().flatten().collect();
+        // the candidate the fine level of both triplets
         let bound = (value - m.extrapolated).abs() + (value - s.extrapolated).abs();
+        Estimate::of_triplets(quantity, (m, s), (value, value), bound, notes)
+    }
+
+    /// (16.15), (16.16) of the triplets `(mesh, step)` for the pilot `value`
+    /// whose error is estimated, `shared` the pilot both triplets run.
+    fn of_triplets(
+        quantity: Quantity,
+        (mesh, step): (Triplet, Triplet),
+        (value, shared): (f64, f64),
+        bound: f64,
+        notes: [Option<String>; 2],
+    ) -> Estimate {
+        let extrapolated = mesh.extrapolated + step.extrapolated - shared;
+        let error = value - extrapolated;
+        let notes: Vec<String> = notes.into_iter().flatten().collect();
         let safety = if notes.is_empty() { GCI_SAFETY } else { GCI_SAFETY_UNCONVERGED };
         Estimate {
             quantity,
@@ -493,8 +491,8 @@ impl Estimate {
             relative: error.abs() / extrapolated.abs(),
             bound,
             gci: safety * bound,
-            mesh: m,
-            step: s,
+            mesh,
+            step,
             notes,
         }
     }
