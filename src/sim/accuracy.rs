@@ -525,13 +525,18 @@ pub fn choose(
     loop {
         let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period, spec.irregular).duration;
         let work: f64 = layout.levels(base.0, base.1).0.iter().map(|&(n, dt)| n as f64 * (duration / dt).ceil()).sum();
+        // the numerics the round measures: its base, or its candidate (the finest pilot)
+        let about = match layout {
+            Layout::Base => base,
+            Layout::Corner => (4 * base.0, base.1 / 4.0),
+        };
         if !rounds.is_empty() && work > MAX_ROUND_WORK && best.is_some() {
             notes.push(format!(
                 "round {} of pilots about {} elements at {} s ({work:.2e} element-steps) is beyond the bound of \
                  {MAX_ROUND_WORK:.1e}: the choice of the rounds before kept",
                 rounds.len() + 1,
-                base.0,
-                base.1
+                about.0,
+                about.1
             ));
             break;
         }
@@ -543,8 +548,8 @@ pub fn choose(
             "accuracy {target:e}: round {} of pilots about {} elements, time_step {} s (5 runs of {duration:.0} s, \
              {work:.2e} element-steps)",
             rounds.len() + 1,
-            base.0,
-            base.1,
+            about.0,
+            about.1,
         ));
         let known: Vec<_> = rounds.iter().flat_map(|r| r.pilots.iter().filter(|p| !p.reused).cloned()).collect();
         let round = match estimate_error_laid(&pilot_scene, spec, threads, layout, &known) {
@@ -564,7 +569,10 @@ pub fn choose(
                     notes.push(format!(
                         "the first round of pilots about {} elements at {} s failed ({e}): started about {} \
                          elements at {} s",
-                        base.0, base.1, next.0, next.1
+                        about.0,
+                        about.1,
+                        4 * next.0,
+                        next.1 / 4.0
                     ));
                     base = next;
                     continue;
@@ -646,11 +654,13 @@ pub fn choose(
         })
         .collect();
     // what does not converge where it decides the choice, with its numbers
+    let (mesh_levels, step_levels) = match layout {
+        Layout::Base => ("mesh (n, 2n, 4n elements)", "step (dt, dt/2, dt/4)"),
+        Layout::Corner => ("mesh (n/4, n/2, n elements)", "step (4dt, 2dt, dt)"),
+    };
     for m in &models {
         let Some(e) = rounds[round].of(m.quantity) else { continue };
-        for (axis, t, what) in
-            [(m.mesh, &e.mesh, "mesh (n, 2n, 4n elements)"), (m.step, &e.step, "step (dt, dt/2, dt/4)")]
-        {
+        for (axis, t, what) in [(m.mesh, &e.mesh, mesh_levels), (m.step, &e.step, step_levels)] {
             if let (Axis::Unconverged { .. }, Some(note)) = (axis, t.note(what)) {
                 notes.push(format!("{}: {note}", m.quantity.name()));
             }
