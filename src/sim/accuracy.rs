@@ -31,12 +31,21 @@
 //! the last change, |q₂ − q₃| ([`Axis::Unconverged`]); an axis whose finer
 //! two pilots agree has nothing left at or finer than 2n₀ (Δt₀/2).
 //!
+//! A round of `accuracy` lays its triplets through the numerics it
+//! measures, its candidate (n_c, Δt_c) = (4n₀, Δt₀/4) ([`Layout::Corner`],
+//! docs/theory.md §16.13, (16.19)–(16.20)): the step triplet at the
+//! candidate's mesh, the mesh triplet at its step, 2.5 times the
+//! candidate's work; a choice is measured only on those two lines, and a
+//! level off them is the next round's candidate. The first candidate is
+//! [`FIRST_CANDIDATE_COARSENING`] coarser than the scene's numerics; an
+//! earlier round's pilots are reused.
+//!
 //! The Newton tolerance is ε² ([`newton_tolerance_for`]), the pilots' too.
 //! Numerics the user set (`--set`, a master's nonzero value) are kept: their
 //! axis has that one level, and the estimate says whether the target is met.
 
 use super::error::{AccuracyError, RiserError};
-use super::error_estimate::{Convergence, ErrorEstimate, Quantity, RunSpec, Triplet, estimate_error};
+use super::error_estimate::{Convergence, ErrorEstimate, Layout, Quantity, RunSpec, Triplet, estimate_error_laid};
 use crate::scene::{AccuracyQuantity, Scene};
 
 /// The safety factor S of (16.18): the estimate of the pilots is within
@@ -55,6 +64,13 @@ pub const MIN_STEP: f64 = 1e-4;
 /// first round, about the scene's numerics, always runs (it is
 /// `--estimate-error`'s).
 pub const MAX_ROUND_WORK: f64 = 2.5e7;
+/// The first round's candidate is this much coarser than the scene's
+/// numerics on each axis (half the elements, twice the step): the scene's
+/// defaults are finer than most targets need (docs/theory.md §16.13).
+pub const FIRST_CANDIDATE_COARSENING: usize = 2;
+/// The fewest elements a round's base takes (fewer where the candidate has
+/// fewer than four times as many).
+pub const MIN_BASE_ELEMENTS: usize = 2;
 /// The step ladder's ratio, 2^{1/4}: steps Δt₀ 2^{−k/4}, rounded to three
 /// significant digits.
 const STEP_RATIO: f64 = 1.189_207_115_002_721;
@@ -269,9 +285,9 @@ impl Choice {
         self.estimate() <= self.target
     }
 
-    /// The pilots run, all rounds.
+    /// The pilots run, all rounds (those an earlier round's reused not counted).
     pub fn pilots(&self) -> usize {
-        self.rounds.iter().map(|r| r.pilots.len()).sum()
+        self.rounds.iter().flat_map(|r| &r.pilots).filter(|p| !p.reused).count()
     }
 
     /// One line: the choice, its estimate and what it cost.
@@ -388,14 +404,14 @@ fn steps(dt0: f64, pinned: bool) -> Vec<f64> {
 fn cheapest(
     models: &[QuantityModel],
     target: f64,
-    base: (usize, f64),
+    (layout, base): (Layout, (usize, f64)),
     (meshes, steps): (&[usize], &[f64]),
     proposals: bool,
 ) -> Option<(usize, f64)> {
     let mut best: Option<(f64, usize, f64)> = None;
     for &n in meshes {
         for &dt in steps {
-            if !proposals && in_span(base, n, dt) != (true, true) {
+            if !proposals && !measured(layout, base, n, dt) {
                 continue;
             }
             let cost = n as f64 / dt;
@@ -415,10 +431,55 @@ fn cheapest(
     best.map(|b| (b.1, b.2))
 }
 
+/// Measured by the round's pilots: within them, n₀ ≤ n ≤ 4n₀ and Δt₀/4 ≤
+/// Δt ≤ Δt₀ ([`Layout::Base`]); on one of their triplets' lines, at 4n₀ or
+/// at Δt₀/4, ([`Layout::Corner`]: a level off them is a proposal that a
+/// round with it as its candidate measures, the mesh's and the step's
+/// errors not counted on to add away from where both were run).
+fn measured(layout: Layout, base: (usize, f64), n: usize, dt: f64) -> bool {
+    let (mesh_in, step_in) = in_span(base, n, dt);
+    match layout {
+        Layout::Base => mesh_in && step_in,
+        Layout::Corner => {
+            let on_step_line = n == 4 * base.0;
+            let on_mesh_line = (dt / (base.1 / 4.0) - 1.0).abs() < 1e-9;
+            mesh_in && step_in && (on_step_line || on_mesh_line)
+        }
+    }
+}
+
 /// Within the round's pilots: n₀ ≤ n ≤ 4n₀ and Δt₀/4 ≤ Δt ≤ Δt₀.
 fn in_span(base: (usize, f64), n: usize, dt: f64) -> (bool, bool) {
     let eps = 1e-9;
     (n >= base.0 && n <= 4 * base.0, dt <= base.1 * (1.0 + eps) && dt >= base.1 / 4.0 * (1.0 - eps))
+}
+
+/// The base (n₀, Δt₀) of the round of [`Layout::Corner`] whose candidate,
+/// its finest pilot (4n₀, Δt₀/4), is `(n, dt)` or the least finer mesh
+/// whose quarter has nodes on the buoyancy sections' ends.
+fn corner_base(scene: &Scene, (n, dt): (usize, f64)) -> (usize, f64) {
+    let lo = n.div_ceil(4).max(MIN_BASE_ELEMENTS);
+    let m = (lo..=n.max(lo)).find(|&m| nodes_on_buoyancy_ends(scene, m)).unwrap_or(lo);
+    (m, dt * 4.0)
+}
+
+/// The bases the first round tries, and the layout of their pilots. With
+/// neither mesh nor step set by the user: rounds of [`Layout::Corner`],
+/// the first about the candidate [`FIRST_CANDIDATE_COARSENING`] coarser than
+/// the scene's numerics, then (its pilots failing: a step too long for
+/// Newton) the scene's own. Numerics the user set: [`Layout::Base`] about
+/// them, the axis set one level.
+fn first_bases(scene: &Scene, (n, dt): (usize, f64), pinned: Pinned) -> (Layout, Vec<(usize, f64)>) {
+    if pinned.n_elements || pinned.time_step {
+        return (Layout::Base, vec![(n, dt)]);
+    }
+    let k = FIRST_CANDIDATE_COARSENING;
+    let mut bases = vec![corner_base(scene, (n.div_ceil(k), dt * k as f64))];
+    let own = corner_base(scene, (n, dt));
+    if !bases.contains(&own) {
+        bases.push(own);
+    }
+    (Layout::Corner, bases)
 }
 
 /// A choice and the round's models it was made from.
@@ -446,7 +507,10 @@ pub fn choose(
     let criteria = criteria(quantity, scene, spec.fatigue.is_some())?;
     let tolerance =
         if pinned.newton_tolerance { scene.analysis.newton_tolerance } else { newton_tolerance_for(target) };
-    let mut base = (scene.analysis.n_elements, scene.analysis.time_step);
+    let scene_numerics = (scene.analysis.n_elements, scene.analysis.time_step);
+    let (layout, starts) = first_bases(scene, scene_numerics, pinned);
+    let mut starts = starts.into_iter();
+    let mut base = starts.next().unwrap_or(scene_numerics);
     let mut rounds: Vec<ErrorEstimate> = Vec::new();
     let mut notes = Vec::new();
     let start = std::time::Instant::now();
@@ -459,18 +523,20 @@ pub fn choose(
     let mut best: Option<Pick> = None;
     let cost = |(n, dt): (usize, f64)| n as f64 / dt;
     loop {
-        let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period).duration;
-        let work: f64 = super::error_estimate::pilot_levels(base.0, base.1)
-            .iter()
-            .map(|&(n, dt)| n as f64 * (duration / dt).ceil())
-            .sum();
+        let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period, spec.irregular).duration;
+        let work: f64 = layout.levels(base.0, base.1).0.iter().map(|&(n, dt)| n as f64 * (duration / dt).ceil()).sum();
+        // the numerics the round measures: its base, or its candidate (the finest pilot)
+        let about = match layout {
+            Layout::Base => base,
+            Layout::Corner => (4 * base.0, base.1 / 4.0),
+        };
         if !rounds.is_empty() && work > MAX_ROUND_WORK && best.is_some() {
             notes.push(format!(
                 "round {} of pilots about {} elements at {} s ({work:.2e} element-steps) is beyond the bound of \
                  {MAX_ROUND_WORK:.1e}: the choice of the rounds before kept",
                 rounds.len() + 1,
-                base.0,
-                base.1
+                about.0,
+                about.1
             ));
             break;
         }
@@ -482,10 +548,11 @@ pub fn choose(
             "accuracy {target:e}: round {} of pilots about {} elements, time_step {} s (5 runs of {duration:.0} s, \
              {work:.2e} element-steps)",
             rounds.len() + 1,
-            base.0,
-            base.1,
+            about.0,
+            about.1,
         ));
-        let round = match estimate_error(&pilot_scene, spec, threads) {
+        let known: Vec<_> = rounds.iter().flat_map(|r| r.pilots.iter().filter(|p| !p.reused).cloned()).collect();
+        let round = match estimate_error_laid(&pilot_scene, spec, threads, layout, &known) {
             Ok(r) => r,
             // a later round's pilots failed (too coarse a step): the choice so far
             Err(e) if best.is_some() => {
@@ -495,18 +562,35 @@ pub fn choose(
                 ));
                 break;
             }
+            // the first round about a candidate coarser than the scene's
+            // numerics failed: the next start
+            Err(e) if rounds.is_empty() => match starts.next() {
+                Some(next) => {
+                    notes.push(format!(
+                        "the first round of pilots about {} elements at {} s failed ({e}): started about {} \
+                         elements at {} s",
+                        about.0,
+                        about.1,
+                        4 * next.0,
+                        next.1 / 4.0
+                    ));
+                    base = next;
+                    continue;
+                }
+                None => return Err(e),
+            },
             Err(e) => return Err(e),
         };
         let models = models(&round, &criteria, target)?;
         rounds.push(round);
         let ladders = (&meshes(scene, base.0, pinned.n_elements)[..], &steps(base.1, pinned.time_step)[..]);
-        if let Some(numerics) = cheapest(&models, target, base, ladders, false)
+        if let Some(numerics) = cheapest(&models, target, (layout, base), ladders, false)
             && best.as_ref().is_none_or(|b| cost(numerics) < cost(b.numerics))
         {
             best = Some(Pick { numerics, models: models.clone(), base, round: rounds.len() - 1 });
         }
         // beyond the pilots: a proposal the next round measures, if it is cheaper
-        let Some((n, dt)) = cheapest(&models, target, base, ladders, true) else {
+        let Some((n, dt)) = cheapest(&models, target, (layout, base), ladders, true) else {
             // nothing this round's pilots reach meets the target: a round about
             // finer numerics, on the axes that do not converge (both if none)
             let unconverged =
@@ -526,8 +610,15 @@ pub fn choose(
         if rounds.len() >= MAX_ROUNDS || best.as_ref().is_some_and(|b| cost(b.numerics) <= cost((n, dt))) {
             break;
         }
-        let (mesh_in, step_in) = in_span(base, n, dt);
-        let next = (if mesh_in { base.0 } else { n }, if step_in { base.1 } else { dt });
+        let next = match layout {
+            // an axis outside the span moves there
+            Layout::Base => {
+                let (mesh_in, step_in) = in_span(base, n, dt);
+                (if mesh_in { base.0 } else { n }, if step_in { base.1 } else { dt })
+            }
+            // the proposal the next round's candidate
+            Layout::Corner => corner_base(scene, (n, dt)),
+        };
         if next == base {
             break;
         }
@@ -563,11 +654,13 @@ pub fn choose(
         })
         .collect();
     // what does not converge where it decides the choice, with its numbers
+    let (mesh_levels, step_levels) = match layout {
+        Layout::Base => ("mesh (n, 2n, 4n elements)", "step (dt, dt/2, dt/4)"),
+        Layout::Corner => ("mesh (n/4, n/2, n elements)", "step (4dt, 2dt, dt)"),
+    };
     for m in &models {
         let Some(e) = rounds[round].of(m.quantity) else { continue };
-        for (axis, t, what) in
-            [(m.mesh, &e.mesh, "mesh (n, 2n, 4n elements)"), (m.step, &e.step, "step (dt, dt/2, dt/4)")]
-        {
+        for (axis, t, what) in [(m.mesh, &e.mesh, mesh_levels), (m.step, &e.step, step_levels)] {
             if let (Axis::Unconverged { .. }, Some(note)) = (axis, t.note(what)) {
                 notes.push(format!("{}: {note}", m.quantity.name()));
             }
@@ -612,12 +705,15 @@ pub fn apply(
 /// heave of `accuracy_motion_amplitude` (default 2.5 m) at
 /// `accuracy_motion_period` (default 10 s) grown over one period, in the
 /// scene's sea and current; the window from the end of the slower of the
-/// motion's ramp and period and the sea's, of three periods of the slower.
+/// motion's ramp and period and the sea's, of three periods of the slower
+/// (twenty of an irregular sea's T_p: [`super::error_estimate::pilot_periods`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DesignRun {
     pub heave: super::Heave,
     pub window: (f64, f64),
     pub period: f64,
+    /// The scene's sea is irregular.
+    pub irregular: bool,
 }
 
 impl DesignRun {
@@ -639,6 +735,7 @@ impl DesignRun {
             motion: &motion,
             window: design.window,
             period: Some(design.period),
+            irregular: design.irregular,
             max_tangent_age: crate::model::DynamicOptions::default().max_tangent_age,
             fatigue: None,
         };
@@ -652,10 +749,12 @@ impl DesignRun {
         let settled = sea.map_or(2.0 * t, |(r, p)| (2.0 * t).max(r + p));
         let settled = settled.max(crate::loads::current_ramp(scene).duration);
         let period = sea.map_or(t, |(_, p)| t.max(p));
+        let irregular = crate::loads::waves::irregular(scene);
         Ok(DesignRun {
             heave: super::Heave { amplitude: a, period: t, until: None, ramp: t },
-            window: (settled, settled + super::error_estimate::PILOT_PERIODS * period),
+            window: (settled, settled + super::error_estimate::pilot_periods(irregular) * period),
             period,
+            irregular,
         })
     }
 }

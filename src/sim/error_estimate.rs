@@ -29,8 +29,9 @@
 //! not: [`GCI_SAFETY`], [`GCI_SAFETY_UNCONVERGED`]).
 //!
 //! The pilots are short ([`PilotPlan`]): the user's steady window cut to
-//! [`PILOT_PERIODS`] periods of the slowest forcing from its start, the run
-//! ending there; the ramps and the start are the user's. The estimate is of
+//! [`PILOT_PERIODS`] periods of the slowest forcing from its start
+//! ([`PILOT_PERIODS_IRREGULAR`] of an irregular sea's T_p), the run ending
+//! there; the ramps and the start are the user's. The estimate is of
 //! the error of the quantity over the pilots' window, which stands for the
 //! user's run's (the same motion, mesh and step; a longer window's extremes
 //! come from more cycles of the same response).
@@ -53,6 +54,11 @@ use crate::scene::Scene;
 
 /// Periods of the slowest forcing the pilots' window spans.
 pub const PILOT_PERIODS: f64 = 3.0;
+/// Peak periods T_p the pilots' window spans in an irregular sea (a
+/// spectrum, a table of components): its extremes are those of the sea's
+/// largest wave groups, which three periods do not hold (docs/theory.md
+/// §16.13: 3 T_p under-estimated the jumper's error 0.27–0.36 times).
+pub const PILOT_PERIODS_IRREGULAR: f64 = 20.0;
 /// Roache's safety factor of the grid convergence index where both triplets
 /// converge monotonically (three levels, the order observed).
 pub const GCI_SAFETY: f64 = 1.25;
@@ -284,8 +290,9 @@ pub fn time_mean(samples: &[(f64, f64)], (t0, t1): (f64, f64)) -> f64 {
 }
 
 /// The pilots' window and duration: the user's window [w0, w1] cut to
-/// [w0, min(w1, w0 + [`PILOT_PERIODS`] T)], T the slowest forcing's period
-/// (the motion's or the sea's); without one the user's window as it is.
+/// [w0, min(w1, w0 + k T)], T the slowest forcing's period (the motion's
+/// or the sea's), k [`PILOT_PERIODS`] ([`PILOT_PERIODS_IRREGULAR`] in an
+/// irregular sea); without a period the user's window as it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PilotPlan {
     pub window: (f64, f64),
@@ -296,11 +303,17 @@ pub struct PilotPlan {
 }
 
 impl PilotPlan {
-    pub fn new(window: (f64, f64), period: Option<f64>) -> PilotPlan {
+    pub fn new(window: (f64, f64), period: Option<f64>, irregular: bool) -> PilotPlan {
         let (w0, w1) = window;
-        let end = period.filter(|p| *p > 0.0).map_or(w1, |p| w1.min(w0 + PILOT_PERIODS * p));
+        let end = period.filter(|p| *p > 0.0).map_or(w1, |p| w1.min(w0 + pilot_periods(irregular) * p));
         PilotPlan { window: (w0, end), duration: end, cut: end < w1 }
     }
+}
+
+/// The periods of the slowest forcing the pilots' window spans:
+/// [`PILOT_PERIODS`], [`PILOT_PERIODS_IRREGULAR`] in an irregular sea.
+pub fn pilot_periods(irregular: bool) -> f64 {
+    if irregular { PILOT_PERIODS_IRREGULAR } else { PILOT_PERIODS }
 }
 
 /// A run's motion and window, what the pilots repeat.
@@ -311,6 +324,9 @@ pub struct RunSpec<'a> {
     pub window: (f64, f64),
     /// The slowest forcing's period, s (None: none, the pilots run the window).
     pub period: Option<f64>,
+    /// The sea is irregular (a spectrum, a table of components): the
+    /// pilots span [`PILOT_PERIODS_IRREGULAR`] of its T_p.
+    pub irregular: bool,
     /// Steps a factorised Newton tangent may be reused for (the run's).
     pub max_tangent_age: u32,
     /// The run's fatigue (its curve, SCF, DFF), for [`Quantity::FatigueDamage`].
@@ -325,7 +341,11 @@ pub struct Pilot {
     /// The quantities, in [`Quantity::ALL`]'s order (NaN: not of this
     /// scene, or the touchdown off the seabed in the window).
     pub values: [f64; 8],
+    /// Its elapsed time, s (0 where reused).
     pub wall_s: f64,
+    /// Run in an earlier round of the same choice and taken from it, not
+    /// run again.
+    pub reused: bool,
 }
 
 /// One pilot: `plan`'s run of `scene` at `n_elements` and `time_step`, the
@@ -399,6 +419,7 @@ pub fn run_pilot(
         time_step,
         values: [max, min, max - min, mean, td(true), td(false), range, damage.map_or(f64::NAN, |w| w.damage)],
         wall_s: start.elapsed().as_secs_f64(),
+        reused: false,
     })
 }
 
@@ -431,12 +452,36 @@ impl Estimate {
     /// Δt/2, Δt/4 (n), the last of each the same pilot.
     pub fn of(quantity: Quantity, mesh: [f64; 3], step: [f64; 3]) -> Estimate {
         let (m, s) = (richardson(mesh, 2.0), richardson(step, 2.0));
-        let extrapolated = m.extrapolated + s.extrapolated - mesh[0];
-        let value = step[0];
-        let error = value - extrapolated;
-        let notes: Vec<String> =
-            [m.note("mesh (n, 2n, 4n elements)"), s.note("step (dt, dt/2, dt/4)")].into_iter().flatten().collect();
+        let notes = [m.note("mesh (n, 2n, 4n elements)"), s.note("step (dt, dt/2, dt/4)")];
+        // the user's numerics the coarse level of the step triplet (16.16)
         let bound = m.error.abs() + s.error.abs();
+        Estimate::of_triplets(quantity, (m, s), (step[0], mesh[0]), bound, notes)
+    }
+
+    /// From the pilots' values of [`Layout::Corner`]: `mesh` at n/4, n/2, n
+    /// (Δt), `step` at 4Δt, 2Δt, Δt (n), the last of each the same pilot,
+    /// whose error (16.15), (16.16) is the estimate's.
+    pub fn of_corner(quantity: Quantity, mesh: [f64; 3], step: [f64; 3]) -> Estimate {
+        let (m, s) = (richardson(mesh, 2.0), richardson(step, 2.0));
+        let notes = [m.note("mesh (n/4, n/2, n elements)"), s.note("step (4dt, 2dt, dt)")];
+        let value = mesh[2];
+        // the candidate the fine level of both triplets
+        let bound = (value - m.extrapolated).abs() + (value - s.extrapolated).abs();
+        Estimate::of_triplets(quantity, (m, s), (value, value), bound, notes)
+    }
+
+    /// (16.15), (16.16) of the triplets `(mesh, step)` for the pilot `value`
+    /// whose error is estimated, `shared` the pilot both triplets run.
+    fn of_triplets(
+        quantity: Quantity,
+        (mesh, step): (Triplet, Triplet),
+        (value, shared): (f64, f64),
+        bound: f64,
+        notes: [Option<String>; 2],
+    ) -> Estimate {
+        let extrapolated = mesh.extrapolated + step.extrapolated - shared;
+        let error = value - extrapolated;
+        let notes: Vec<String> = notes.into_iter().flatten().collect();
         let safety = if notes.is_empty() { GCI_SAFETY } else { GCI_SAFETY_UNCONVERGED };
         Estimate {
             quantity,
@@ -446,8 +491,8 @@ impl Estimate {
             relative: error.abs() / extrapolated.abs(),
             bound,
             gci: safety * bound,
-            mesh: m,
-            step: s,
+            mesh,
+            step,
             notes,
         }
     }
@@ -484,10 +529,11 @@ impl Estimate {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ErrorEstimate {
     pub plan: PilotPlan,
-    /// The user's elements and step.
+    /// The base's elements and step (the user's for `--estimate-error`).
     pub n_elements: usize,
     pub time_step: f64,
-    /// (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4), (4n, Δt/4).
+    /// [`Layout::levels`]' order: (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4),
+    /// (4n, Δt/4) about the base of [`Layout::Base`].
     pub pilots: Vec<Pilot>,
     /// The quantities of the scene, in [`Quantity::ALL`]'s order.
     pub estimates: Vec<Estimate>,
@@ -510,16 +556,69 @@ pub fn pilot_levels(n: usize, dt: f64) -> [(usize, f64); 5] {
     [(n, dt), (n, dt / 2.0), (n, dt / 4.0), (2 * n, dt / 4.0), (4 * n, dt / 4.0)]
 }
 
+/// Where a round's five pilots lie about its base (n₀, Δt₀), the coarsest
+/// level of each triplet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// The triplets through the coarse corner (`--estimate-error`, the
+    /// user's numerics the base): Δt₀, Δt₀/2, Δt₀/4 at n₀ and n₀, 2n₀,
+    /// 4n₀ at Δt₀/4; 31 times the work of the base.
+    Base,
+    /// The triplets through the fine corner (4n₀, Δt₀/4), the candidate a
+    /// round of `accuracy` measures (docs/theory.md §16.13): Δt₀, Δt₀/2,
+    /// Δt₀/4 at 4n₀ and n₀, 2n₀, 4n₀ at Δt₀/4; 40 times the work of the
+    /// base, 2.5 times the candidate's.
+    Corner,
+}
+
+impl Layout {
+    /// The five pilots (elements, step) about the base `n`, `dt`, and the
+    /// indices of the step triplet and of the mesh triplet (coarse to fine;
+    /// their finest, the shared pilot, last).
+    pub fn levels(self, n: usize, dt: f64) -> ([(usize, f64); 5], [usize; 3], [usize; 3]) {
+        match self {
+            Layout::Base => (pilot_levels(n, dt), [0, 1, 2], [2, 3, 4]),
+            Layout::Corner => (
+                [(4 * n, dt), (4 * n, dt / 2.0), (4 * n, dt / 4.0), (2 * n, dt / 4.0), (n, dt / 4.0)],
+                [0, 1, 2],
+                [4, 3, 2],
+            ),
+        }
+    }
+}
+
 /// The estimate of the error of `scene`'s numerics (its n_elements and
 /// time_step) on the run `spec`, its pilots on up to `threads` threads.
 pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<ErrorEstimate, RiserError> {
+    estimate_error_laid(scene, spec, threads, Layout::Base, &[])
+}
+
+/// The pilots of `layout` about `scene`'s numerics (the base) on the run
+/// `spec`, on up to `threads` threads, and the estimates of their triplets:
+/// of the base's error ([`Layout::Base`]) or of the fine corner's
+/// ([`Layout::Corner`]). A level among `known` (pilots of the same run and
+/// numerics run before: an earlier round's) is taken from them, not run
+/// again.
+pub fn estimate_error_laid(
+    scene: &Scene,
+    spec: &RunSpec,
+    threads: usize,
+    layout: Layout,
+    known: &[Pilot],
+) -> Result<ErrorEstimate, RiserError> {
     let (n, dt) = (scene.analysis.n_elements, scene.analysis.time_step);
-    let plan = PilotPlan::new(spec.window, spec.period);
-    let levels = pilot_levels(n, dt);
+    let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
+    let (levels, step_at, mesh_at) = layout.levels(n, dt);
     let start = std::time::Instant::now();
     let next = std::sync::atomic::AtomicUsize::new(0);
-    // the costliest first: (4n, Δt/4) is 16 times (n, Δt)
-    let order = [4, 3, 2, 1, 0];
+    let same = |p: &Pilot, (ne, h): (usize, f64)| p.n_elements == ne && (p.time_step / h - 1.0).abs() < 1e-12;
+    let reused: Vec<Option<Pilot>> = levels
+        .iter()
+        .map(|&l| known.iter().find(|p| same(p, l)).map(|p| Pilot { wall_s: 0.0, reused: true, ..p.clone() }))
+        .collect();
+    // the costliest first, those not known
+    let mut order: Vec<usize> = (0..levels.len()).filter(|&i| reused[i].is_none()).collect();
+    order.sort_by(|&a, &b| (levels[b].0 as f64 / levels[b].1).total_cmp(&(levels[a].0 as f64 / levels[a].1)));
     let results: Vec<(usize, Result<Pilot, RiserError>)> = std::thread::scope(|s| {
         let workers: Vec<_> = (0..threads.clamp(1, levels.len()))
             .map(|_| {
@@ -537,7 +636,7 @@ pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<E
             .collect();
         workers.into_iter().flat_map(|w| w.join().unwrap_or_default()).collect()
     });
-    let mut pilots: Vec<Option<Pilot>> = vec![None; levels.len()];
+    let mut pilots: Vec<Option<Pilot>> = reused;
     for (i, r) in results {
         let (ne, h) = levels[i];
         pilots[i] = Some(r.map_err(|e| {
@@ -553,7 +652,11 @@ pub fn estimate_error(scene: &Scene, spec: &RunSpec, threads: usize) -> Result<E
     for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene, spec.fatigue.is_some())) {
         let v = |i: usize| pilots[i].values[q.index()];
         if (0..pilots.len()).all(|i| v(i).is_finite()) {
-            estimates.push(Estimate::of(q, [v(2), v(3), v(4)], [v(0), v(1), v(2)]));
+            let (mesh, step) = (mesh_at.map(v), step_at.map(v));
+            estimates.push(match layout {
+                Layout::Base => Estimate::of(q, mesh, step),
+                Layout::Corner => Estimate::of_corner(q, mesh, step),
+            });
         } else {
             notes.push(format!(
                 "{}: not estimated, a pilot has none over the window (the line off the seabed at a step of it)",
@@ -587,9 +690,12 @@ mod tests {
 
     #[test]
     fn the_plan_cuts_the_window_to_three_periods() {
-        let p = PilotPlan::new((20.0, 200.0), Some(10.0));
+        let p = PilotPlan::new((20.0, 200.0), Some(10.0), false);
         assert_eq!((p.window, p.duration, p.cut), ((20.0, 50.0), 50.0, true));
-        let p = PilotPlan::new((20.0, 40.0), Some(10.0));
+        let p = PilotPlan::new((20.0, 40.0), Some(10.0), false);
         assert_eq!((p.window, p.duration, p.cut), ((20.0, 40.0), 40.0, false));
+        // an irregular sea: twenty peak periods
+        let p = PilotPlan::new((20.0, 400.0), Some(10.0), true);
+        assert_eq!((p.window, p.duration, p.cut), ((20.0, 220.0), 220.0, true));
     }
 }

@@ -8,7 +8,7 @@ use riser::model::HangOff;
 use riser::scene::Scene;
 use riser::sim::Heave;
 use riser::sim::error_estimate::{
-    Convergence, ErrorEstimate, Estimate, PilotPlan, Quantity, RunSpec, estimate_error, richardson, run_pilot,
+    Convergence, ErrorEstimate, Estimate, Layout, PilotPlan, Quantity, RunSpec, estimate_error, richardson, run_pilot,
 };
 use std::sync::OnceLock;
 
@@ -28,6 +28,37 @@ fn richardson_recovers_a_power_law_exactly() {
     // refinement ratio 3: q* + C h² at h = 1, 1/3, 1/9
     let t = richardson([1.0, 1.0 / 9.0, 1.0 / 81.0].map(|h2| 5.0 + 2.0 * h2), 3.0);
     assert!((t.order.unwrap() - 2.0).abs() < 1e-9 && (t.extrapolated - 5.0).abs() < 1e-12);
+}
+
+/// The round through its candidate (docs/theory.md §16.13, `Layout::Corner`):
+/// with q = q* + a h^p + b Δt^s, the mesh triplet n/4, n/2, n at the
+/// candidate's step and the step triplet 4Δt, 2Δt, Δt at its mesh give q*
+/// and the candidate's own error a h_c^p + b Δt_c^s; the pilots' levels are
+/// those triplets, 2.5 times the candidate's work (16.20).
+#[test]
+fn the_round_through_its_candidate_estimates_the_candidate_s_error() {
+    let (q_star, a, p, b, s) = (100.0, 0.8, 3.0, -0.3, 2.0);
+    let q = |h: f64, dt: f64| q_star + a * h.powf(p) + b * dt.powf(s);
+    // the candidate at h = 0.25, Δt = 0.25 (the base at 1, 1)
+    let e = Estimate::of_corner(
+        Quantity::TopTensionMax,
+        [q(1.0, 0.25), q(0.5, 0.25), q(0.25, 0.25)],
+        [q(0.25, 1.0), q(0.25, 0.5), q(0.25, 0.25)],
+    );
+    let own = a * 0.25f64.powf(p) + b * 0.25f64.powf(s);
+    assert!((e.extrapolated - q_star).abs() < 1e-10, "{}", e.extrapolated);
+    assert!((e.value - q(0.25, 0.25)).abs() < 1e-12);
+    assert!((e.error - own).abs() < 1e-10, "{} vs {own}", e.error);
+    // each triplet's coarsest error, what (16.17) scales from the base
+    assert!((e.mesh.error - a).abs() < 1e-10 && (e.step.error - b).abs() < 1e-10);
+    let (levels, step, mesh) = Layout::Corner.levels(10, 0.4);
+    assert_eq!(levels[2], (40, 0.1), "the candidate shared by both triplets");
+    assert_eq!(
+        (step.map(|i| levels[i]), mesh.map(|i| levels[i])),
+        ([(40, 0.4), (40, 0.2), (40, 0.1)], [(10, 0.1), (20, 0.1), (40, 0.1)])
+    );
+    let work: f64 = levels.iter().map(|(n, dt)| *n as f64 / dt).sum();
+    assert!((work / (40.0 / 0.1) - 2.5).abs() < 1e-12, "{work}");
 }
 
 /// Mesh and step additive, q = q* + a h^p + b Δt^s: (16.15) gives q*, (16.16) the user's error a + b.
@@ -102,7 +133,14 @@ fn scene() -> Scene {
 }
 
 fn spec() -> RunSpec<'static> {
-    RunSpec { motion: &motion, window: WINDOW, period: Some(HEAVE.period), max_tangent_age: 20, fatigue: None }
+    RunSpec {
+        motion: &motion,
+        window: WINDOW,
+        period: Some(HEAVE.period),
+        irregular: false,
+        max_tangent_age: 20,
+        fatigue: None,
+    }
 }
 
 fn estimate() -> &'static ErrorEstimate {
@@ -112,7 +150,7 @@ fn estimate() -> &'static ErrorEstimate {
 
 /// The quantities at `n` elements and step `dt`, the pilots' window.
 fn reference(n: usize, dt: f64) -> [f64; 8] {
-    let plan = PilotPlan::new(WINDOW, Some(HEAVE.period));
+    let plan = PilotPlan::new(WINDOW, Some(HEAVE.period), false);
     run_pilot(&scene(), &spec(), &plan, n, dt).unwrap().values
 }
 
@@ -275,11 +313,12 @@ fn long_the_estimate_on_scenes_the_knob_refuses() {
             motion: &motion,
             window: (w0, w0 + 30.0),
             period: Some(period),
+            irregular: false,
             max_tangent_age: 20,
             fatigue: None,
         };
         let e = estimate_error(&scene, &spec, 2).unwrap();
-        let plan = PilotPlan::new(spec.window, spec.period);
+        let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
         let fine = run_pilot(&scene, &spec, &plan, 8 * N, DT / 16.0).unwrap().values;
         eprintln!("{name}: pilots {:.1} s wall, window {:?}", e.wall_s, plan.window);
         for q in TENSION {
@@ -318,7 +357,7 @@ fn long_the_touchdown_and_the_stress_range_on_the_steel_catenary() {
     let curve = riser::sim::fatigue::SnCurve::by_name("D-seawater-cp").unwrap();
     let spec = RunSpec { fatigue: Some(riser::sim::fatigue::FatigueSpec { curve, scf: 1.0, dff: 1.0 }), ..spec() };
     let e = estimate_error(&scene, &spec, 2).unwrap();
-    let plan = PilotPlan::new(spec.window, spec.period);
+    let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
     let fine = run_pilot(&scene, &spec, &plan, 8 * n, DT / 16.0).unwrap().values;
     eprintln!("steel catenary: pilots {:.1} s wall, not estimated: {:?}", e.wall_s, e.notes);
     let mut misses = Vec::new();

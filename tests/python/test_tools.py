@@ -297,6 +297,11 @@ def test_the_accuracy_study_s_accounting_of_a_measured_choice(monkeypatch):
     A.pilots_reference("bin", None, rows, "catenary", [big])
     assert asked == [("catenary", "reference_pilots", 240, 0.00625, 1e-10)]
     assert not A.measured_row("catenary", 1e-3, big, ref, rows)["reference_finer"]
+    # a pilot an earlier round ran, reused by a later one (`reused`, wall 0): counted once, in the pilots and
+    # in their element-steps
+    again = dict(d, accuracy=dict(d["accuracy"], pilots=pilots + [dict(pilots[0], round=2, wall_s=0.0, reused=True)]))
+    ra = A.measured_row("catenary", 1e-3, again, ref, rows)
+    assert ra["pilots"] == 2 and ra["pilots_share_3h_element_steps"] == r["pilots_share_3h_element_steps"]
 
 
 def test_the_accuracy_study_s_later_phases_start_from_the_committed_runs(riser_bin, tmp_path, monkeypatch):

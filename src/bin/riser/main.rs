@@ -284,7 +284,8 @@ struct RunCli {
     #[arg(long, value_name = "S", requires = "fatigue")]
     fatigue_series: Option<f64>,
     /// Measure the error of this run's numerics on its own motion and sea (issue 51,
-    /// docs/guide/accuracy.md): five short pilots (three periods of the slowest forcing) at
+    /// docs/guide/accuracy.md): five short pilots (three periods of the slowest forcing, twenty of an
+    /// irregular sea's peak period) at
     /// n, 2n, 4n elements and dt, dt/2, dt/4, the observed orders and Richardson's
     /// extrapolation; adds error_estimate to --json and a line to the text.
     #[arg(long)]
@@ -422,7 +423,7 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
                     .collect();
                 serde_json::json!({
                     "round": r + 1, "n_elements": p.n_elements, "time_step": p.time_step,
-                    "values": values, "wall_s": p.wall_s,
+                    "values": values, "wall_s": p.wall_s, "reused": p.reused,
                 })
             })
         })
@@ -1145,6 +1146,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         motion: &motion_fn,
         window: (w0, w1),
         period: slowest,
+        irregular: riser::loads::waves::irregular(&scene),
         max_tangent_age,
         fatigue: fatigue_asked.clone(),
     };

@@ -420,6 +420,15 @@ pub fn ramp_and_period(scene: &Scene) -> Result<Option<(f64, f64)>, SeaError> {
     Ok(Some((w.ramp.unwrap_or(period), period)))
 }
 
+/// The scene's sea is irregular: a spectrum or a table of components (the
+/// pilots' window spans more of its periods: docs/theory.md §16.13).
+pub fn irregular(scene: &Scene) -> bool {
+    scene
+        .waves
+        .as_ref()
+        .is_some_and(|w| matches!(w.kind, WaveKind::Jonswap | WaveKind::PiersonMoskowitz | WaveKind::Table))
+}
+
 fn settings_of(scene: &Scene, w: &WavesSpec, ramp: Ramp) -> SeaSettings {
     SeaSettings {
         depth: depth_of(scene),

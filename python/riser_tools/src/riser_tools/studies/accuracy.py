@@ -347,9 +347,10 @@ def pilots_reference(binary, path, rows, case, choices, run_new=True):
 
 
 def pilot_element_steps(acc):
-    """The pilots' work in element-steps (the chooser's cost unit, n/Δt over their simulated time)."""
+    """The pilots' work in element-steps (the chooser's cost unit, n/Δt over their simulated time); a pilot an
+    earlier round's reused (`reused`) is not counted again."""
     t = acc["pilot_window"][1]
-    return sum(p["n_elements"] * round(t / p["time_step"]) for p in acc["pilots"])
+    return sum(p["n_elements"] * round(t / p["time_step"]) for p in acc["pilots"] if not p.get("reused"))
 
 
 def measured_row(case, target, d, ref, rows):
@@ -375,7 +376,8 @@ def measured_row(case, target, d, ref, rows):
             "newton_tolerance": d["newton_tolerance"], "error": e, "estimate": acc["estimate"],
             "estimate_over_error": acc["estimate"] / e if e > 0 else float("inf"), "met": e <= target,
             "riser_met": acc["met"],
-            "orders": orders(acc), "notes": " / ".join(acc["notes"]), "pilots": len(acc["pilots"]),
+            "orders": orders(acc), "notes": " / ".join(acc["notes"]),
+            "pilots": sum(not p.get("reused") for p in acc["pilots"]),
             "rounds": max(p["round"] for p in acc["pilots"]), "finest_pilot": f"{n_f} el., {dt_f:g} s",
             "reference": f"{ref['n_elements']} el., {float(ref['time_step']):g} s",
             "reference_finer": finer_than(ref, min(2 * n_f, MAX_ELEMENTS), dt_f / 2),
@@ -597,7 +599,8 @@ def write_doc(rows, docs, binary):
         "on two threads; the elapsed time in brackets), over the run's solve wall time scaled to 10800 s of "
         "simulated time, and the same in element-steps (the pilots' n x steps against the chosen n x 10800 s / "
         "Δt: not perturbed by the shared 2-core machine the walls were measured on). A 3-hour run's pilots are "
-        "these: they span the window's first three periods of the slowest forcing whatever the run's length. "
+        "these: they span the window's first three periods of the slowest forcing (twenty peak periods of an "
+        "irregular sea) whatever the run's length. "
         "Orders: per quantity of the target (top tension max, min, mean) the observed order of the mesh (h) and "
         "the step (t) of the round the choice came from, – where the triplet's spread is at the pilots' floor or "
         "it did not converge monotonically (the notes say which). Rows: "
