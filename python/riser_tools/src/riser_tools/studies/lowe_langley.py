@@ -152,6 +152,23 @@ def interp(ts, ys, x):
     return ys[j - 1] + a * (ys[j] - ys[j - 1])
 
 
+def against_paper(rwin, win, diffs, ref, w0):
+    """riser's top tension against the paper's: max/min/mean over the window
+    (`rwin` the paper's (t, kN), `win` riser's) and MoorDyn's pointwise test
+    on `diffs` (riser - paper at each of `ref`'s times), the last from `w0`."""
+    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
+    return {
+        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
+        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
+        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
+        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
+        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
+        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
+        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
+        "n": len(diffs),
+    }
+
+
 def reduce_case(series, ref):
     """Top tension (kN) against the paper's: at the crest of the last
     period, max/min over the last period, and MoorDyn's pointwise test."""
@@ -165,17 +182,9 @@ def reduce_case(series, ref):
     win = [(t - T_RAMP, v) for t, v in zip(ts, tt) if w0 <= t - T_RAMP <= ref_t[-1]]
     rwin = [(t, v) for t, v in zip(ref_t, ref_v) if w0 <= t <= w1]
     diffs = [interp(ts, tt, t + T_RAMP) - v for t, v in ref]
-    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
     return {
         "crest": (interp(ref_t, ref_v, crest - T_RAMP), interp(ts, tt, crest)),
-        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
-        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
-        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
-        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
-        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
-        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
-        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
-        "n": len(diffs),
+        **against_paper(rwin, win, diffs, ref, w0),
         "touchdown_min": min(series["touchdown_s"]),
         "crest_t": crest - T_RAMP,
     }
@@ -255,7 +264,6 @@ def reduce_waves(series, ref, phase):
     ts = series["t"]
     tt = [v / 1e3 for v in series["top_tension"]]
     diffs = [interp(ts, tt, t + T_START_W) - v for t, v in ref]
-    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
     w0 = T_WINDOW_W - T_W
     rwin = [(t, v) for t, v in ref if t >= w0]
     win = [(t - T_START_W, v) for t, v in zip(ts, tt) if w0 <= t - T_START_W <= T_WINDOW_W]
@@ -263,14 +271,7 @@ def reduce_waves(series, ref, phase):
     eta = series.get("wave_elevation")
     eta_err = None if eta is None else max(abs(e - H_W / 2 * math.cos(ph - om * t)) for t, e in zip(ts, eta))
     return {
-        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
-        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
-        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
-        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
-        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
-        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
-        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
-        "n": len(diffs),
+        **against_paper(rwin, win, diffs, ref, w0),
         "eta_err": eta_err,
         "at": {t: d for d, (t, _) in zip(diffs, ref)},
     }
