@@ -2838,6 +2838,13 @@ mod system_tests {
     use crate::scene::system::SystemScene;
     use std::sync::Arc;
 
+    /// A folder of this process's for a test's files, `name` its test's.
+    fn scratch_dir(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("riser-fmu-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
     const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
 
     /// The OC3 mooring with 20 elements a line, written to `dir`; and each
@@ -2892,8 +2899,7 @@ mod system_tests {
     /// first line bit for bit; the energies summed likewise.
     #[test]
     fn a_system_is_the_sum_of_its_lines_run_alone() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system");
         let (system, lines) = files(&dir);
         let (mut sys, st) = instance(&system, &[]);
         assert_eq!(st, Status::Ok);
@@ -2955,8 +2961,7 @@ mod system_tests {
     /// a single line) is refused, named.
     #[test]
     fn a_systems_state_serializes_and_continues_bit_for_bit() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-state-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system-state");
         let (system, lines) = files(&dir);
         let (mut a, _) = instance(&system, &[]);
         let h = 0.25;
@@ -3018,8 +3023,7 @@ mod system_tests {
     #[test]
     fn free_points_step_as_the_command_lines_run_and_their_state_continues() {
         use crate::sim::system_dynamics::SystemRun;
-        let dir = std::env::temp_dir().join(format!("riser-fmu-free-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("free");
         let (path, sys) = clump_file(&dir);
         let (mut fmu, st) = instance(&path, &[]);
         assert_eq!(st, Status::Ok);
@@ -3105,8 +3109,7 @@ mod system_tests {
     /// line's value (a master that sets every start value).
     #[test]
     fn a_master_sets_the_numerics_of_every_line_and_no_line_property() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-params-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system-params");
         let (system, _) = files(&dir);
         let (i, st) = instance(&system, &[("time_step", Value::Real(0.1))]);
         assert_eq!(st, Status::Ok);
