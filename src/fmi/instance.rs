@@ -1534,26 +1534,28 @@ impl Instance {
             "vessel_moment_z",
         ];
         const KNOWNS: [&str; 6] = ["surge", "sway", "heave", "roll", "pitch", "yaw"];
-        let mut rows = Vec::with_capacity(unknowns.len());
-        for &vr in unknowns {
-            match variable(vr) {
-                Some(v) => match UNKNOWNS.iter().position(|n| *n == v.name) {
-                    Some(a) => rows.push(a),
-                    None => return self.fail(&format!("{F}: '{}' is not an unknown of it: {WHAT}", v.name)),
-                },
-                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
-            }
+        /// The positions in `names` of the variables `vrs`, or the message
+        /// naming the first that is not among them (`role`: "an unknown",
+        /// "a known").
+        fn positions_in(vrs: &[u32], names: &[&str], role: &str) -> Result<Vec<usize>, String> {
+            vrs.iter()
+                .map(|&vr| match variable(vr) {
+                    Some(v) => names
+                        .iter()
+                        .position(|n| *n == v.name)
+                        .ok_or_else(|| format!("{F}: '{}' is not {role} of it: {WHAT}", v.name)),
+                    None => Err(format!("{F}: unknown value reference {vr}")),
+                })
+                .collect()
         }
-        let mut cols = Vec::with_capacity(knowns.len());
-        for &vr in knowns {
-            match variable(vr) {
-                Some(v) => match KNOWNS.iter().position(|n| *n == v.name) {
-                    Some(a) => cols.push(a),
-                    None => return self.fail(&format!("{F}: '{}' is not a known of it: {WHAT}", v.name)),
-                },
-                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
-            }
-        }
+        let rows = match positions_in(unknowns, &UNKNOWNS, "an unknown") {
+            Ok(rows) => rows,
+            Err(m) => return self.fail(&m),
+        };
+        let cols = match positions_in(knowns, &KNOWNS, "a known") {
+            Ok(cols) => cols,
+            Err(m) => return self.fail(&m),
+        };
         if let Some(v) = dv_known.iter().find(|v| !v.is_finite()) {
             return self.fail(&format!("{F}: seed value {v} is not finite"));
         }

@@ -4,9 +4,9 @@
 //! stiffness, the 6×6 stiffness against central differences of the
 //! system's own statics, and the command line.
 
-use crate::common::system::{block_errors, finite_difference_stiffness};
+use crate::common::system::{block_errors, finite_difference_stiffness, has, invalid};
+use riser::scene::Scene;
 use riser::scene::system::SystemScene;
-use riser::scene::{Scene, SceneError};
 use riser::sim::system::solve_system;
 
 const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
@@ -54,17 +54,6 @@ fn the_stiffness_is_the_derivative_of_the_statics() {
             assert!(e < 1e-4, "{errs:?}");
         }
     }
-}
-
-fn invalid(text: &str) -> Vec<(String, String)> {
-    match SystemScene::from_toml(text, "test") {
-        Err(SceneError::Invalid(es)) => es.into_iter().map(|e| (e.field, e.message)).collect(),
-        other => panic!("expected invalid, got {other:?}"),
-    }
-}
-
-fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
-    errs.iter().any(|(f, m)| f == field && m.contains(words))
 }
 
 #[test]

@@ -9,10 +9,9 @@
 //! named; the dynamics refusing free points, named. MoorPy's numbers are in
 //! tests/python/test_system.py.
 
-use crate::common::system::{block_errors, finite_difference_stiffness};
+use crate::common::system::{block_errors, finite_difference_stiffness, has, invalid};
 use riser::math::V3;
 use riser::model::cable::statics::touchdown_start;
-use riser::scene::SceneError;
 use riser::scene::system::{PointKind, SystemScene, VesselEnd};
 use riser::sim::system::{SystemStatics, cable_start, solve_line_between, solve_system, solve_system_from};
 
@@ -135,17 +134,6 @@ fn a_chain_lying_from_a_free_point_starts_taut() {
     );
     assert_eq!(solved.report.continuation_steps, 0);
     assert!(solved.report.iterations <= 8, "{}", solved.report.iterations);
-}
-
-fn invalid(text: &str) -> Vec<(String, String)> {
-    match SystemScene::from_toml(text, "test") {
-        Err(SceneError::Invalid(es)) => es.into_iter().map(|e| (e.field, e.message)).collect(),
-        other => panic!("expected invalid, got {other:?}"),
-    }
-}
-
-fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
-    errs.iter().any(|(f, m)| f == field && m.contains(words))
 }
 
 #[test]

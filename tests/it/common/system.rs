@@ -1,6 +1,9 @@
-//! Checks on a system of lines' 6×6 stiffness (docs/theory.md §17.3).
+//! Checks on a system of lines: its scene's refusals and its 6×6
+//! stiffness (docs/theory.md §17.3).
 
 use riser::math::{M6, V3};
+use riser::scene::SceneError;
+use riser::scene::system::SystemScene;
 use riser::sim::system::{SystemStatics, perturbed_pose};
 
 /// −∂(F, M)/∂(pose) by central differences of `solve` (the system's
@@ -37,4 +40,18 @@ pub fn block_errors(k: &M6, fd: &M6) -> [f64; 4] {
         out[b] = (kb - fb).amax() / kb.amax().max(fb.amax());
     }
     out
+}
+
+/// The (field, message) pairs a system scene `text` is refused with
+/// (panics if it is accepted or fails otherwise).
+pub fn invalid(text: &str) -> Vec<(String, String)> {
+    match SystemScene::from_toml(text, "test") {
+        Err(SceneError::Invalid(es)) => es.into_iter().map(|e| (e.field, e.message)).collect(),
+        other => panic!("expected invalid, got {other:?}"),
+    }
+}
+
+/// Whether `errs` refuses `field` with a message containing `words`.
+pub fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
+    errs.iter().any(|(f, m)| f == field && m.contains(words))
 }

@@ -299,6 +299,21 @@ def fmt(x, nd=2):
     return f"{x:.{nd}f}"
 
 
+def window_rows(tag, r, at=""):
+    """The report's rows of a case against the paper (`r` of `against_paper`):
+    max, min and mean top tension over the window (`at` names it) and
+    MoorDyn's pointwise check."""
+    rows = []
+    for what in ("max", "min"):
+        (pt, pv), (rt, rv) = r[what]
+        rows.append(f"| {tag}: {what} top tension{at} | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
+    pm, rm = r["mean"]
+    rows.append(f"| {tag}: mean top tension{at} | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
+    md, mt_, ms = r["maxdiff"]
+    rows.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="riser-tools lowe-langley", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -429,14 +444,7 @@ def main(argv=None):
         tag = "case 3 heave" + ("" if name == "case3" else f", {label}")
         pc, rc = r["crest"]
         L.append(f"| {tag}: top tension at the heave crest (t_ref {r['crest_t']:.2f} s) | {fmt(pc)} | {fmt(rc)} | {rc - pc:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["max"]
-        L.append(f"| {tag}: max top tension | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["min"]
-        L.append(f"| {tag}: min top tension | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        pm, rm = r["mean"]
-        L.append(f"| {tag}: mean top tension | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
-        md, mt_, ms = r["maxdiff"]
-        L.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+        L.extend(window_rows(tag, r))
     for case, what in ((1, "surge"), (2, "sway")):
         status, r = horiz[case]
         ref = read_ref(case)
@@ -458,14 +466,7 @@ def main(argv=None):
             ref = [v for t, v in read_ref(case) if t >= T_WINDOW_W - T_W]
             L.append(f"| {tag}: max / min top tension ({w_last}) | {fmt(max(ref))} / {fmt(min(ref))} | not run: this binary refuses waves | — | ±{TOL_MOTION} each |")
             continue
-        (pt, pv), (rt, rv) = r["max"]
-        L.append(f"| {tag}: max top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["min"]
-        L.append(f"| {tag}: min top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        pm, rm = r["mean"]
-        L.append(f"| {tag}: mean top tension ({w_last}) | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
-        md, mt_, ms = r["maxdiff"]
-        L.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+        L.extend(window_rows(tag, r, f" ({w_last})"))
         if case in mdres:
             m = mdres[case]
             L.append(f"| {tag}: MoorDyn 2.7.2 (its test, run here) against the paper | — | largest \\|difference\\| {fmt(m['paper'][0])} at t_ref {m['paper'][1]:.1f} s | {m['paper'][2]:+.2f}; {m['paper_n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
