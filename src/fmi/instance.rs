@@ -433,12 +433,9 @@ impl Instance {
         self.warned_split = false;
         self.knob = None;
         self.hf_watch = None;
-        self.sim = None;
-        self.others.clear();
-        self.free = None;
+        self.drop_start();
         self.step_start = None;
         self.scene = None;
-        self.outputs = None;
         self.force_mean = V3::zeros();
         self.start_time = 0.0;
         self.ramp_start = 0.0;
@@ -471,6 +468,16 @@ impl Instance {
         }
         self.said.push(msg.to_string());
         self.log(status, cat, msg);
+    }
+
+    /// The start built from the parameters and inputs (the line, the other
+    /// lines, the free points, their outputs) dropped: rebuilt when next
+    /// needed.
+    fn drop_start(&mut self) {
+        self.sim = None;
+        self.others.clear();
+        self.free = None;
+        self.outputs = None;
     }
 
     /// An error: logged, the instance goes to the Error state.
@@ -530,10 +537,7 @@ impl Instance {
         }
         if start_time != self.start_time {
             // a static state built early (outputs read before) starts anew
-            self.sim = None;
-            self.others.clear();
-            self.free = None;
-            self.outputs = None;
+            self.drop_start();
         }
         self.start_time = start_time;
         Status::Ok
@@ -1706,10 +1710,7 @@ impl Instance {
                 self.history.note_set(i);
                 if self.mode != StepComplete {
                     // the start depends on the inputs: rebuild at exit
-                    self.sim = None;
-                    self.others.clear();
-                    self.free = None;
-                    self.outputs = None;
+                    self.drop_start();
                 }
                 Status::Ok
             }
@@ -1767,10 +1768,7 @@ impl Instance {
         };
         *slot = Some(x);
         if self.mode != StepComplete {
-            self.sim = None;
-            self.others.clear();
-            self.free = None;
-            self.outputs = None;
+            self.drop_start();
         }
         Status::Ok
     }
@@ -1837,10 +1835,7 @@ impl Instance {
         }
         self.params[vr as usize] = Some((value, true));
         self.scene = None;
-        self.sim = None;
-        self.others.clear();
-        self.free = None;
-        self.outputs = None;
+        self.drop_start();
         Status::Ok
     }
 
