@@ -20,16 +20,25 @@ use std::time::Instant;
 mod common;
 use common::*;
 
+/// The hang-off's heave in both parts: 2.5 m, 20 s, ramped in over 20 s.
+const HEAVE: Heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
+
+/// `sim` started from its static state and heaved by [`HEAVE`] for `steps`
+/// of its own time step; that step, s.
+fn heaved(sim: &mut Simulation, steps: u64) -> f64 {
+    sim.start(HEAVE.at(0.0));
+    let dt = sim.integrator.options().time_step;
+    for k in 1..=steps {
+        sim.advance_to(k as f64 * dt, &|t| HEAVE.at(t)).unwrap();
+    }
+    dt
+}
+
 fn main() {
     let base = Scene::builtin("catenary").unwrap();
     let mut sim = Simulation::from_scene(&base).unwrap();
-    let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
-    let motion = move |t: f64| heave.at(t);
-    sim.start(heave.at(0.0));
-    let dt = sim.integrator.options().time_step;
-    for k in 1..=200u64 {
-        sim.advance_to(k as f64 * dt, &motion).unwrap();
-    }
+    let dt = heaved(&mut sim, 200);
+    let motion = |t: f64| HEAVE.at(t);
     let points: Vec<V3> = sim.integrator.line_points(&sim.state).iter().map(|p| p.position).collect();
     let prev = sim.state.clone();
     let t = prev.time + dt;
@@ -111,13 +120,8 @@ fn steps_in_waves(base: &Scene) {
     for _ in 0..ROUNDS {
         for (i, scene) in scenes.iter().enumerate() {
             let mut sim = Simulation::from_scene(scene).unwrap();
-            let heave = Heave { amplitude: 2.5, period: 20.0, until: None, ramp: 20.0 };
-            let motion = move |t: f64| heave.at(t);
-            sim.start(heave.at(0.0));
-            let dt = sim.integrator.options().time_step;
-            for k in 1..=100u64 {
-                sim.advance_to(k as f64 * dt, &motion).unwrap();
-            }
+            let dt = heaved(&mut sim, 100);
+            let motion = |t: f64| HEAVE.at(t);
             let it0 = sim.state.newton_iterations;
             let t0 = Instant::now();
             for k in 101..=500u64 {

@@ -78,6 +78,19 @@ fn time_steps_do_not_allocate() {
     }
 }
 
+/// The allocations in steps 40 to 139 of `step` on `i`, after 40 steps of
+/// warming up.
+fn allocations_after_warm_up<T>(i: &mut T, step: impl Fn(&mut T, u64)) -> usize {
+    for k in 0..40 {
+        step(i, k);
+    }
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for k in 40..140 {
+        step(i, k);
+    }
+    ALLOCATIONS.load(Ordering::Relaxed) - before
+}
+
 /// fmi2DoStep of a system with a free point (the clump-weight mooring,
 /// docs/cases, its chains coarsened) allocates nothing once warmed up: the
 /// points' stepper and its lines' trials work in storage allocated at
@@ -108,14 +121,7 @@ fn a_systems_do_step_with_free_points_does_not_allocate() {
         assert_eq!(i.set_real(heave, 0.5 * (0.8 * t).sin()), Status::Ok);
         assert_eq!(i.do_step(t, h), Status::Ok, "t = {t} s");
     };
-    for k in 0..40 {
-        step(&mut i, k);
-    }
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for k in 40..140 {
-        step(&mut i, k);
-    }
-    let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    let during = allocations_after_warm_up(&mut i, step);
     eprintln!("the clump-weight system's fmi2DoStep: allocations in 100 steps: {during}");
     assert_eq!(during, 0);
     std::fs::remove_dir_all(&dir).ok();
@@ -145,14 +151,7 @@ fn a_do_step_with_the_vessel_s_answer_inside_does_not_allocate() {
         assert_eq!(i.set_real(heave_velocity, 1.0 * ramp * w * (w * t).cos()), Status::Ok);
         assert_eq!(i.do_step(t, h), Status::Ok, "t = {t} s");
     };
-    for k in 0..40 {
-        step(&mut i, k);
-    }
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for k in 40..140 {
-        step(&mut i, k);
-    }
-    let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    let during = allocations_after_warm_up(&mut i, step);
     eprintln!("fmi2DoStep with the vessel's answer inside (§7.10): allocations in 100 steps: {during}");
     assert_eq!(during, 0);
 }

@@ -437,12 +437,9 @@ impl Instance {
         self.warned_split = false;
         self.knob = None;
         self.hf_watch = None;
-        self.sim = None;
-        self.others.clear();
-        self.free = None;
+        self.drop_start();
         self.step_start = None;
         self.scene = None;
-        self.outputs = None;
         self.force_mean = V3::zeros();
         self.start_time = 0.0;
         self.ramp_start = 0.0;
@@ -475,6 +472,16 @@ impl Instance {
         }
         self.said.push(msg.to_string());
         self.log(status, cat, msg);
+    }
+
+    /// The start built from the parameters and inputs (the line, the other
+    /// lines, the free points, their outputs) dropped: rebuilt when next
+    /// needed.
+    fn drop_start(&mut self) {
+        self.sim = None;
+        self.others.clear();
+        self.free = None;
+        self.outputs = None;
     }
 
     /// An error: logged, the instance goes to the Error state.
@@ -534,10 +541,7 @@ impl Instance {
         }
         if start_time != self.start_time {
             // a static state built early (outputs read before) starts anew
-            self.sim = None;
-            self.others.clear();
-            self.free = None;
-            self.outputs = None;
+            self.drop_start();
         }
         self.start_time = start_time;
         Status::Ok
@@ -1552,26 +1556,28 @@ impl Instance {
             "vessel_moment_z",
         ];
         const KNOWNS: [&str; 6] = ["surge", "sway", "heave", "roll", "pitch", "yaw"];
-        let mut rows = Vec::with_capacity(unknowns.len());
-        for &vr in unknowns {
-            match variable(vr) {
-                Some(v) => match UNKNOWNS.iter().position(|n| *n == v.name) {
-                    Some(a) => rows.push(a),
-                    None => return self.fail(&format!("{F}: '{}' is not an unknown of it: {WHAT}", v.name)),
-                },
-                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
-            }
+        /// The positions in `names` of the variables `vrs`, or the message
+        /// naming the first that is not among them (`role`: "an unknown",
+        /// "a known").
+        fn positions_in(vrs: &[u32], names: &[&str], role: &str) -> Result<Vec<usize>, String> {
+            vrs.iter()
+                .map(|&vr| match variable(vr) {
+                    Some(v) => names
+                        .iter()
+                        .position(|n| *n == v.name)
+                        .ok_or_else(|| format!("{F}: '{}' is not {role} of it: {WHAT}", v.name)),
+                    None => Err(format!("{F}: unknown value reference {vr}")),
+                })
+                .collect()
         }
-        let mut cols = Vec::with_capacity(knowns.len());
-        for &vr in knowns {
-            match variable(vr) {
-                Some(v) => match KNOWNS.iter().position(|n| *n == v.name) {
-                    Some(a) => cols.push(a),
-                    None => return self.fail(&format!("{F}: '{}' is not a known of it: {WHAT}", v.name)),
-                },
-                None => return self.fail(&format!("{F}: unknown value reference {vr}")),
-            }
-        }
+        let rows = match positions_in(unknowns, &UNKNOWNS, "an unknown") {
+            Ok(rows) => rows,
+            Err(m) => return self.fail(&m),
+        };
+        let cols = match positions_in(knowns, &KNOWNS, "a known") {
+            Ok(cols) => cols,
+            Err(m) => return self.fail(&m),
+        };
         if let Some(v) = dv_known.iter().find(|v| !v.is_finite()) {
             return self.fail(&format!("{F}: seed value {v} is not finite"));
         }
@@ -1722,10 +1728,7 @@ impl Instance {
                 self.history.note_set(i);
                 if self.mode != StepComplete {
                     // the start depends on the inputs: rebuild at exit
-                    self.sim = None;
-                    self.others.clear();
-                    self.free = None;
-                    self.outputs = None;
+                    self.drop_start();
                 }
                 Status::Ok
             }
@@ -1783,10 +1786,7 @@ impl Instance {
         };
         *slot = Some(x);
         if self.mode != StepComplete {
-            self.sim = None;
-            self.others.clear();
-            self.free = None;
-            self.outputs = None;
+            self.drop_start();
         }
         Status::Ok
     }
@@ -1853,10 +1853,7 @@ impl Instance {
         }
         self.params[vr as usize] = Some((value, true));
         self.scene = None;
-        self.sim = None;
-        self.others.clear();
-        self.free = None;
-        self.outputs = None;
+        self.drop_start();
         Status::Ok
     }
 
@@ -2856,6 +2853,13 @@ mod system_tests {
     use crate::scene::system::SystemScene;
     use std::sync::Arc;
 
+    /// A folder of this process's for a test's files, `name` its test's.
+    fn scratch_dir(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("riser-fmu-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
     const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
 
     /// The OC3 mooring with 20 elements a line, written to `dir`; and each
@@ -2910,8 +2914,7 @@ mod system_tests {
     /// first line bit for bit; the energies summed likewise.
     #[test]
     fn a_system_is_the_sum_of_its_lines_run_alone() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system");
         let (system, lines) = files(&dir);
         let (mut sys, st) = instance(&system, &[]);
         assert_eq!(st, Status::Ok);
@@ -2973,8 +2976,7 @@ mod system_tests {
     /// a single line) is refused, named.
     #[test]
     fn a_systems_state_serializes_and_continues_bit_for_bit() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-state-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system-state");
         let (system, lines) = files(&dir);
         let (mut a, _) = instance(&system, &[]);
         let h = 0.25;
@@ -3036,8 +3038,7 @@ mod system_tests {
     #[test]
     fn free_points_step_as_the_command_lines_run_and_their_state_continues() {
         use crate::sim::system_dynamics::SystemRun;
-        let dir = std::env::temp_dir().join(format!("riser-fmu-free-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("free");
         let (path, sys) = clump_file(&dir);
         let (mut fmu, st) = instance(&path, &[]);
         assert_eq!(st, Status::Ok);
@@ -3123,8 +3124,7 @@ mod system_tests {
     /// line's value (a master that sets every start value).
     #[test]
     fn a_master_sets_the_numerics_of_every_line_and_no_line_property() {
-        let dir = std::env::temp_dir().join(format!("riser-fmu-system-params-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("system-params");
         let (system, _) = files(&dir);
         let (i, st) = instance(&system, &[("time_step", Value::Real(0.1))]);
         assert_eq!(st, Status::Ok);

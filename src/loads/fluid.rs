@@ -444,13 +444,7 @@ mod tests {
     /// the band cut is then skipped nearly wherever the surface leaves it).
     #[test]
     fn the_depression_bound_bounds_the_cubic_and_is_tight_for_long_waves() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = crate::loads::uniform_stream(0x2545_f491_4f6c_dd1d);
         let still = WaterAtGauss::STILL;
         for _ in 0..3000 {
             let scale = 10f64.powf(3.0 * next());

@@ -21,6 +21,18 @@ use seabed::Seabed;
 use surface::FreeSurface;
 use weight::{BuoyancySection, VerticalLoad};
 
+/// The unit tests' random numbers: a xorshift64 stream from `seed`,
+/// uniform in [−1, 1).
+#[cfg(test)]
+pub(crate) fn uniform_stream(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
 /// Weight, buoyancy and buoyancy modules along the line: on each piece of
 /// line (its section, with its modules smeared, docs/theory.md §11)
 /// q = −(m − ρw A) g, plus the scene's `[[buoyancy]]` loads.

@@ -277,13 +277,7 @@ mod tests {
     fn hermite_below_is_the_centrelines_largest_height() {
         let s = surface();
         let low = s.z - s.half_width;
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = crate::loads::uniform_stream(0x9e37_79b9_7f4a_7c15);
         let (mut agree, mut above) = (0, 0);
         for _ in 0..2000 {
             let h = 20.0 * (next() + 1.1);

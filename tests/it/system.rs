@@ -4,10 +4,10 @@
 //! stiffness, the 6×6 stiffness against central differences of the
 //! system's own statics, and the command line.
 
-use riser::math::{M6, V3};
+use crate::common::system::{block_errors, finite_difference_stiffness, has, invalid};
+use riser::scene::Scene;
 use riser::scene::system::SystemScene;
-use riser::scene::{Scene, SceneError};
-use riser::sim::system::{perturbed_pose, solve_system};
+use riser::sim::system::solve_system;
 
 const OC3: &str = include_str!("../../docs/cases/oc3_hywind_mooring.toml");
 
@@ -37,42 +37,6 @@ fn the_oc3_mooring_has_its_published_surge_stiffness() {
     }
 }
 
-/// Central differences of the system's statics: ±h m in translation and
-/// ±h_r rad of global rotation vector about the pose.
-fn finite_difference_stiffness(sys: &SystemScene, pose: &[f64; 6], h: f64, hr: f64) -> M6 {
-    let mut k = M6::zeros();
-    for j in 0..6 {
-        let e = |s: f64| {
-            let mut du = V3::zeros();
-            let mut dth = V3::zeros();
-            if j < 3 {
-                du[j] = s * h;
-            } else {
-                dth[j - 3] = s * hr;
-            }
-            let st = solve_system(sys, &perturbed_pose(pose, du, dth), false).unwrap();
-            [st.force.x, st.force.y, st.force.z, st.moment.x, st.moment.y, st.moment.z]
-        };
-        let (p, m) = (e(1.0), e(-1.0));
-        let step = if j < 3 { h } else { hr };
-        for i in 0..6 {
-            k[(i, j)] = -(p[i] - m[i]) / (2.0 * step);
-        }
-    }
-    k
-}
-
-/// The largest error of each 3×3 block relative to the block's largest entry.
-fn block_errors(k: &M6, fd: &M6) -> [f64; 4] {
-    let mut out = [0.0; 4];
-    for (b, (r, c)) in [(0, 0), (0, 3), (3, 0), (3, 3)].into_iter().enumerate() {
-        let kb = k.fixed_view::<3, 3>(r, c);
-        let fb = fd.fixed_view::<3, 3>(r, c);
-        out[b] = (kb - fb).amax() / kb.amax().max(fb.amax());
-    }
-    out
-}
-
 /// The composed 6×6 stiffness (each line's translation stiffness moved to
 /// the reference point with the moment arm's geometric term, theory §17.3)
 /// is the derivative of the system's re-solved statics: at the neutral pose
@@ -82,7 +46,7 @@ fn the_stiffness_is_the_derivative_of_the_statics() {
     let sys = oc3();
     for pose in [[0.0; 6], [10.0, -4.0, 1.5, 0.03, -0.05, 0.2]] {
         let k = solve_system(&sys, &pose, true).unwrap().stiffness;
-        let fd = finite_difference_stiffness(&sys, &pose, 1e-2, 1e-4);
+        let fd = finite_difference_stiffness(&pose, 1e-2, 1e-4, |p| solve_system(&sys, p, false).unwrap());
         let errs = block_errors(&k, &fd);
         eprintln!("pose {pose:?}: block errors (FF, FM, MF, MM) {errs:?}\nK {k:.6e}\nFD {fd:.6e}");
         // measured below 2e-6 (the blocks' O(h²) and the statics' 1e-10 residual)
@@ -90,17 +54,6 @@ fn the_stiffness_is_the_derivative_of_the_statics() {
             assert!(e < 1e-4, "{errs:?}");
         }
     }
-}
-
-fn invalid(text: &str) -> Vec<(String, String)> {
-    match SystemScene::from_toml(text, "test") {
-        Err(SceneError::Invalid(es)) => es.into_iter().map(|e| (e.field, e.message)).collect(),
-        other => panic!("expected invalid, got {other:?}"),
-    }
-}
-
-fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
-    errs.iter().any(|(f, m)| f == field && m.contains(words))
 }
 
 #[test]

@@ -9,13 +9,11 @@
 //! named; the dynamics refusing free points, named. MoorPy's numbers are in
 //! tests/python/test_system.py.
 
-use riser::math::{M6, V3};
+use crate::common::system::{block_errors, finite_difference_stiffness, has, invalid};
+use riser::math::V3;
 use riser::model::cable::statics::touchdown_start;
-use riser::scene::SceneError;
 use riser::scene::system::{PointKind, SystemScene, VesselEnd};
-use riser::sim::system::{
-    SystemStatics, cable_start, perturbed_pose, solve_line_between, solve_system, solve_system_from,
-};
+use riser::sim::system::{SystemStatics, cable_start, solve_line_between, solve_system, solve_system_from};
 
 const CASES: [&str; 3] = ["clump_weight_mooring", "subsea_buoy_mooring", "bridle_mooring"];
 const POSES: [[f64; 6]; 2] = [[0.0; 6], [8.0, 3.0, 1.0, 0.02, -0.03, 0.05]];
@@ -80,49 +78,16 @@ fn each_free_point_is_in_equilibrium() {
     }
 }
 
-/// −∂(F, M)/∂(pose) by central differences of the system's statics (±h m,
-/// ±h_r rad of global rotation vector), each perturbed pose re-solved, its
-/// free points re-equilibrated from the state at `pose`.
-fn finite_difference_stiffness(sys: &SystemScene, pose: &[f64; 6], base: &SystemStatics, h: f64, hr: f64) -> M6 {
-    let mut k = M6::zeros();
-    for j in 0..6 {
-        let e = |s: f64| {
-            let (mut du, mut dth) = (V3::zeros(), V3::zeros());
-            if j < 3 {
-                du[j] = s * h;
-            } else {
-                dth[j - 3] = s * hr;
-            }
-            let st = solve_system_from(sys, &perturbed_pose(pose, du, dth), false, Some(base)).unwrap();
-            [st.force.x, st.force.y, st.force.z, st.moment.x, st.moment.y, st.moment.z]
-        };
-        let (p, m) = (e(1.0), e(-1.0));
-        let step = if j < 3 { h } else { hr };
-        for i in 0..6 {
-            k[(i, j)] = -(p[i] - m[i]) / (2.0 * step);
-        }
-    }
-    k
-}
-
-/// The largest error of each 3×3 block relative to the block's largest entry.
-fn block_errors(k: &M6, fd: &M6) -> [f64; 4] {
-    let mut out = [0.0; 4];
-    for (b, (r, c)) in [(0, 0), (0, 3), (3, 0), (3, 3)].into_iter().enumerate() {
-        let kb = k.fixed_view::<3, 3>(r, c);
-        let fb = fd.fixed_view::<3, 3>(r, c);
-        out[b] = (kb - fb).amax() / kb.amax().max(fb.amax());
-    }
-    out
-}
-
 #[test]
 fn the_condensed_stiffness_is_the_derivative_of_the_statics() {
     for name in CASES {
         let sys = case(name);
         for pose in POSES {
             let st = solve_system(&sys, &pose, true).unwrap();
-            let fd = finite_difference_stiffness(&sys, &pose, &st, 1e-2, 1e-4);
+            let fd = finite_difference_stiffness(&pose, 1e-2, 1e-4, |p| {
+                // each perturbed pose re-solved, its free points re-equilibrated from the state at `pose`
+                solve_system_from(&sys, p, false, Some(&st)).unwrap()
+            });
             let errs = block_errors(&st.stiffness, &fd);
             eprintln!("{name} {pose:?}: block errors (FF, FM, MF, MM) {errs:?}");
             for e in errs {
@@ -169,17 +134,6 @@ fn a_chain_lying_from_a_free_point_starts_taut() {
     );
     assert_eq!(solved.report.continuation_steps, 0);
     assert!(solved.report.iterations <= 8, "{}", solved.report.iterations);
-}
-
-fn invalid(text: &str) -> Vec<(String, String)> {
-    match SystemScene::from_toml(text, "test") {
-        Err(SceneError::Invalid(es)) => es.into_iter().map(|e| (e.field, e.message)).collect(),
-        other => panic!("expected invalid, got {other:?}"),
-    }
-}
-
-fn has(errs: &[(String, String)], field: &str, words: &str) -> bool {
-    errs.iter().any(|(f, m)| f == field && m.contains(words))
 }
 
 #[test]

@@ -43,28 +43,9 @@ SCENE = ROOT / "docs" / "cases" / "oc3_hywind_mooring.toml"
 
 
 def moorpy_system(scene):
-    env = scene["environment"]
-    rho, g = env["water_density"], env["gravity"]
-    ms = mp.System(depth=-scene["seabed"]["z"], rho=rho, g=g)
-    for t in scene["line_type"]:
-        d, m = t["outer_diameter"], t["mass_per_length"]
-        w = (m - rho * math.pi / 4 * d * d) * g
-        ms.setLineType(dnommm=d * 1000, material=None, name=t["name"], mass=m, d_vol=d, w=w,
-                       EA=t["axial_stiffness"])
-    ms.addBody(-1, [0, 0, 0, 0, 0, 0])
-    number = {}
-    for p in scene["point"]:
-        assert p["kind"] in ("fixed", "vessel")
-        if p["kind"] == "fixed":
-            ms.addPoint(1, p["position"])
-        else:
-            ms.addPoint(1, p["position"], body=1)
-        number[p["name"]] = len(ms.pointList)
-    for line in scene["line"]:
-        ms.addLine(line["length"], line["type"], nSegs=40, pointA=number[line["from"]],
-                   pointB=number[line["to"]], cb=0.0)
-    ms.initialize()
-    return ms
+    """MoorPy's system of `scene` (fixed and vessel points only)."""
+    assert all(p["kind"] in ("fixed", "vessel") for p in scene["point"])
+    return moorpy_free_system(scene)[0]
 
 
 def moorpy_at(ms, pose):

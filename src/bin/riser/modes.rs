@@ -311,21 +311,9 @@ fn modes_svg(scene: &Scene, rep: &ModalReport) -> String {
             escape(&panel_title(m))
         );
         // grid, ticks and their labels
-        Frame { x0, x1, y0, y1 }.grid(w, (s_lo, s_hi, 5), (lo, hi, 5));
-        let _ = writeln!(
-            w,
-            r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="none" stroke="black"/>"#,
-            x1 - x0,
-            y1 - y0
-        );
-        let _ =
-            writeln!(w, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">S (m)</text>"#, (x0 + x1) / 2.0, y1 + 30.0);
-        let ylabel = if rod { "m, rad" } else { "m" };
-        let (lx, ly) = (ox + 14.0, (y0 + y1) / 2.0);
-        let _ = writeln!(
-            w,
-            r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{ylabel}</text>"#
-        );
+        let frame = Frame { x0, x1, y0, y1 };
+        frame.grid(w, (s_lo, s_hi, 5), (lo, hi, 5));
+        frame.axes(w, "S (m)", if rod { "m, rad" } else { "m" }, ox + 14.0);
         for (v, colour, dashed) in series {
             let points: Vec<String> =
                 c.s.iter()

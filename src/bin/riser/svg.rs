@@ -80,4 +80,27 @@ impl Frame {
             );
         }
     }
+
+    /// The panel's border, `xlabel` under its x axis and `ylabel` turned
+    /// along its y axis at x = `label_x`.
+    pub(crate) fn axes(&self, w: &mut String, xlabel: &str, ylabel: &str, label_x: f64) {
+        let Frame { x0, x1, y0, y1 } = *self;
+        let _ = writeln!(
+            w,
+            r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="none" stroke="black"/>"#,
+            x1 - x0,
+            y1 - y0
+        );
+        let _ = writeln!(
+            w,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{xlabel}</text>"#,
+            (x0 + x1) / 2.0,
+            y1 + 30.0
+        );
+        let (lx, ly) = (label_x, (y0 + y1) / 2.0);
+        let _ = writeln!(
+            w,
+            r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{ylabel}</text>"#
+        );
+    }
 }

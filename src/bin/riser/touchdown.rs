@@ -48,7 +48,8 @@ pub fn svg(shapes: &[Shape], touchdown: &[f64], length: f64, seabed_z: Option<f6
         }
         let px = |s: f64| x0 + (s - s_lo) / (s_hi - s_lo) * (x1 - x0);
         let py = |v: f64| y1 - (v - v_lo) / (v_hi - v_lo) * (y1 - y0);
-        Frame { x0, x1, y0, y1 }.grid(&mut w, (s_lo, s_hi, 6), (v_lo, v_hi, 4));
+        let frame = Frame { x0, x1, y0, y1 };
+        frame.grid(&mut w, (s_lo, s_hi, 6), (v_lo, v_hi, 4));
         if *col == 3 {
             let y = py(seabed_z);
             let _ = writeln!(
@@ -58,19 +59,7 @@ pub fn svg(shapes: &[Shape], touchdown: &[f64], length: f64, seabed_z: Option<f6
                 y - 4.0
             );
         }
-        let _ = writeln!(
-            w,
-            r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="none" stroke="black"/>"#,
-            x1 - x0,
-            y1 - y0
-        );
-        let _ =
-            writeln!(w, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">S (m)</text>"#, (x0 + x1) / 2.0, y1 + 30.0);
-        let (lx, ly) = (18.0, (y0 + y1) / 2.0);
-        let _ = writeln!(
-            w,
-            r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{label}</text>"#
-        );
+        frame.axes(&mut w, "S (m)", label, 18.0);
         for (k, sh) in shapes.iter().enumerate() {
             let shade = 200.0 - 170.0 * k as f64 / (shapes.len().max(2) - 1) as f64;
             let points: Vec<String> = rows(sh).iter().map(|(s, v)| format!("{:.2},{:.2}", px(*s), py(*v))).collect();

@@ -581,19 +581,9 @@ fn panel(
     let y1 = y0 + h;
     let px = |x: f64| x0 + (x - xa) / (xb - xa) * (x1 - x0);
     let py = |y: f64| y1 - (y - ya) / (yb - ya) * (y1 - y0);
-    Frame { x0, x1, y0, y1 }.grid(w, (xa, xb, 8), (ya, yb, 5));
-    let _ = writeln!(
-        w,
-        r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{h:.1}" fill="none" stroke="black"/>"#,
-        x1 - x0
-    );
-    let _ =
-        writeln!(w, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{xlabel}</text>"#, (x0 + x1) / 2.0, y1 + 30.0);
-    let (lx, ly) = (18.0, (y0 + y1) / 2.0);
-    let _ = writeln!(
-        w,
-        r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{ylabel}</text>"#
-    );
+    let frame = Frame { x0, x1, y0, y1 };
+    frame.grid(w, (xa, xb, 8), (ya, yb, 5));
+    frame.axes(w, xlabel, ylabel, 18.0);
     for (k, (pts, colour, label)) in lines.iter().enumerate() {
         let p: Vec<String> =
             pts.iter().filter(|p| p.1.is_finite()).map(|(x, y)| format!("{:.2},{:.2}", px(*x), py(*y))).collect();

@@ -170,14 +170,7 @@ impl<'a> CableStatics<'a> {
                     &mut f,
                     want.then_some(&mut k),
                 );
-                for i in 0..2 {
-                    for j in 0..3 {
-                        r[NODE_DOF * (e + i) + j] -= f[i][j];
-                    }
-                }
-                if let Some(s) = sys.as_deref_mut() {
-                    s.add_block(e, |i, j| k[i / 3][j / 3][(i % 3, j % 3)]);
-                }
+                subtract_element_load(r, sys.as_deref_mut(), e, &f, &k);
             }
         }
         if self.water.values().iter().any(|f| f.surface.is_some()) {
@@ -200,14 +193,7 @@ impl<'a> CableStatics<'a> {
                     &mut f,
                     want.then_some(&mut k),
                 );
-                for i in 0..2 {
-                    for j in 0..3 {
-                        r[NODE_DOF * (e + i) + j] -= f[i][j];
-                    }
-                }
-                if let Some(s) = sys.as_deref_mut() {
-                    s.add_block(e, |i, j| k[i / 3][j / 3][(i % 3, j % 3)]);
-                }
+                subtract_element_load(r, sys.as_deref_mut(), e, &f, &k);
             }
         }
         if self.water.values().iter().any(|f| f.drag.is_some()) {
@@ -233,16 +219,23 @@ impl<'a> CableStatics<'a> {
                     &mut ff,
                     if want { Some(&mut kf) } else { None },
                 );
-                for i in 0..2 {
-                    for k in 0..3 {
-                        r[NODE_DOF * (e + i) + k] -= ff[i][k];
-                    }
-                }
-                if let Some(s) = sys.as_deref_mut() {
-                    s.add_block(e, |i, j| kf[i / 3][j / 3][(i % 3, j % 3)]);
-                }
+                subtract_element_load(r, sys.as_deref_mut(), e, &ff, &kf);
             }
         }
+    }
+}
+
+/// Element `e`'s external nodal load `f`, N, taken off the residual R
+/// (internal − external) and its stiffness `k` (that of −f, N/m) added to
+/// ∂R/∂x where a tangent is asked.
+fn subtract_element_load(r: &mut [f64], sys: Option<&mut BandedSystem>, e: usize, f: &[V3; 2], k: &[[M3; 2]; 2]) {
+    for i in 0..2 {
+        for j in 0..3 {
+            r[NODE_DOF * (e + i) + j] -= f[i][j];
+        }
+    }
+    if let Some(s) = sys {
+        s.add_block(e, |i, j| k[i / 3][j / 3][(i % 3, j % 3)]);
     }
 }
 

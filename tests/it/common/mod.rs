@@ -5,6 +5,7 @@
 
 pub mod reference;
 pub mod spectral;
+pub mod system;
 
 use riser::math::V3;
 

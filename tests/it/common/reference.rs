@@ -609,6 +609,17 @@ fn shoot_cable(
 /// shooting unknown (see [`shoot_elastica`] and [`shoot_elastica_from_tip`]).
 type ElasticaState = [f64; 6];
 
+/// One classical RK4 step of length `ds` of y' = rhs(y).
+fn rk4_step(rhs: &impl Fn(&ElasticaState) -> ElasticaState, y: &mut ElasticaState, ds: f64) {
+    let k1 = rhs(y);
+    let k2 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k1[i]));
+    let k3 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k2[i]));
+    let k4 = rhs(&std::array::from_fn(|i| y[i] + ds * k3[i]));
+    for i in 0..6 {
+        y[i] += ds / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+}
+
 /// Integrates the normalized elastica from the clamp with RK4 in `n` steps,
 /// for initial curvature `kappa0 = theta'(0)`: state
 /// `[theta, theta', x, y, dtheta/dkappa0, dtheta'/dkappa0]`. Returns the tip
@@ -625,13 +636,7 @@ fn shoot_elastica(alpha: f64, kappa0: f64, n: usize) -> (ElasticaState, bool) {
     let tol = 1e-9 * kappa0.abs().max(1e-300);
     let mut physical = true;
     for _ in 0..n {
-        let k1 = rhs(&y);
-        let k2 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k1[i]));
-        let k3 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k2[i]));
-        let k4 = rhs(&std::array::from_fn(|i| y[i] + ds * k3[i]));
-        for i in 0..6 {
-            y[i] += ds / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-        }
+        rk4_step(&rhs, &mut y, ds);
         // For very large alpha the tip slope approaches pi/2 exponentially
         // closely, so allow round-off-level overshoot there.
         if !(y[0] > -tol && y[0] < 0.5 * PI + 1e-8 && y[1] > -tol) {
@@ -774,13 +779,7 @@ fn shoot_elastica_from_tip(alpha: f64, ell: f64, n: usize) -> Option<ElasticaSta
     let u_tip = ell.exp();
     let mut y: ElasticaState = [u_tip, 0.0, 0.0, 0.0, u_tip, 0.0];
     for _ in 0..n {
-        let k1 = rhs(&y);
-        let k2 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k1[i]));
-        let k3 = rhs(&std::array::from_fn(|i| y[i] + 0.5 * ds * k2[i]));
-        let k4 = rhs(&std::array::from_fn(|i| y[i] + ds * k3[i]));
-        for i in 0..6 {
-            y[i] += ds / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-        }
+        rk4_step(&rhs, &mut y, ds);
         if y[0].is_nan() || y[0] > 3.0 {
             return None;
         }

@@ -72,7 +72,7 @@ from typing import Any, TextIO
 import numpy as np
 from distributed import WorkerPlugin
 
-from .spec import SpecError, _suggest, _unknown, coerce, read_toml, worker_failure
+from .spec import SpecError, _suggest, _unknown, coerce, optional_timeout, read_toml, worker_failure
 
 SECONDS_PER_YEAR = 365.25 * 86_400.0  # riser's (src/sim/fatigue.rs)
 SCATTER_REQUIRED = ("hs", "tp", "probability")
@@ -385,11 +385,7 @@ def load_fatigue_spec(path: str | Path, riser_bin: str | None = None) -> Fatigue
     zone = coerce("fatigue.touchdown_zone", "Real", fat.get("touchdown_zone", TOUCHDOWN_ZONE_DEFAULT))
     if zone < 0:
         raise SpecError(f"fatigue.touchdown_zone = {zone!r}: must be >= 0 (m)")
-    timeout = None
-    if "timeout" in fat:
-        timeout = coerce("fatigue.timeout", "Real", fat["timeout"])
-        if timeout <= 0:
-            raise SpecError(f"fatigue.timeout = {timeout!r}: must be > 0 (s)")
+    timeout = optional_timeout(fat, "fatigue")
     sv = coerce("fatigue.scatter", "String", fat["scatter"])
     scatter = Path(sv) if Path(sv).is_absolute() else base / sv
     try:
@@ -629,10 +625,7 @@ def run_fatigue_sweep(spec: FatigueSpec, out_dir: str | Path, scheduler: str | N
                       plot: bool = True) -> FatigueSummary:
     """Run the sea states of `spec` on Dask (those not finished in `out_dir` already), then write
     scatter_results.csv, fatigue_life.csv, fatigue_summary.json and annual_damage.png."""
-    from distributed import as_completed
-
-    from .progress import Progress
-    from .sweep import _workers, dask_client
+    from .sweep import _workers, collect, dask_client
 
     log = log or sys.stderr
     out = Path(out_dir)
@@ -658,25 +651,13 @@ def run_fatigue_sweep(spec: FatigueSpec, out_dir: str | Path, scheduler: str | N
                 key = f"riser-state-{st.row}-{run}"
                 by_key[key] = st
                 futures.append(client.submit(state_task, spec.job(st), plugin.name, key=key, retries=0))
-            progress = Progress(summary.total, summary.skipped, stream=log, bar=bar)
-            try:
-                for fut in as_completed(futures):
-                    st = by_key[fut.key]
-                    try:
-                        res = fut.result()
-                    except Exception as e:  # the worker's or the cluster's failure, not riser's
-                        res = worker_failure(e, json=None, fatigue_csv=None)
-                    _save_case(out, st, res)
-                    results[st.name()] = res
-                    summary.ran += 1
-                    summary.errors += res["status"] != "ok"
-                    progress.update(st.label(), res["status"], res.get("wall_s"), res.get("error", ""))
-                    fut.release()
-            except KeyboardInterrupt:
-                summary.interrupted = True
-                client.cancel([f for f in futures if not f.done()])
-            finally:
-                progress.close()
+
+            def save(st: SeaState, res: dict[str, Any]) -> None:
+                _save_case(out, st, res)
+                results[st.name()] = res
+
+            collect(client, futures, by_key, summary, save, lambda e: worker_failure(e, json=None, fatigue_csv=None),
+                    log, bar)
     summary.wall_s = time.perf_counter() - t0
     write_results(spec, out, results, summary, plot=plot)
     return summary

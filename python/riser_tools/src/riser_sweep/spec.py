@@ -287,6 +287,16 @@ def _suggest(name: str, known: list[str]) -> str:
     return f"; did you mean {close[0]}?" if close else ""
 
 
+def optional_timeout(table: dict[str, Any], section: str) -> float | None:
+    """`table`'s `timeout`, s of wall time (> 0), or None where it is not given."""
+    if "timeout" not in table:
+        return None
+    timeout = coerce(f"{section}.timeout", "Real", table["timeout"])
+    if timeout <= 0:
+        raise SpecError(f"{section}.timeout = {timeout!r}: must be > 0 (s)")
+    return timeout
+
+
 def coerce(where: str, ftype: str, value: Any) -> Any:
     """`value` as the FMI type `ftype` wants it, or a SpecError naming `where`."""
     if ftype == "Real":
@@ -450,11 +460,7 @@ def load_spec(path: str | Path, fmu: str | Path | None = None) -> Spec:
     n = round(duration / h)
     if n < 1 or abs(n * h - duration) > 1e-9 * duration:
         raise SpecError(f"run.duration = {duration!r}: not a whole number of communication steps ({h!r} s)")
-    timeout = None
-    if "timeout" in run:
-        timeout = coerce("run.timeout", "Real", run["timeout"])
-        if timeout <= 0:
-            raise SpecError(f"run.timeout = {timeout!r}: must be > 0")
+    timeout = optional_timeout(run, "run")
 
     # grid
     grid = raw.get("grid", {})

@@ -21,7 +21,7 @@ import signal
 import sys
 import time
 import uuid
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -118,6 +118,32 @@ def dask_client(scheduler: str | None, workers: int | None, n_cases: int, log: T
             cluster.close()
 
 
+def collect(client: Client, futures: list, items: dict[str, Any], summary: Any, save: Callable[[Any, dict], None],
+            failure: Callable[[BaseException], dict], log: TextIO, bar: bool | None) -> None:
+    """Each of `futures` as it completes: its item (`items` by the future's key) and result to
+    `save`, a worker's or the cluster's exception (not the item's own failure) made a result by
+    `failure`; counted in `summary` (ran, errors) and shown on `log`. Ctrl-C cancels the rest
+    (`summary.interrupted`)."""
+    progress = Progress(summary.total, summary.skipped, stream=log, bar=bar)
+    try:
+        for fut in as_completed(futures):
+            item = items[fut.key]
+            try:
+                res = fut.result()
+            except Exception as e:  # not the item's own failure: the worker or the cluster's
+                res = failure(e)
+            save(item, res)
+            summary.ran += 1
+            summary.errors += res["status"] != "ok"
+            progress.update(item.label(), res["status"], res.get("wall_s"), res.get("error", ""))
+            fut.release()
+    except KeyboardInterrupt:
+        summary.interrupted = True
+        client.cancel([f for f in futures if not f.done()])
+    finally:
+        progress.close()
+
+
 def run_sweep(spec: Spec, out_dir: str | Path, scheduler: str | None = None, workers: int | None = None,
               retry_errors: bool = False, dry_run: bool = False, log: TextIO | None = None,
               bar: bool | None = None) -> Summary:
@@ -153,26 +179,13 @@ def run_sweep(spec: Spec, out_dir: str | Path, scheduler: str | None = None, wor
                 key = f"riser-case-{i}-{run}"
                 cases[key] = case
                 futures.append(client.submit(case_task, spec.job(case), plugin.name, key=key, retries=0))
-            progress = Progress(summary.total, summary.skipped, stream=log, bar=bar)
-            try:
-                for fut in as_completed(futures):
-                    case = cases[fut.key]
-                    try:
-                        res = fut.result()
-                    except Exception as e:  # not the case's own failure: the worker or the cluster's
-                        res = worker_failure(e, reductions={})
-                    results.append(case, res)
-                    if res.get("timeseries") is not None:
-                        _write_timeseries(out / "cases" / case_file_name(case), res["timeseries"])
-                    summary.ran += 1
-                    summary.errors += res["status"] != "ok"
-                    progress.update(case.label(), res["status"], res.get("wall_s"), res.get("error", ""))
-                    fut.release()
-            except KeyboardInterrupt:
-                summary.interrupted = True
-                client.cancel([f for f in futures if not f.done()])
-            finally:
-                progress.close()
+
+            def save(case: Case, res: dict[str, Any]) -> None:
+                results.append(case, res)
+                if res.get("timeseries") is not None:
+                    _write_timeseries(out / "cases" / case_file_name(case), res["timeseries"])
+
+            collect(client, futures, cases, summary, save, lambda e: worker_failure(e, reductions={}), log, bar)
         summary.wall_s = time.perf_counter() - t0
         return summary
     finally:

@@ -42,6 +42,16 @@ from .cases import CaseError, Line, Motion
 NO_OUTPUT = {"disableOutput": 1, "disableOutTime": 1}
 
 
+def coupling_calls(dtm: float, coupling: int, sample: float, duration: float) -> tuple[float, int, int]:
+    """The coupling step dtc = `coupling` MoorDyn steps of `dtm` s, the calls per output
+    `sample` (refused unless a whole number) and the calls in `duration`."""
+    dtc = dtm * coupling
+    per_sample = int(round(sample / dtc))
+    if per_sample < 1 or abs(per_sample * dtc - sample) > 1e-9 * sample:
+        raise CaseError(f"moordyn.sample = {sample!r}: not a whole number of coupling steps {dtc!r}")
+    return dtc, per_sample, int(round(duration / dtc))
+
+
 def _moordyn():
     import moordyn  # imported on use: the rest of riser_tools runs without it
     return moordyn
@@ -282,11 +292,7 @@ def run(input_path: str | Path, line: Line, nseg: int, motion: Motion, duration:
     wall time unless it took more than `cheap` s or failed. `probe_overhead`: time the same
     calls with dt = 0 (MoorDyn then only returns the forces) as the cost of the call itself."""
     md = _moordyn()
-    dtc = dtm * coupling
-    per_sample = int(round(sample / dtc))
-    if per_sample < 1 or abs(per_sample * dtc - sample) > 1e-9 * sample:
-        raise CaseError(f"moordyn.sample = {sample!r}: not a whole number of coupling steps {dtc!r}")
-    ncalls = int(round(duration / dtc))
+    dtc, per_sample, ncalls = coupling_calls(dtm, coupling, sample, duration)
     t_calls = np.arange(ncalls) * dtc
     u0 = motion.displacement(t_calls)
     u1 = motion.displacement(t_calls + dtc)

@@ -49,7 +49,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from .cases import CaseError, Motion
-from .moordyn import NO_OUTPUT, _moordyn, quiet
+from .moordyn import NO_OUTPUT, _moordyn, coupling_calls, quiet
 
 AXIS_INDEX = {"surge": 0, "sway": 1, "heave": 2}
 
@@ -398,11 +398,7 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
     velocity to the next (MoorDyn moves it linearly within the call, landing exactly on the
     motion at each call's end); outputs every `sample` s (a whole number of calls)."""
     md = _moordyn()
-    dtc = dtm * coupling
-    per_sample = int(round(sample / dtc))
-    if per_sample < 1 or abs(per_sample * dtc - sample) > 1e-9 * sample:
-        raise CaseError(f"moordyn.sample = {sample!r}: not a whole number of coupling steps {dtc!r}")
-    ncalls = int(round(duration / dtc))
+    dtc, per_sample, ncalls = coupling_calls(dtm, coupling, sample, duration)
     tc = np.arange(ncalls + 1) * dtc
     u = motion.displacement(tc)
     x6 = np.zeros((ncalls + 1, 6))

@@ -152,6 +152,23 @@ def interp(ts, ys, x):
     return ys[j - 1] + a * (ys[j] - ys[j - 1])
 
 
+def against_paper(rwin, win, diffs, ref, w0):
+    """riser's top tension against the paper's: max/min/mean over the window
+    (`rwin` the paper's (t, kN), `win` riser's) and MoorDyn's pointwise test
+    on `diffs` (riser - paper at each of `ref`'s times), the last from `w0`."""
+    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
+    return {
+        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
+        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
+        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
+        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
+        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
+        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
+        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
+        "n": len(diffs),
+    }
+
+
 def reduce_case(series, ref):
     """Top tension (kN) against the paper's: at the crest of the last
     period, max/min over the last period, and MoorDyn's pointwise test."""
@@ -165,17 +182,9 @@ def reduce_case(series, ref):
     win = [(t - T_RAMP, v) for t, v in zip(ts, tt) if w0 <= t - T_RAMP <= ref_t[-1]]
     rwin = [(t, v) for t, v in zip(ref_t, ref_v) if w0 <= t <= w1]
     diffs = [interp(ts, tt, t + T_RAMP) - v for t, v in ref]
-    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
     return {
         "crest": (interp(ref_t, ref_v, crest - T_RAMP), interp(ts, tt, crest)),
-        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
-        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
-        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
-        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
-        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
-        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
-        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
-        "n": len(diffs),
+        **against_paper(rwin, win, diffs, ref, w0),
         "touchdown_min": min(series["touchdown_s"]),
         "crest_t": crest - T_RAMP,
     }
@@ -255,7 +264,6 @@ def reduce_waves(series, ref, phase):
     ts = series["t"]
     tt = [v / 1e3 for v in series["top_tension"]]
     diffs = [interp(ts, tt, t + T_START_W) - v for t, v in ref]
-    worst = max(range(len(diffs)), key=lambda i: abs(diffs[i]))
     w0 = T_WINDOW_W - T_W
     rwin = [(t, v) for t, v in ref if t >= w0]
     win = [(t - T_START_W, v) for t, v in zip(ts, tt) if w0 <= t - T_START_W <= T_WINDOW_W]
@@ -263,14 +271,7 @@ def reduce_waves(series, ref, phase):
     eta = series.get("wave_elevation")
     eta_err = None if eta is None else max(abs(e - H_W / 2 * math.cos(ph - om * t)) for t, e in zip(ts, eta))
     return {
-        "max": (max(rwin, key=lambda p: p[1]), max(win, key=lambda p: p[1])),
-        "min": (min(rwin, key=lambda p: p[1]), min(win, key=lambda p: p[1])),
-        "mean": (sum(v for _, v in rwin) / len(rwin), sum(v for _, v in win) / len(win)),
-        "maxdiff": (abs(diffs[worst]), ref[worst][0], diffs[worst]),
-        "rms": (sum(d * d for d in diffs) / len(diffs)) ** 0.5,
-        "maxdiff_last": max(abs(d) for d, (t, _) in zip(diffs, ref) if t >= w0),
-        "n_fail": sum(abs(d) > TOL_MOTION for d in diffs),
-        "n": len(diffs),
+        **against_paper(rwin, win, diffs, ref, w0),
         "eta_err": eta_err,
         "at": {t: d for d, (t, _) in zip(diffs, ref)},
     }
@@ -296,6 +297,21 @@ def wave_run(bin_, out, name, sets, log):
 
 def fmt(x, nd=2):
     return f"{x:.{nd}f}"
+
+
+def window_rows(tag, r, at=""):
+    """The report's rows of a case against the paper (`r` of `against_paper`):
+    max, min and mean top tension over the window (`at` names it) and
+    MoorDyn's pointwise check."""
+    rows = []
+    for what in ("max", "min"):
+        (pt, pv), (rt, rv) = r[what]
+        rows.append(f"| {tag}: {what} top tension{at} | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
+    pm, rm = r["mean"]
+    rows.append(f"| {tag}: mean top tension{at} | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
+    md, mt_, ms = r["maxdiff"]
+    rows.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+    return rows
 
 
 def main(argv=None):
@@ -428,14 +444,7 @@ def main(argv=None):
         tag = "case 3 heave" + ("" if name == "case3" else f", {label}")
         pc, rc = r["crest"]
         L.append(f"| {tag}: top tension at the heave crest (t_ref {r['crest_t']:.2f} s) | {fmt(pc)} | {fmt(rc)} | {rc - pc:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["max"]
-        L.append(f"| {tag}: max top tension | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["min"]
-        L.append(f"| {tag}: min top tension | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        pm, rm = r["mean"]
-        L.append(f"| {tag}: mean top tension | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
-        md, mt_, ms = r["maxdiff"]
-        L.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+        L.extend(window_rows(tag, r))
     for case, what in ((1, "surge"), (2, "sway")):
         status, r = horiz[case]
         ref = read_ref(case)
@@ -457,14 +466,7 @@ def main(argv=None):
             ref = [v for t, v in read_ref(case) if t >= T_WINDOW_W - T_W]
             L.append(f"| {tag}: max / min top tension ({w_last}) | {fmt(max(ref))} / {fmt(min(ref))} | not run: this binary refuses waves | — | ±{TOL_MOTION} each |")
             continue
-        (pt, pv), (rt, rv) = r["max"]
-        L.append(f"| {tag}: max top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        (pt, pv), (rt, rv) = r["min"]
-        L.append(f"| {tag}: min top tension ({w_last}) | {fmt(pv)} (t_ref {pt:.1f} s) | {fmt(rv)} ({rt:.1f} s) | {rv - pv:+.2f} | ±{TOL_MOTION} |")
-        pm, rm = r["mean"]
-        L.append(f"| {tag}: mean top tension ({w_last}) | {fmt(pm)} | {fmt(rm)} | {rm - pm:+.2f} | — |")
-        md, mt_, ms = r["maxdiff"]
-        L.append(f"| {tag}: largest \\|difference\\| over the {r['n']} digitised points (MoorDyn's check) | — | {fmt(md)} at t_ref {mt_:.1f} s (RMS {fmt(r['rms'])}) | {ms:+.2f}; {r['n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
+        L.extend(window_rows(tag, r, f" ({w_last})"))
         if case in mdres:
             m = mdres[case]
             L.append(f"| {tag}: MoorDyn 2.7.2 (its test, run here) against the paper | — | largest \\|difference\\| {fmt(m['paper'][0])} at t_ref {m['paper'][1]:.1f} s | {m['paper'][2]:+.2f}; {m['paper_n_fail']} points over 1 kN | ±{TOL_MOTION} each |")
