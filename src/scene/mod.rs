@@ -104,6 +104,17 @@ pub struct Line {
     pub material_resistance_factor: Option<f64>,
 }
 
+/// γ_F, the ULS load effect factor on functional load effects (DNV-OS-F201
+/// Table 5-2; DNV-OS-C501 Table 8-4 for risers; Flexcom's default): the
+/// default of `load_factor_functional` (the check itself: `sim::lrfd`).
+pub const FUNCTIONAL_LOAD_FACTOR: f64 = 1.1;
+/// γ_E, the ULS load effect factor on environmental load effects (the
+/// default of `load_factor_environmental`).
+pub const ENVIRONMENTAL_LOAD_FACTOR: f64 = 1.3;
+/// γ_m, the material resistance factor of the ULS and the ALS (the default
+/// of `material_resistance_factor`).
+pub const MATERIAL_RESISTANCE_FACTOR: f64 = 1.15;
+
 /// DNV-OS-F201's safety class: the consequence of a failure (docs/theory.md
 /// §12.4), which sets the resistance factor γ_SC of the LRFD check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -365,14 +365,12 @@ pub(super) fn get(s: &Scene, name: &str) -> Option<String> {
         "design_case_factor" => num(s.line.design_case_factor.unwrap_or(1.0)),
         "tensile_strength" => num(s.line.tensile_strength.unwrap_or(0.0)),
         "safety_class" => Some(s.line.safety_class.map_or("none", |c| c.name()).into()),
-        "load_factor_functional" => {
-            num(s.line.load_factor_functional.unwrap_or(crate::sim::lrfd::FUNCTIONAL_LOAD_FACTOR))
-        }
+        "load_factor_functional" => num(s.line.load_factor_functional.unwrap_or(super::FUNCTIONAL_LOAD_FACTOR)),
         "load_factor_environmental" => {
-            num(s.line.load_factor_environmental.unwrap_or(crate::sim::lrfd::ENVIRONMENTAL_LOAD_FACTOR))
+            num(s.line.load_factor_environmental.unwrap_or(super::ENVIRONMENTAL_LOAD_FACTOR))
         }
         "material_resistance_factor" => {
-            num(s.line.material_resistance_factor.unwrap_or(crate::sim::lrfd::MATERIAL_RESISTANCE_FACTOR))
+            num(s.line.material_resistance_factor.unwrap_or(super::MATERIAL_RESISTANCE_FACTOR))
         }
         "water_density" => num(s.environment.water_density),
         "water_surface_z" => num(s.environment.water_surface_z),

@@ -6,15 +6,8 @@
 //! criterion for net external overpressure (with the collapse resistance) is
 //! not implemented: riser reports no LRFD utilisation there.
 
+pub use crate::scene::{ENVIRONMENTAL_LOAD_FACTOR, FUNCTIONAL_LOAD_FACTOR, MATERIAL_RESISTANCE_FACTOR};
 use crate::scene::{Line, SafetyClass};
-
-/// γ_F, the ULS load effect factor on functional load effects (DNV-OS-F201
-/// Table 5-2; DNV-OS-C501 Table 8-4 for risers; Flexcom's default).
-pub const FUNCTIONAL_LOAD_FACTOR: f64 = 1.1;
-/// γ_E, the ULS load effect factor on environmental load effects.
-pub const ENVIRONMENTAL_LOAD_FACTOR: f64 = 1.3;
-/// γ_m, the material resistance factor of the ULS and the ALS.
-pub const MATERIAL_RESISTANCE_FACTOR: f64 = 1.15;
 
 /// The name of the check in the outputs.
 pub const LRFD_CHECK: &str = "DNV-OS-F201 LRFD combined loading (net internal overpressure)";
