@@ -34,8 +34,9 @@ os.environ.setdefault("PYTHONHASHSEED", "0")
 
 # Each test file's time budget, s, on a quiet 2-core machine (`make test`'s whole Python part is
 # about 4 min of its 8): the run prints every file's time against it at the end, and the files over
-# it; never an assertion (speed is a benchmark's, not a test's). Tests marked `long` run in `make
-# check-long`, not in `make test`.
+# it; never an assertion (speed is a benchmark's, not a test's). `make test` runs two files at a time
+# (pytest-xdist): a file beside another takes up to about 1.6 times its time alone (test_sweep.py
+# 66-71 s, 41 s alone; test_parameter_ranges.py 10.5-11 s, 7 s alone). Tests marked `long` run in `make check-long`, not in `make test`.
 BUDGETS = {
     "test_accuracy.py": 40, "test_cosim_inputs.py": 30, "test_coupling.py": 45, "test_coupling6.py": 30,
     "test_coupling_buoy.py": 30, "test_coupling_mono.py": 25, "test_directional_derivative.py": 10, "test_fatigue.py": 10, "test_fmpy_logging.py": 10,
