@@ -254,6 +254,9 @@ pub struct Instance {
     held_base: Option<HangOff>,
     /// What the held body's step works in (allocated on its first step).
     held_scratch: HeldScratch,
+    /// The stress outputs' peaks of the current state, computed at the first
+    /// read and dropped whenever the outputs are set anew.
+    stress_peaks: Option<Option<crate::sim::design::StressPeaks>>,
     /// What `accuracy` chose and its estimate (None: the numerics are the
     /// master's or the scene's; docs/theory.md §16.12): `error_estimate`.
     knob: Option<crate::sim::accuracy::Choice>,
@@ -391,6 +394,7 @@ impl Instance {
             held_body: Default::default(),
             held_base: None,
             held_scratch: HeldScratch::default(),
+            stress_peaks: None,
             knob: None,
             hf_watch: None,
             sim: None,
@@ -482,6 +486,7 @@ impl Instance {
         self.others.clear();
         self.free = None;
         self.outputs = None;
+        self.stress_peaks = None;
     }
 
     /// An error: logged, the instance goes to the Error state.
@@ -800,6 +805,7 @@ impl Instance {
         self.warned_anchor = crate::sim::design::anchor_lifted(&scene, &outputs).is_some();
         self.force_mean = outputs.top_force;
         self.outputs = Some(outputs);
+        self.stress_peaks = None;
         self.log_once(
             Status::Ok,
             Category::Events,
@@ -1200,6 +1206,7 @@ impl Instance {
             }
         }
         self.outputs = Some(outputs);
+        self.stress_peaks = None;
         if result.is_ok() {
             // a completed step's work counts towards the nominal (§7.6)
             self.run_work = (self.run_work.0 + self.step_work.0, self.run_work.1 + n);
@@ -1264,8 +1271,13 @@ impl Instance {
     /// DNV-OS-F201 check the scene asks for but that is not made (no net
     /// internal overpressure somewhere) is logged once.
     fn stress_output(&mut self, name: &str) -> f64 {
-        let peaks = match (&self.scene, &self.sim) {
-            (Some(scene), Some(sim)) => crate::sim::design::line_stress_peaks(scene, sim),
+        // once per state: a master reading the four outputs (libcosim's
+        // observers read every output each step) walks the line once
+        let peaks = match (self.stress_peaks, &self.scene, &self.sim) {
+            (Some(peaks), _, _) => peaks,
+            (None, Some(scene), Some(sim)) => {
+                *self.stress_peaks.insert(crate::sim::design::line_stress_peaks(scene, sim))
+            }
             _ => None,
         };
         if let Some(why) = peaks.and_then(|p| p.lrfd).and_then(|l| l.not_reported()) {
@@ -2015,6 +2027,7 @@ impl Instance {
         self.mode = if s.mode == Error { StepComplete } else { s.mode };
         self.last_successful_time = s.state.time;
         self.outputs = Some(outputs);
+        self.stress_peaks = None;
         Status::Ok
     }
 

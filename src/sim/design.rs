@@ -780,11 +780,21 @@ pub fn wall_stiffness_warnings(scene: &Scene) -> Vec<String> {
 
 /// The stress peaks along the line of `sim` now ([`Design::stress_peaks_over`],
 /// its static state the functional one): the FMU's `max_von_mises` and
-/// utilisations. Computed when read: it builds the scene's [`Design`].
+/// utilisations. Computed when read: it builds the scene's [`Design`]; the
+/// line's points only where it has stresses, the static state's only where
+/// the scene asks for the LRFD check (its functional load effects).
 pub fn line_stress_peaks(scene: &Scene, sim: &super::Simulation) -> Option<StressPeaks> {
+    let design = Design::new(scene);
+    if !design.has_stresses() {
+        return None;
+    }
     let points = sim.integrator.line_points(&sim.state);
+    let top_z = sim.state.config.x[0].z;
+    if design.lrfd.is_none() {
+        return design.stress_peaks(&points, top_z);
+    }
     let functional = sim.integrator.line_points(&sim.functional_state());
-    Design::new(scene).stress_peaks_over(&points, &functional, sim.state.config.x[0].z)
+    design.stress_peaks_over(&points, &functional, top_z)
 }
 
 /// The FMU's output `name` of the peaks `peaks` ([`line_stress_peaks`]):
