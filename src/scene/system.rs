@@ -250,6 +250,50 @@ impl SystemScene {
         if errs.is_empty() { Ok(sys) } else { Err(SceneError::Invalid(errs)) }
     }
 
+    /// The system with `--set name=value` of its shared numerics
+    /// ([`SYSTEM_SET_KEYS`], as a single line's `--set`); a line's or a line
+    /// type's key is refused, naming where it is written.
+    pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<SystemScene, SceneError> {
+        let mut refused = Vec::new();
+        for s in sets {
+            let s = s.as_ref();
+            let Some((name, value)) = s.split_once('=') else {
+                refused.push(FieldError { field: format!("--set {s}"), message: "expected name=value".to_string() });
+                continue;
+            };
+            let (name, value) = (name.trim(), value.trim());
+            if !SYSTEM_SET_KEYS.contains(&name) {
+                refused.push(FieldError {
+                    field: format!("--set {name}"),
+                    message: format!(
+                        "not for a system scene: --set takes its shared [analysis] keys ({}); a line's or a line \
+                         type's key (n_elements, EA, ...) is written in the system's file",
+                        SYSTEM_SET_KEYS.join(", ")
+                    ),
+                });
+                continue;
+            }
+            // through a line's scene: the same parsing and ranges as a single line's
+            let mut scene = self.line_scene(0, V3::zeros());
+            match scene.set(name, value) {
+                Ok(()) => {
+                    let (model, n) = (self.analysis.model, self.analysis.n_elements);
+                    self.analysis = scene.analysis;
+                    (self.analysis.model, self.analysis.n_elements) = (model, n);
+                }
+                Err(SceneError::Override { message, .. }) => {
+                    refused.push(FieldError { field: format!("--set {name}"), message })
+                }
+                Err(e) => refused.push(FieldError { field: format!("--set {name}"), message: e.to_string() }),
+            }
+        }
+        if !refused.is_empty() {
+            return Err(SceneError::Invalid(refused));
+        }
+        let errs = self.check();
+        if errs.is_empty() { Ok(self) } else { Err(SceneError::Invalid(errs)) }
+    }
+
     /// A system scene file.
     pub fn load(path: &str) -> Result<SystemScene, SceneError> {
         let text = std::fs::read_to_string(path)
@@ -541,6 +585,17 @@ pub const MAX_REACH_STRAIN: f64 = super::validate::MAX_REACH_STRAIN;
 /// The largest mass (kg), volume (m³), drag area (m²) or added-mass
 /// coefficient a free point may have.
 pub const MAX_POINT_VALUE: f64 = 1e9;
+
+/// The keys `--set` takes on a system: its shared numerics (`[analysis]`).
+pub const SYSTEM_SET_KEYS: [&str; 7] = [
+    "time_step",
+    "newton_tolerance",
+    "structural_damping",
+    "rho_infinity",
+    "accuracy",
+    "accuracy_quantity",
+    "static_current",
+];
 
 /// What a command that takes only single-line scenes says of a system.
 pub const NOT_YET: &str = "a system of lines ([[line]]): this command takes a single-line scene; `riser statics`, \
