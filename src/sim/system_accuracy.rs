@@ -46,7 +46,7 @@ pub fn line_elements(sys: &SystemScene, n: usize) -> Vec<usize> {
 /// The step q of the levels at which every line's n n_i/K is whole, so
 /// that (16.21) rounds nothing and the pilots' levels n₀, 2n₀, 4n₀ refine
 /// every line exactly twice: K / gcd(K, n_1, …, n_m). Where q is more than
-/// K/8 (the levels would not reach an eighth of the mesh as written),
+/// K/4 (the levels would not reach a quarter of the mesh as written),
 /// 1: any level, the lines rounded.
 pub fn level_step(sys: &SystemScene) -> usize {
     fn gcd(a: usize, b: usize) -> usize {
@@ -54,7 +54,7 @@ pub fn level_step(sys: &SystemScene) -> usize {
     }
     let k = mesh_level(sys).max(1);
     let q = k / sys.lines.iter().fold(k, |g, l| gcd(g, l.n_elements));
-    if q * 8 > k { 1 } else { q }
+    if q * 4 > k { 1 } else { q }
 }
 
 /// `sys` with its lines at mesh level `n` (16.21).
