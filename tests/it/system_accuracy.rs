@@ -10,11 +10,10 @@
 //! The systems: two of docs/cases/moored_vessel.toml's chains (OC3-Hywind's
 //! chain), fore and aft, the vessel surged 2 m and heaved 2 m at 10 s (the
 //! CLI's ramp over one period; the window from 20 s to 50 s, three periods:
-//! the pilots' own). Hanging free (600 m to anchors 500 m out and 200 m
-//! down, no seabed): the scheme in its asymptotic range, in `make test`;
-//! and the reduced copy of moored_vessel itself (700 m on the seabed, 640 m
-//! out): the touchdown's contact, a long test, its numbers in
-//! docs/guide/accuracy.md.
+//! the pilots' own), hanging free: 600 m to anchors 500 m out and 200 m
+//! down, no seabed. (They are derived from `ON_SEABED`, the reduced copy
+//! of moored_vessel on its seabed, whose reference does not converge at
+//! steps a test can afford: docs/theory.md §16.14.)
 
 use riser::math::V3;
 use riser::scene::system::SystemScene;
@@ -211,36 +210,31 @@ fn the_choice_meets_the_target_on_a_system_and_the_estimate_is_the_error() {
     assert!((measured / 3.0..=3.0 * measured).contains(&estimate), "estimate {estimate:.3e}, measured {measured:.3e}");
 }
 
-/// 1e-3 on the free-hanging chains and 1e-2, 1e-3 on the chains on the
-/// seabed (moored_vessel's reduced copy), against references at 256
-/// elements and 0.003125 s (free) and 160 elements and 0.003125 s (on the
-/// seabed): where the choice says it meets the target, it does; where it
-/// does not, it says so (a warning); the estimate never below a third of
-/// the error measured (it may be above three times it where the pilots'
-/// triplets are not in their asymptotic range: the numbers in
-/// docs/guide/accuracy.md).
+/// 1e-3 on the free-hanging chains, against the reference at 256 elements
+/// and 0.003125 s (at half its elements and twice its step it moves by
+/// 1.7e-5): the numerics taken meet the target; the estimate, from the
+/// moment's mesh triplet that does not converge monotonically (16, 32, 64
+/// elements: the moment about the reference point is the difference of
+/// the two chains' vertical forces at ±45 m), is above it and says so (a
+/// warning): an over-estimate, never below a third of the error measured.
+/// (The chains on moored_vessel's seabed are not here: their reference
+/// does not converge at steps the test can afford, docs/theory.md §16.14.)
 #[test]
-#[ignore = "long: accuracy on systems at 1e-3 and on the seabed"]
-fn long_accuracy_on_systems_at_1e_3_and_on_the_seabed() {
-    let free = free_hanging();
-    let cases: [(&str, &str, (usize, f64), &[f64]); 2] =
-        [("free hanging", &free, (256, 0.003125), &[1e-3]), ("on the seabed", ON_SEABED, (160, 0.003125), &[1e-2, 1e-3])];
-    for (name, toml, reference, targets) in cases {
-        let r = quantities_at(toml, reference.0, reference.1);
-        let (change, worst) = error_against(&quantities_at(toml, reference.0 / 2, 2.0 * reference.1), &r);
-        eprintln!("{name}: the reference at half its mesh and twice its step: {change:.3e} ({worst})");
-        for &target in targets {
-            assert!(change < target / 3.0, "{name}: the reference moves {change:.3e} ({worst})");
-            let Case { choice: c, measured, worst } = case(toml, target, reference, &r);
-            eprintln!("{name} at {target:e}: met {}, measured {measured:.3e} ({worst})", c.met());
-            if c.met() {
-                assert!(measured <= target, "{name} at {target:e}: measured {measured:.3e} on {worst}");
-            } else {
-                assert!(c.warning().is_some());
-            }
-            assert!(c.estimate() >= measured / 3.0, "{name} at {target:e}: estimate {:.3e}", c.estimate());
-        }
+#[ignore = "long: accuracy on a system at 1e-3"]
+fn long_accuracy_on_a_system_at_1e_3() {
+    let toml = free_hanging();
+    let reference = (256, 0.003125);
+    let r = quantities_at(&toml, reference.0, reference.1);
+    let (change, worst) = error_against(&quantities_at(&toml, reference.0 / 2, 2.0 * reference.1), &r);
+    eprintln!("the reference at half its mesh and twice its step: {change:.3e} ({worst})");
+    let target = 1e-3;
+    assert!(change < target / 10.0, "the reference moves {change:.3e} ({worst})");
+    let Case { choice: c, measured, worst } = case(&toml, target, reference, &r);
+    assert!(measured <= target, "measured {measured:.3e} on {worst}");
+    if !c.met() {
+        assert!(c.warning().is_some());
     }
+    assert!(c.estimate() >= measured / 3.0, "estimate {:.3e}, measured {measured:.3e}", c.estimate());
 }
 
 /// Each line's elements at a level keep their ratio (16.21); the levels a
