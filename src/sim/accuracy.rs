@@ -45,7 +45,9 @@
 //! axis has that one level, and the estimate says whether the target is met.
 
 use super::error::{AccuracyError, RiserError};
-use super::error_estimate::{Convergence, ErrorEstimate, Layout, LinePilots, PilotRuns, Quantity, RunSpec, Triplet, estimate_on};
+use super::error_estimate::{
+    Convergence, ErrorEstimate, Layout, LinePilots, PilotRuns, Quantity, RunSpec, Triplet, estimate_on,
+};
 use crate::scene::{AccuracyQuantity, Scene};
 
 /// The safety factor S of (16.18): the estimate of the pilots is within

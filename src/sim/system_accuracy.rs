@@ -37,10 +37,7 @@ pub fn mesh_level(sys: &SystemScene) -> usize {
 /// is whole, doubles exactly with n; another within half an element).
 pub fn line_elements(sys: &SystemScene, n: usize) -> Vec<usize> {
     let k = mesh_level(sys).max(1) as f64;
-    sys.lines
-        .iter()
-        .map(|l| ((n as f64 * l.n_elements as f64 / k).round() as usize).max(MIN_LINE_ELEMENTS))
-        .collect()
+    sys.lines.iter().map(|l| ((n as f64 * l.n_elements as f64 / k).round() as usize).max(MIN_LINE_ELEMENTS)).collect()
 }
 
 /// The step q of the levels at which every line's n n_i/K is whole, so

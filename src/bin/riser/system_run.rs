@@ -291,9 +291,9 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     // the error of these numerics on this run's own motion and sea (issue 51)
     let names = riser::sim::system_accuracy::line_names(&sys);
     let estimate = match estimate_error {
-        Some(_) => Some(
-            riser::sim::system_accuracy::estimate_error(&sys, &pilot_spec, available).map_err(|e| e.to_string())?,
-        ),
+        Some(_) => {
+            Some(riser::sim::system_accuracy::estimate_error(&sys, &pilot_spec, available).map_err(|e| e.to_string())?)
+        }
         None => None,
     };
     let wall = wall0.elapsed().as_secs_f64();
@@ -545,10 +545,7 @@ pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
 /// independently (they meet only at the vessel): the system's modes are
 /// its lines', each line's `count` lowest, merged by period.
 pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(), String> {
-    if !set.is_empty() {
-        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
-    }
-    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
     if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the modes") {
         return Err(m);
     }
