@@ -254,42 +254,25 @@ impl SystemScene {
     /// ([`SYSTEM_SET_KEYS`], as a single line's `--set`); a line's or a line
     /// type's key is refused, naming where it is written.
     pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<SystemScene, SceneError> {
-        let mut refused = Vec::new();
-        for s in sets {
-            let s = s.as_ref();
-            let Some((name, value)) = s.split_once('=') else {
-                refused.push(FieldError { field: format!("--set {s}"), message: "expected name=value".to_string() });
-                continue;
-            };
-            let (name, value) = (name.trim(), value.trim());
+        super::apply_sets(sets, |name, value| {
             if !SYSTEM_SET_KEYS.contains(&name) {
-                refused.push(FieldError {
-                    field: format!("--set {name}"),
+                return Err(SceneError::Override {
+                    name: name.to_string(),
                     message: format!(
                         "not for a system scene: --set takes its shared [analysis] keys ({}); a line's or a line \
                          type's key (n_elements, EA, ...) is written in the system's file",
                         SYSTEM_SET_KEYS.join(", ")
                     ),
                 });
-                continue;
             }
             // through a line's scene: the same parsing and ranges as a single line's
             let mut scene = self.line_scene(0, V3::zeros());
-            match scene.set(name, value) {
-                Ok(()) => {
-                    let (model, n) = (self.analysis.model, self.analysis.n_elements);
-                    self.analysis = scene.analysis;
-                    (self.analysis.model, self.analysis.n_elements) = (model, n);
-                }
-                Err(SceneError::Override { message, .. }) => {
-                    refused.push(FieldError { field: format!("--set {name}"), message })
-                }
-                Err(e) => refused.push(FieldError { field: format!("--set {name}"), message: e.to_string() }),
-            }
-        }
-        if !refused.is_empty() {
-            return Err(SceneError::Invalid(refused));
-        }
+            scene.set(name, value)?;
+            let (model, n) = (self.analysis.model, self.analysis.n_elements);
+            self.analysis = scene.analysis;
+            (self.analysis.model, self.analysis.n_elements) = (model, n);
+            Ok(())
+        })?;
         let errs = self.check();
         if errs.is_empty() { Ok(self) } else { Err(SceneError::Invalid(errs)) }
     }

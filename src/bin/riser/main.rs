@@ -377,7 +377,14 @@ fn choose_numerics(
         None => accuracy::DesignRun::apply(scene, pinned, threads, &mut progress),
     }
     .map_err(|e| e.to_string())?;
-    if let Some(c) = &choice {
+    say_choice(&choice);
+    Ok((scene, choice))
+}
+
+/// The choice of `accuracy` on stderr: what was chosen, its notes and the
+/// warning where its estimate misses the target.
+fn say_choice(choice: &Option<riser::sim::accuracy::Choice>) {
+    if let Some(c) = choice {
         eprintln!("riser: {}", c.describe());
         for n in &c.notes {
             eprintln!("riser: note: {n}");
@@ -386,7 +393,6 @@ fn choose_numerics(
             eprintln!("riser: warning: {w}");
         }
     }
-    Ok((scene, choice))
 }
 
 /// The choice of `accuracy` under the JSON key `accuracy` (null when unset):

@@ -132,15 +132,7 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     let mut said = |m: &str| eprintln!("riser: {m}");
     let (sys, choice) = riser::sim::system_accuracy::apply(sys, &pilot_spec, pinned, available, &mut said)
         .map_err(|e| e.to_string())?;
-    if let Some(c) = &choice {
-        eprintln!("riser: {}", c.describe());
-        for n in &c.notes {
-            eprintln!("riser: note: {n}");
-        }
-        if let Some(w) = c.warning() {
-            eprintln!("riser: warning: {w}");
-        }
-    }
+    crate::say_choice(&choice);
     let dt = sys.analysis.time_step;
     let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
     let wall0 = std::time::Instant::now();
