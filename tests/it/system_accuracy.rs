@@ -7,13 +7,12 @@
 //! target against a converged reference run of the same system, and the
 //! estimate the choice reports is within a factor 3 of the error measured.
 //!
-//! The systems: two of docs/cases/moored_vessel.toml's chains (OC3-Hywind's
-//! chain), fore and aft, the vessel surged 2 m and heaved 2 m at 10 s (the
+//! The system: two of docs/cases/moored_vessel.toml's chains hanging free
+//! (docs/cases/two_chains_hanging.toml: 600 m to anchors 500 m out and 200
+//! m down, no seabed), the vessel surged 2 m and heaved 2 m at 10 s (the
 //! CLI's ramp over one period; the window from 20 s to 50 s, three periods:
-//! the pilots' own), hanging free: 600 m to anchors 500 m out and 200 m
-//! down, no seabed. (They are derived from `ON_SEABED`, the reduced copy
-//! of moored_vessel on its seabed, whose reference does not converge at
-//! steps a test can afford: docs/theory.md §16.14.)
+//! the pilots' own). (On moored_vessel's seabed the reference does not
+//! converge at steps a test can afford: docs/theory.md §16.14.)
 
 use riser::math::V3;
 use riser::scene::system::SystemScene;
@@ -23,82 +22,12 @@ use riser::sim::system_accuracy::{self, SystemRunSpec, run_system_pilot};
 use riser::sim::vessel::VesselMotion;
 use std::process::Command;
 
-/// Two chains of moored_vessel.toml, fore and aft (bow and stern on the
-/// centre line), on its seabed: 700 m, anchors 640 m out; 35 elements, 0.05 s.
-const ON_SEABED: &str = r#"
-name = "two_chains"
-description = "the vessel on two of moored_vessel's chains, fore and aft"
+/// docs/cases/two_chains_hanging.toml: two of moored_vessel's chains
+/// hanging free, 30 elements at 0.05 s as written.
+const HANGING: &str = include_str!("../../docs/cases/two_chains_hanging.toml");
 
-[[line_type]]
-name = "chain"
-model = "cable"
-mass_per_length = 77.7066
-outer_diameter = 0.09
-axial_stiffness = 384.243e6
-bending_stiffness = 0.0
-torsional_stiffness = 0.0
-cd_normal = 1.2
-cd_tangential = 0.4
-ca_normal = 1.0
-
-[[point]]
-name = "fairlead_bow"
-kind = "vessel"
-position = [45.0, 0.0, -5.0]
-
-[[point]]
-name = "fairlead_stern"
-kind = "vessel"
-position = [-45.0, 0.0, -5.0]
-
-[[point]]
-name = "anchor_bow"
-kind = "fixed"
-position = [685.0, 0.0, -205.0]
-
-[[point]]
-name = "anchor_stern"
-kind = "fixed"
-position = [-685.0, 0.0, -205.0]
-
-[[line]]
-name = "chain_bow"
-type = "chain"
-from = "fairlead_bow"
-to = "anchor_bow"
-length = 700.0
-n_elements = 35
-
-[[line]]
-name = "chain_stern"
-type = "chain"
-from = "fairlead_stern"
-to = "anchor_stern"
-length = 700.0
-n_elements = 35
-
-[environment]
-water_density = 1025.0
-gravity = 9.81
-
-[seabed]
-z = -205.0
-stiffness = 3.0e6
-damping = 3.0e5
-friction = 0.0
-
-[analysis]
-time_step = 0.05
-newton_tolerance = 1e-8
-"#;
-
-/// The two chains hanging free: 600 m to anchors 500 m out and 200 m down,
-/// no seabed; 30 elements, 0.05 s.
 fn free_hanging() -> String {
-    let s = ON_SEABED.replace("685.0", "545.0").replace("length = 700.0", "length = 600.0");
-    let s = s.replace("n_elements = 35", "n_elements = 30");
-    let (a, b) = (s.find("[seabed]").unwrap(), s.find("[analysis]").unwrap());
-    format!("{}{}", &s[..a], &s[b..])
+    HANGING.to_string()
 }
 
 const PERIOD: f64 = 10.0;
@@ -281,11 +210,7 @@ fn riser(args: &[&str]) -> std::process::Output {
 /// written; `--estimate-error` on a system.
 #[test]
 fn the_command_line_takes_accuracy_on_a_system() {
-    let dir = std::env::temp_dir().join(format!("riser_system_accuracy_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("two_chains.toml");
-    std::fs::write(&path, free_hanging()).unwrap();
-    let p = path.to_str().unwrap();
+    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/two_chains_hanging.toml");
     let base = ["run", p, "--surge", "2,10", "--heave", "2,10", "--duration", "50", "--json"];
     let out = riser(&[&base[..], &["--set", "accuracy=1e-2"]].concat());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -316,5 +241,4 @@ fn the_command_line_takes_accuracy_on_a_system() {
     let e = &v["error_estimate"];
     assert_eq!(e["pilots"].as_array().unwrap().len(), 5, "{e}");
     assert!(e["quantities"].as_array().unwrap().iter().any(|q| q["quantity"] == "chain_stern.top_tension_max"), "{e}");
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -9,6 +9,7 @@ not pin them; a nonzero value the master sets wins."""
 
 import json
 import subprocess
+from pathlib import Path
 
 import pytest
 from fmpy import read_model_description
@@ -81,56 +82,8 @@ def test_a_quantity_the_scene_does_not_have_is_an_error(fmu_path, unzipped):
                       reals={"accuracy": 1e-3})
 
 
-# Two of moored_vessel's chains hanging free, fore and aft (tests/it/system_accuracy.rs),
-# `accuracy` 1e-2 in the system's [analysis].
-TWO_CHAINS = """
-name = "two_chains"
-[[line_type]]
-name = "chain"
-model = "cable"
-mass_per_length = 77.7066
-outer_diameter = 0.09
-axial_stiffness = 384.243e6
-bending_stiffness = 0.0
-torsional_stiffness = 0.0
-cd_normal = 1.2
-cd_tangential = 0.4
-ca_normal = 1.0
-[[point]]
-name = "fairlead_bow"
-kind = "vessel"
-position = [45.0, 0.0, -5.0]
-[[point]]
-name = "fairlead_stern"
-kind = "vessel"
-position = [-45.0, 0.0, -5.0]
-[[point]]
-name = "anchor_bow"
-kind = "fixed"
-position = [545.0, 0.0, -205.0]
-[[point]]
-name = "anchor_stern"
-kind = "fixed"
-position = [-545.0, 0.0, -205.0]
-[[line]]
-name = "chain_bow"
-type = "chain"
-from = "fairlead_bow"
-to = "anchor_bow"
-length = 600.0
-n_elements = 30
-[[line]]
-name = "chain_stern"
-type = "chain"
-from = "fairlead_stern"
-to = "anchor_stern"
-length = 600.0
-n_elements = 30
-[analysis]
-time_step = 0.05
-newton_tolerance = 1e-8
-accuracy = 1e-2
-"""
+# Two of moored_vessel's chains hanging free, fore and aft (tests/it/system_accuracy.rs)
+HANGING = Path(__file__).resolve().parents[2] / "docs" / "cases" / "two_chains_hanging.toml"
 
 
 def test_a_system_fmu_chooses_what_the_command_line_chooses_for_the_design_motion(fmu_path, unzipped, riser_bin,
@@ -140,7 +93,8 @@ def test_a_system_fmu_chooses_what_the_command_line_chooses_for_the_design_motio
     choose what `riser run SYSTEM --heave 2.5,10 --duration 50` chooses on that same motion: the
     level (chosen_n_elements, every line's elements here), the step, the tolerance and the estimate."""
     scene = tmp_path / "two_chains.toml"
-    scene.write_text(TWO_CHAINS)
+    text = HANGING.read_text().replace("newton_tolerance = 1e-8", "newton_tolerance = 1e-8\naccuracy = 1e-2")
+    scene.write_text(text)
     run = subprocess.run([riser_bin, "run", str(scene), "--heave", "2.5,10", "--duration", "50", "--json"],
                          check=True, capture_output=True, text=True)
     c = json.loads(run.stdout)["accuracy"]
