@@ -620,7 +620,7 @@ impl Instance {
             }
             other => other.to_string(),
         })?;
-        Ok((super::system::LineScenes { scenes: vec![(scene, VesselEnd::From)], free: None }, false))
+        Ok((super::system::LineScenes { scenes: vec![(scene, VesselEnd::From)], free: None, choice: None }, false))
     }
 
     /// fmi2EnterInitializationMode.
@@ -645,7 +645,8 @@ impl Instance {
         if self.sim.is_some() {
             return Status::Ok;
         }
-        let (super::system::LineScenes { mut scenes, free: free_system }, is_system) = match self.build_scenes() {
+        let (super::system::LineScenes { mut scenes, free: free_system, choice }, is_system) = match self.build_scenes()
+        {
             Ok(s) => s,
             Err(e) => return self.fail(&e),
         };
@@ -672,9 +673,15 @@ impl Instance {
                 .filter(|(p, v)| matches!(p, Some((value, true)) if !is_unset_numeric(v.name, value)))
                 .map(|(_, v)| v.name),
         );
-        let scene = match self.choose_numerics(scene, pinned) {
-            Ok(scene) => scene,
-            Err(e) => return self.fail(&format!("initialisation failed: {e}")),
+        // a system's choice is its lines' (made with its scenes, docs/theory.md §16.14)
+        let scene = if is_system {
+            self.keep_choice(choice);
+            scene
+        } else {
+            match self.choose_numerics(scene, pinned) {
+                Ok(scene) => scene,
+                Err(e) => return self.fail(&format!("initialisation failed: {e}")),
+            }
         };
         self.scene = Some(scene.clone());
         let mut sim = match first_built.map(|l| Ok(l.sim)).unwrap_or_else(|| Simulation::from_scene(&scene)) {
@@ -1699,17 +1706,29 @@ impl Instance {
             self.log(Status::Ok, Category::Events, &m);
         }
         let (scene, choice) = result.map_err(|e| e.to_string())?;
-        if let Some(c) = &choice {
-            self.log_once(Status::Ok, Category::Events, &c.describe());
-            for n in &c.notes {
-                self.log_once(Status::Warning, Category::Warning, &format!("accuracy: {n}"));
-            }
-            if let Some(w) = c.warning() {
-                self.log_once(Status::Warning, Category::Warning, &w);
-            }
-        }
-        self.knob = choice;
+        self.keep_choice(choice.map(|c| (c, Vec::new())));
         Ok(scene)
+    }
+
+    /// Logs a choice of `accuracy` (what its rounds said, the choice, its
+    /// notes, the warning where it misses the target) and keeps it for
+    /// `chosen_*` and `error_estimate`.
+    fn keep_choice(&mut self, choice: Option<(crate::sim::accuracy::Choice, Vec<String>)>) {
+        let Some((c, said)) = choice else {
+            self.knob = None;
+            return;
+        };
+        for m in said {
+            self.log(Status::Ok, Category::Events, &m);
+        }
+        self.log_once(Status::Ok, Category::Events, &c.describe());
+        for n in &c.notes {
+            self.log_once(Status::Warning, Category::Warning, &format!("accuracy: {n}"));
+        }
+        if let Some(w) = c.warning() {
+            self.log_once(Status::Warning, Category::Warning, &w);
+        }
+        self.knob = Some(c);
     }
 
     /// fmi2SetReal for one value reference.

@@ -61,11 +61,6 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
     if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
         return Err(m);
     }
-    if sys.analysis.accuracy > 0.0 {
-        return Err("accuracy: not for a system of lines in this version; give each line's n_elements and the \
-                    system's time_step and newton_tolerance"
-            .to_string());
-    }
     let wide: Vec<String> =
         sets.iter().filter(|(v, _)| SYSTEM_WIDE.contains(&v.name)).map(|(v, t)| format!("{}={t}", v.name)).collect();
     let mut scenes = Vec::with_capacity(sys.lines.len());
@@ -91,20 +86,66 @@ pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> R
             SYSTEM_WIDE.join(", ")
         ));
     }
+    // the first line's scene carries the master's values (the lines' scenes copy the system's)
+    let set = &scenes[0].0;
+    let mut system = sys.clone();
+    system.analysis.time_step = set.analysis.time_step;
+    system.analysis.newton_tolerance = set.analysis.newton_tolerance;
+    system.analysis.structural_damping = set.analysis.structural_damping;
+    system.analysis.rho_infinity = set.analysis.rho_infinity;
+    system.analysis.static_current = set.analysis.static_current;
+    system.current.ramp = set.current.ramp;
+    // `accuracy` (docs/theory.md §16.14): the system's pilots of the design
+    // motion choose every line's elements, the step and the tolerance
+    let mut choice = None;
+    if system.analysis.accuracy > 0.0 {
+        let pinned = crate::sim::accuracy::Pinned::of_names(sets.iter().map(|(v, _)| v.name));
+        let (chosen, c, said) = choose_for_design(system, &scenes[0].0, pinned)?;
+        for ((scene, _), l) in scenes.iter_mut().zip(&chosen.lines) {
+            scene.analysis.n_elements = l.n_elements;
+            scene.analysis.time_step = chosen.analysis.time_step;
+            scene.analysis.newton_tolerance = chosen.analysis.newton_tolerance;
+        }
+        system = chosen;
+        choice = c.map(|c| (c, said));
+    }
     let free = sys.points.iter().any(|p| p.kind == PointKind::Free);
-    let system = free.then(|| {
-        // the first line's scene carries the master's values (the lines' scenes copy the system's)
-        let set = &scenes[0].0;
-        let mut s = sys.clone();
-        s.analysis.time_step = set.analysis.time_step;
-        s.analysis.newton_tolerance = set.analysis.newton_tolerance;
-        s.analysis.structural_damping = set.analysis.structural_damping;
-        s.analysis.rho_infinity = set.analysis.rho_infinity;
-        s.analysis.static_current = set.analysis.static_current;
-        s.current.ramp = set.current.ramp;
-        s
-    });
-    Ok(LineScenes { scenes, free: system })
+    Ok(LineScenes { scenes, free: free.then_some(system), choice })
+}
+
+/// The numerics `accuracy` chooses for `sys` (the master's values set) on
+/// the design motion of its first line's scene `first` (a heave of
+/// `accuracy_motion_amplitude` at `accuracy_motion_period` in its sea:
+/// [`crate::sim::accuracy::DesignRun`]), the pilots on the machine's
+/// cores; what the rounds said, to log.
+fn choose_for_design(
+    sys: SystemScene,
+    first: &Scene,
+    pinned: crate::sim::accuracy::Pinned,
+) -> Result<(SystemScene, Option<crate::sim::accuracy::Choice>, Vec<String>), String> {
+    let design = crate::sim::accuracy::DesignRun::of(first).map_err(|e| e.to_string())?;
+    let heave = design.heave;
+    let motion = move |t: f64| {
+        let h = heave.at(t);
+        crate::sim::vessel::VesselMotion {
+            displacement: crate::math::V3::new(0.0, 0.0, h.displacement.z),
+            velocity: crate::math::V3::new(0.0, 0.0, h.velocity.z),
+            ..Default::default()
+        }
+    };
+    let spec = crate::sim::system_accuracy::SystemRunSpec {
+        motion: &motion,
+        window: design.window,
+        period: Some(design.period),
+        irregular: design.irregular,
+        max_tangent_age: crate::model::DynamicOptions::default().max_tangent_age,
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut said = Vec::new();
+    let (chosen, choice) =
+        crate::sim::system_accuracy::apply(sys, &spec, pinned, threads, &mut |m: &str| said.push(m.to_string()))
+            .map_err(|e| e.to_string())?;
+    Ok((chosen, choice, said))
 }
 
 /// A system's lines as the FMU builds them ([`line_scenes`]).
@@ -113,6 +154,8 @@ pub struct LineScenes {
     pub scenes: Vec<(Scene, VesselEnd)>,
     /// With free points: the system with the master's numerics.
     pub free: Option<SystemScene>,
+    /// With `accuracy`: the system's choice and what its rounds said.
+    pub choice: Option<(crate::sim::accuracy::Choice, Vec<String>)>,
 }
 
 /// A system's lines as its free points' stepper reaches them in the FMU:

@@ -776,24 +776,7 @@ impl Scene {
     /// Applies `name=value` overrides (the FMU's parameter names), then
     /// validates; every refused override is listed (as `--set NAME`).
     pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<Scene, SceneError> {
-        let mut refused = Vec::new();
-        for s in sets {
-            let s = s.as_ref();
-            let Some((name, value)) = s.split_once('=') else {
-                refused.push(FieldError { field: format!("--set {s}"), message: "expected name=value".to_string() });
-                continue;
-            };
-            if let Err(e) = self.set(name.trim(), value.trim()) {
-                let message = match e {
-                    SceneError::Override { message, .. } => message,
-                    other => other.to_string(),
-                };
-                refused.push(FieldError { field: format!("--set {}", name.trim()), message });
-            }
-        }
-        if !refused.is_empty() {
-            return Err(SceneError::Invalid(refused));
-        }
+        apply_sets(sets, |name, value| self.set(name, value))?;
         self.validate()?;
         Ok(self)
     }
@@ -837,4 +820,28 @@ impl Scene {
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("scene serialises")
     }
+}
+
+/// `--set name=value` overrides, each through `set` (name and value
+/// trimmed); every one refused listed (as `--set NAME`, its message).
+pub fn apply_sets<S: AsRef<str>>(
+    sets: &[S],
+    mut set: impl FnMut(&str, &str) -> Result<(), SceneError>,
+) -> Result<(), SceneError> {
+    let mut refused = Vec::new();
+    for s in sets {
+        let s = s.as_ref();
+        let Some((name, value)) = s.split_once('=') else {
+            refused.push(FieldError { field: format!("--set {s}"), message: "expected name=value".to_string() });
+            continue;
+        };
+        if let Err(e) = set(name.trim(), value.trim()) {
+            let message = match e {
+                SceneError::Override { message, .. } => message,
+                other => other.to_string(),
+            };
+            refused.push(FieldError { field: format!("--set {}", name.trim()), message });
+        }
+    }
+    if refused.is_empty() { Ok(()) } else { Err(SceneError::Invalid(refused)) }
 }

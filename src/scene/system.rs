@@ -250,6 +250,33 @@ impl SystemScene {
         if errs.is_empty() { Ok(sys) } else { Err(SceneError::Invalid(errs)) }
     }
 
+    /// The system with `--set name=value` of its shared numerics
+    /// ([`SYSTEM_SET_KEYS`], as a single line's `--set`); a line's or a line
+    /// type's key is refused, naming where it is written.
+    pub fn with_overrides<S: AsRef<str>>(mut self, sets: &[S]) -> Result<SystemScene, SceneError> {
+        super::apply_sets(sets, |name, value| {
+            if !SYSTEM_SET_KEYS.contains(&name) {
+                return Err(SceneError::Override {
+                    name: name.to_string(),
+                    message: format!(
+                        "not for a system scene: --set takes its shared [analysis] keys ({}); a line's or a line \
+                         type's key (n_elements, EA, ...) is written in the system's file",
+                        SYSTEM_SET_KEYS.join(", ")
+                    ),
+                });
+            }
+            // through a line's scene: the same parsing and ranges as a single line's
+            let mut scene = self.line_scene(0, V3::zeros());
+            scene.set(name, value)?;
+            let (model, n) = (self.analysis.model, self.analysis.n_elements);
+            self.analysis = scene.analysis;
+            (self.analysis.model, self.analysis.n_elements) = (model, n);
+            Ok(())
+        })?;
+        let errs = self.check();
+        if errs.is_empty() { Ok(self) } else { Err(SceneError::Invalid(errs)) }
+    }
+
     /// A system scene file.
     pub fn load(path: &str) -> Result<SystemScene, SceneError> {
         let text = std::fs::read_to_string(path)
@@ -541,6 +568,17 @@ pub const MAX_REACH_STRAIN: f64 = super::validate::MAX_REACH_STRAIN;
 /// The largest mass (kg), volume (m³), drag area (m²) or added-mass
 /// coefficient a free point may have.
 pub const MAX_POINT_VALUE: f64 = 1e9;
+
+/// The keys `--set` takes on a system: its shared numerics (`[analysis]`).
+pub const SYSTEM_SET_KEYS: [&str; 7] = [
+    "time_step",
+    "newton_tolerance",
+    "structural_damping",
+    "rho_infinity",
+    "accuracy",
+    "accuracy_quantity",
+    "static_current",
+];
 
 /// What a command that takes only single-line scenes says of a system.
 pub const NOT_YET: &str = "a system of lines ([[line]]): this command takes a single-line scene; `riser statics`, \

@@ -45,7 +45,9 @@
 //! axis has that one level, and the estimate says whether the target is met.
 
 use super::error::{AccuracyError, RiserError};
-use super::error_estimate::{Convergence, ErrorEstimate, Layout, Quantity, RunSpec, Triplet, estimate_error_laid};
+use super::error_estimate::{
+    Convergence, ErrorEstimate, Layout, LinePilots, PilotRuns, Quantity, RunSpec, Triplet, estimate_on,
+};
 use crate::scene::{AccuracyQuantity, Scene};
 
 /// The safety factor S of (16.18): the estimate of the pilots is within
@@ -272,6 +274,10 @@ pub struct Choice {
     pub notes: Vec<String>,
     /// The pilots' elapsed time, s.
     pub wall_s: f64,
+    /// A system's lines' names (their quantities' labels) and its mesh in
+    /// words (each line's elements at the chosen level); empty and None for one line.
+    pub line_names: Vec<String>,
+    pub mesh_words: Option<String>,
 }
 
 impl Choice {
@@ -298,15 +304,15 @@ impl Choice {
             .filter(|p| p.quantity == p.relative_to)
             .map(|p| {
                 let o = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
-                format!("{} mesh {} step {}", p.quantity.name(), o(p.mesh_order), o(p.step_order))
+                format!("{} mesh {} step {}", p.quantity.label(&self.line_names), o(p.mesh_order), o(p.step_order))
             })
             .collect();
         format!(
-            "accuracy {:e} on {}: n_elements {}{}, time_step {} s{}, newton_tolerance {:e}{}; estimated error {:.2e} \
+            "accuracy {:e} on {}: {}{}, time_step {} s{}, newton_tolerance {:e}{}; estimated error {:.2e} \
              (orders: {}); {} pilots in {} round(s), {:.1} s",
             self.target,
             self.quantity.name(),
-            self.n_elements,
+            self.mesh_words.clone().unwrap_or_else(|| format!("n_elements {}", self.n_elements)),
             if self.pinned.n_elements { " (yours)" } else { "" },
             self.time_step,
             if self.pinned.time_step { " (yours)" } else { "" },
@@ -348,7 +354,7 @@ fn models(
         .iter()
         .map(|&(q, s)| {
             let e = round.of(q).ok_or_else(|| AccuracyError::NotMeasured {
-                quantity: q.name(),
+                quantity: q.name().into_owned(),
                 why: if round.notes.is_empty() {
                     "no value over their window".to_string()
                 } else {
@@ -375,14 +381,15 @@ fn round3(x: f64) -> f64 {
 }
 
 /// The candidate meshes about a base of `n0` elements (every whole number
-/// from n₀/4 to 16 n₀ with nodes on the buoyancy sections' ends).
-fn meshes(scene: &Scene, n0: usize, pinned: bool) -> Vec<usize> {
+/// from n₀/4 to 16 n₀ that `fits`: a line's with nodes on its buoyancy
+/// sections' ends).
+fn meshes(fits: &dyn Fn(usize) -> bool, n0: usize, pinned: bool) -> Vec<usize> {
     if pinned {
         return vec![n0];
     }
     let lo = (n0 / 4).max(2);
     let hi = (16 * n0).min(MAX_ELEMENTS);
-    (lo..=hi).filter(|&n| nodes_on_buoyancy_ends(scene, n)).collect()
+    (lo..=hi).filter(|&n| fits(n)).collect()
 }
 
 /// The candidate steps about a base of `dt0` s (Δt₀ 2^{−k/4}, k from −8
@@ -457,9 +464,9 @@ fn in_span(base: (usize, f64), n: usize, dt: f64) -> (bool, bool) {
 /// The base (n₀, Δt₀) of the round of [`Layout::Corner`] whose candidate,
 /// its finest pilot (4n₀, Δt₀/4), is `(n, dt)` or the least finer mesh
 /// whose quarter has nodes on the buoyancy sections' ends.
-fn corner_base(scene: &Scene, (n, dt): (usize, f64)) -> (usize, f64) {
+fn corner_base(fits: &dyn Fn(usize) -> bool, (n, dt): (usize, f64)) -> (usize, f64) {
     let lo = n.div_ceil(4).max(MIN_BASE_ELEMENTS);
-    let m = (lo..=n.max(lo)).find(|&m| nodes_on_buoyancy_ends(scene, m)).unwrap_or(lo);
+    let m = (lo..=n.max(lo)).find(|&m| fits(m)).unwrap_or(lo);
     (m, dt * 4.0)
 }
 
@@ -469,13 +476,13 @@ fn corner_base(scene: &Scene, (n, dt): (usize, f64)) -> (usize, f64) {
 /// the scene's numerics, then (its pilots failing: a step too long for
 /// Newton) the scene's own. Numerics the user set: [`Layout::Base`] about
 /// them, the axis set one level.
-fn first_bases(scene: &Scene, (n, dt): (usize, f64), pinned: Pinned) -> (Layout, Vec<(usize, f64)>) {
+fn first_bases(fits: &dyn Fn(usize) -> bool, (n, dt): (usize, f64), pinned: Pinned) -> (Layout, Vec<(usize, f64)>) {
     if pinned.n_elements || pinned.time_step {
         return (Layout::Base, vec![(n, dt)]);
     }
     let k = FIRST_CANDIDATE_COARSENING;
-    let mut bases = vec![corner_base(scene, (n.div_ceil(k), dt * k as f64))];
-    let own = corner_base(scene, (n, dt));
+    let mut bases = vec![corner_base(fits, (n.div_ceil(k), dt * k as f64))];
+    let own = corner_base(fits, (n, dt));
     if !bases.contains(&own) {
         bases.push(own);
     }
@@ -502,13 +509,48 @@ pub fn choose(
     threads: usize,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Choice, RiserError> {
-    let target = scene.analysis.accuracy;
-    let quantity = scene.analysis.accuracy_quantity;
-    let criteria = criteria(quantity, scene, spec.fatigue.is_some())?;
-    let tolerance =
-        if pinned.newton_tolerance { scene.analysis.newton_tolerance } else { newton_tolerance_for(target) };
-    let scene_numerics = (scene.analysis.n_elements, scene.analysis.time_step);
-    let (layout, starts) = first_bases(scene, scene_numerics, pinned);
+    let fits = |n: usize| nodes_on_buoyancy_ends(scene, n);
+    let problem = Problem {
+        runs: &LinePilots { scene, spec },
+        analysis: &scene.analysis,
+        mesh: scene.analysis.n_elements,
+        criteria: criteria(scene.analysis.accuracy_quantity, scene, spec.fatigue.is_some())?,
+        fits: &fits,
+        line_names: &[],
+    };
+    choose_on(&problem, pinned, threads, progress)
+}
+
+/// What [`choose_on`] measures: a scene's pilots, its numerics and the
+/// quantities its target is on.
+pub struct Problem<'a> {
+    pub runs: &'a dyn PilotRuns,
+    /// The target (`accuracy`, `accuracy_quantity`), the scene's step and
+    /// Newton tolerance.
+    pub analysis: &'a crate::scene::Analysis,
+    /// The scene's mesh (a line's elements, a system's level).
+    pub mesh: usize,
+    /// The quantities the target is on, each with the one its error is relative to (16.18).
+    pub criteria: Vec<(Quantity, Quantity)>,
+    /// Whether a mesh may be chosen (a line's: nodes on its buoyancy sections' ends).
+    pub fits: &'a dyn Fn(usize) -> bool,
+    /// A system's lines' names (empty for one line).
+    pub line_names: &'a [String],
+}
+
+/// [`choose`] of any scene's pilots (one line, a system: docs/theory.md §16.14).
+pub fn choose_on(
+    problem: &Problem,
+    pinned: Pinned,
+    threads: usize,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Choice, RiserError> {
+    let Problem { runs, analysis, criteria, fits, line_names, .. } = problem;
+    let target = analysis.accuracy;
+    let quantity = analysis.accuracy_quantity;
+    let tolerance = if pinned.newton_tolerance { analysis.newton_tolerance } else { newton_tolerance_for(target) };
+    let scene_numerics = (problem.mesh, analysis.time_step);
+    let (layout, starts) = first_bases(fits, scene_numerics, pinned);
     let mut starts = starts.into_iter();
     let mut base = starts.next().unwrap_or(scene_numerics);
     let mut rounds: Vec<ErrorEstimate> = Vec::new();
@@ -523,7 +565,7 @@ pub fn choose(
     let mut best: Option<Pick> = None;
     let cost = |(n, dt): (usize, f64)| n as f64 / dt;
     loop {
-        let duration = super::error_estimate::PilotPlan::new(spec.window, spec.period, spec.irregular).duration;
+        let duration = runs.plan().duration;
         let work: f64 = layout.levels(base.0, base.1).0.iter().map(|&(n, dt)| n as f64 * (duration / dt).ceil()).sum();
         // the numerics the round measures: its base, or its candidate (the finest pilot)
         let about = match layout {
@@ -540,10 +582,6 @@ pub fn choose(
             ));
             break;
         }
-        let mut pilot_scene = scene.clone();
-        pilot_scene.analysis.n_elements = base.0;
-        pilot_scene.analysis.time_step = base.1;
-        pilot_scene.analysis.newton_tolerance = tolerance;
         progress(&format!(
             "accuracy {target:e}: round {} of pilots about {} elements, time_step {} s (5 runs of {duration:.0} s, \
              {work:.2e} element-steps)",
@@ -552,7 +590,7 @@ pub fn choose(
             about.1,
         ));
         let known: Vec<_> = rounds.iter().flat_map(|r| r.pilots.iter().filter(|p| !p.reused).cloned()).collect();
-        let round = match estimate_error_laid(&pilot_scene, spec, threads, layout, &known) {
+        let round = match estimate_on(*runs, (base.0, base.1, tolerance), threads, layout, &known) {
             Ok(r) => r,
             // a later round's pilots failed (too coarse a step): the choice so far
             Err(e) if best.is_some() => {
@@ -581,9 +619,9 @@ pub fn choose(
             },
             Err(e) => return Err(e),
         };
-        let models = models(&round, &criteria, target)?;
+        let models = models(&round, criteria, target)?;
         rounds.push(round);
-        let ladders = (&meshes(scene, base.0, pinned.n_elements)[..], &steps(base.1, pinned.time_step)[..]);
+        let ladders = (&meshes(fits, base.0, pinned.n_elements)[..], &steps(base.1, pinned.time_step)[..]);
         if let Some(numerics) = cheapest(&models, target, (layout, base), ladders, false)
             && best.as_ref().is_none_or(|b| cost(numerics) < cost(b.numerics))
         {
@@ -617,7 +655,7 @@ pub fn choose(
                 (if mesh_in { base.0 } else { n }, if step_in { base.1 } else { dt })
             }
             // the proposal the next round's candidate
-            Layout::Corner => corner_base(scene, (n, dt)),
+            Layout::Corner => corner_base(fits, (n, dt)),
         };
         if next == base {
             break;
@@ -629,7 +667,7 @@ pub fn choose(
         None => {
             // the target beyond what the pilots' levels reach: the last round's finest
             let round = rounds.len() - 1;
-            let models = models(&rounds[round], &criteria, target)?;
+            let models = models(&rounds[round], criteria, target)?;
             notes.push(format!(
                 "no mesh and step within the pilots of {} round(s) is estimated to meet the target: the finest \
                  pilot's numerics taken",
@@ -662,7 +700,7 @@ pub fn choose(
         let Some(e) = rounds[round].of(m.quantity) else { continue };
         for (axis, t, what) in [(m.mesh, &e.mesh, mesh_levels), (m.step, &e.step, step_levels)] {
             if let (Axis::Unconverged { .. }, Some(note)) = (axis, t.note(what)) {
-                notes.push(format!("{}: {note}", m.quantity.name()));
+                notes.push(format!("{}: {note}", m.quantity.label(line_names)));
             }
         }
     }
@@ -677,6 +715,8 @@ pub fn choose(
         rounds,
         notes,
         wall_s: start.elapsed().as_secs_f64(),
+        line_names: line_names.to_vec(),
+        mesh_words: None,
     })
 }
 

@@ -84,7 +84,7 @@ pub enum AccuracyError {
     /// The scene has none of the quantity the target is on.
     NoQuantity { quantity: &'static str, reason: &'static str },
     /// The pilots measured no value of `quantity` over their window.
-    NotMeasured { quantity: &'static str, why: String },
+    NotMeasured { quantity: String, why: String },
 }
 
 impl std::fmt::Display for AccuracyError {

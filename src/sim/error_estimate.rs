@@ -89,6 +89,46 @@ pub enum Quantity {
     /// Miner's damage over the window at the worst point and fibre (the
     /// run's fatigue, [`RunSpec::fatigue`]; docs/theory.md §12.5).
     FatigueDamage,
+    /// A system's resultant force on the vessel (global frame, N): its
+    /// component `axis` (0, 1, 2: x, y, z; 3: its magnitude) over the
+    /// window (docs/theory.md §16.14).
+    VesselForce { axis: usize, stat: Stat },
+    /// A system's resultant moment on the vessel about its reference point
+    /// (global frame, N m), as [`Quantity::VesselForce`].
+    VesselMoment { axis: usize, stat: Stat },
+    /// The top tension (at its hang-off) of a system's line `line` (its
+    /// index in the system), N.
+    LineTension { line: usize, stat: Stat },
+}
+
+/// A statistic of a quantity over the window.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stat {
+    Min,
+    Mean,
+    Max,
+}
+
+impl Stat {
+    pub const ALL: [Stat; 3] = [Stat::Min, Stat::Mean, Stat::Max];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Stat::Min => "min",
+            Stat::Mean => "mean",
+            Stat::Max => "max",
+        }
+    }
+
+    /// Of samples `(t, y)` over `window`: the extremes' parabola peaks
+    /// ([`peak`]), the trapezoid mean ([`time_mean`]).
+    pub fn of(self, samples: &[(f64, f64)], window: (f64, f64)) -> f64 {
+        match self {
+            Stat::Min => peak(samples, window, false),
+            Stat::Mean => time_mean(samples, window),
+            Stat::Max => peak(samples, window, true),
+        }
+    }
 }
 
 impl Quantity {
@@ -104,7 +144,28 @@ impl Quantity {
         Quantity::FatigueDamage,
     ];
 
-    pub fn name(self) -> &'static str {
+    /// Its name: a system's line by its index (`line2.top_tension_max`;
+    /// [`Quantity::label`] names it).
+    pub fn name(self) -> std::borrow::Cow<'static, str> {
+        self.label(&[])
+    }
+
+    /// Its name, a system's line by its name in `lines` where it is there.
+    pub fn label(self, lines: &[String]) -> std::borrow::Cow<'static, str> {
+        const AXES: [&str; 4] = ["x", "y", "z", "magnitude"];
+        let axis = |a: usize| AXES.get(a).copied().unwrap_or("?");
+        match self {
+            Quantity::VesselForce { axis: a, stat } => format!("vessel_force_{}_{}", axis(a), stat.name()).into(),
+            Quantity::VesselMoment { axis: a, stat } => format!("vessel_moment_{}_{}", axis(a), stat.name()).into(),
+            Quantity::LineTension { line, stat } => match lines.get(line) {
+                Some(name) => format!("{name}.top_tension_{}", stat.name()).into(),
+                None => format!("line{line}.top_tension_{}", stat.name()).into(),
+            },
+            q => q.single_name().into(),
+        }
+    }
+
+    fn single_name(self) -> &'static str {
         match self {
             Quantity::TopTensionMax => "top_tension_max",
             Quantity::TopTensionMin => "top_tension_min",
@@ -114,13 +175,14 @@ impl Quantity {
             Quantity::TouchdownMin => "touchdown_min",
             Quantity::StressRange => "stress_range",
             Quantity::FatigueDamage => "fatigue_damage",
+            _ => "",
         }
     }
 
     /// The quantity of a name ([`Quantity::name`]).
     pub fn parse(name: &str) -> Result<Quantity, String> {
         Quantity::ALL.into_iter().find(|q| q.name() == name).ok_or_else(|| {
-            let names: Vec<&str> = Quantity::ALL.iter().map(|q| q.name()).collect();
+            let names: Vec<&str> = Quantity::ALL.iter().map(|q| q.single_name()).collect();
             format!("unknown quantity '{name}'; one of {} or all", names.join(", "))
         })
     }
@@ -143,6 +205,7 @@ impl Quantity {
             Quantity::TouchdownMax | Quantity::TouchdownMin => "m",
             Quantity::StressRange => "Pa",
             Quantity::FatigueDamage => "-",
+            Quantity::VesselMoment { .. } => "N m",
             _ => "N",
         }
     }
@@ -338,14 +401,61 @@ pub struct RunSpec<'a> {
 pub struct Pilot {
     pub n_elements: usize,
     pub time_step: f64,
-    /// The quantities, in [`Quantity::ALL`]'s order (NaN: not of this
-    /// scene, or the touchdown off the seabed in the window).
-    pub values: [f64; 8],
+    /// The quantities, in [`PilotRuns::quantities`]' order (a single
+    /// line's: [`Quantity::ALL`]'s; NaN: not of this scene, or the
+    /// touchdown off the seabed in the window).
+    pub values: Vec<f64>,
     /// Its elapsed time, s (0 where reused).
     pub wall_s: f64,
     /// Run in an earlier round of the same choice and taken from it, not
     /// run again.
     pub reused: bool,
+}
+
+/// A scene as its pilots run it (docs/theory.md §16.14): one line on a
+/// run ([`LinePilots`]) or a system of lines on the vessel's motion
+/// ([`super::system_accuracy::SystemPilots`]). Its mesh is one number n:
+/// a line's elements, a system's level ([`super::system_accuracy::line_elements`]).
+pub trait PilotRuns: Sync {
+    /// The quantities a pilot measures, in [`Pilot::values`]' order.
+    fn quantities(&self) -> Vec<Quantity>;
+    /// Whether the scene has `q` (`fatigue`: the run counts fatigue): only
+    /// those are estimated.
+    fn applies(&self, q: Quantity) -> bool;
+    /// The run's window and slowest period, as the pilots cut it.
+    fn plan(&self) -> PilotPlan;
+    /// One pilot of `plan` at mesh `n`, step `time_step` (s) and Newton
+    /// tolerance `newton_tolerance`, the rest the scene's.
+    fn run(&self, plan: &PilotPlan, n: usize, time_step: f64, newton_tolerance: f64) -> Result<Pilot, RiserError>;
+}
+
+/// One line's pilots: `scene` on the run `spec` ([`run_pilot`]).
+pub struct LinePilots<'a> {
+    pub scene: &'a Scene,
+    pub spec: &'a RunSpec<'a>,
+}
+
+impl PilotRuns for LinePilots<'_> {
+    fn quantities(&self) -> Vec<Quantity> {
+        Quantity::ALL.to_vec()
+    }
+
+    fn applies(&self, q: Quantity) -> bool {
+        q.applies(self.scene, self.spec.fatigue.is_some())
+    }
+
+    fn plan(&self) -> PilotPlan {
+        PilotPlan::new(self.spec.window, self.spec.period, self.spec.irregular)
+    }
+
+    fn run(&self, plan: &PilotPlan, n: usize, time_step: f64, newton_tolerance: f64) -> Result<Pilot, RiserError> {
+        if newton_tolerance == self.scene.analysis.newton_tolerance {
+            return run_pilot(self.scene, self.spec, plan, n, time_step);
+        }
+        let mut scene = self.scene.clone();
+        scene.analysis.newton_tolerance = newton_tolerance;
+        run_pilot(&scene, self.spec, plan, n, time_step)
+    }
 }
 
 /// One pilot: `plan`'s run of `scene` at `n_elements` and `time_step`, the
@@ -417,7 +527,7 @@ pub fn run_pilot(
     Ok(Pilot {
         n_elements,
         time_step,
-        values: [max, min, max - min, mean, td(true), td(false), range, damage.map_or(f64::NAN, |w| w.damage)],
+        values: vec![max, min, max - min, mean, td(true), td(false), range, damage.map_or(f64::NAN, |w| w.damage)],
         wall_s: start.elapsed().as_secs_f64(),
         reused: false,
     })
@@ -499,6 +609,11 @@ impl Estimate {
 
     /// One line: the estimate, the orders, what did not converge.
     pub fn summary(&self) -> String {
+        self.summary_of(&[])
+    }
+
+    /// [`Estimate::summary`], a system's lines named by `lines`.
+    pub fn summary_of(&self, lines: &[String]) -> String {
         let order = |t: &Triplet| match t.order {
             Some(p) => format!("order {p:.2}"),
             None => t.class.name().to_string(),
@@ -506,7 +621,7 @@ impl Estimate {
         let mut s = format!(
             "error estimate of {} ({}): {:.6e} at your numerics, {:.6e} extrapolated, error {:.3e} ({:.2e} \
              relative; mesh {:.2e}, {}; step {:.2e}, {})",
-            self.quantity.name(),
+            self.quantity.label(lines),
             self.quantity.unit(),
             self.value,
             self.extrapolated,
@@ -535,6 +650,8 @@ pub struct ErrorEstimate {
     /// [`Layout::levels`]' order: (n, Δt), (n, Δt/2), (n, Δt/4), (2n, Δt/4),
     /// (4n, Δt/4) about the base of [`Layout::Base`].
     pub pilots: Vec<Pilot>,
+    /// The quantities of the pilots' values, in their order ([`PilotRuns::quantities`]).
+    pub quantities: Vec<Quantity>,
     /// The quantities of the scene, in [`Quantity::ALL`]'s order.
     pub estimates: Vec<Estimate>,
     /// Quantities of the scene not estimated, and why.
@@ -606,8 +723,20 @@ pub fn estimate_error_laid(
     layout: Layout,
     known: &[Pilot],
 ) -> Result<ErrorEstimate, RiserError> {
-    let (n, dt) = (scene.analysis.n_elements, scene.analysis.time_step);
-    let plan = PilotPlan::new(spec.window, spec.period, spec.irregular);
+    let a = &scene.analysis;
+    estimate_on(&LinePilots { scene, spec }, (a.n_elements, a.time_step, a.newton_tolerance), threads, layout, known)
+}
+
+/// [`estimate_error_laid`] of any scene's pilots `runs` about the base
+/// `(n, dt, newton_tolerance)`.
+pub fn estimate_on(
+    runs: &dyn PilotRuns,
+    (n, dt, tolerance): (usize, f64, f64),
+    threads: usize,
+    layout: Layout,
+    known: &[Pilot],
+) -> Result<ErrorEstimate, RiserError> {
+    let plan = runs.plan();
     let (levels, step_at, mesh_at) = layout.levels(n, dt);
     let start = std::time::Instant::now();
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -628,7 +757,7 @@ pub fn estimate_error_laid(
                         let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                         let Some(&i) = order.get(k) else { break };
                         let (ne, h) = levels[i];
-                        done.push((i, run_pilot(scene, spec, &plan, ne, h)));
+                        done.push((i, runs.run(&plan, ne, h, tolerance)));
                     }
                     done
                 })
@@ -649,8 +778,9 @@ pub fn estimate_error_laid(
         .ok_or_else(|| RiserError::Unsupported("an error estimate's pilot thread stopped".to_string()))?;
     let mut estimates = Vec::new();
     let mut notes = Vec::new();
-    for q in Quantity::ALL.into_iter().filter(|q| q.applies(scene, spec.fatigue.is_some())) {
-        let v = |i: usize| pilots[i].values[q.index()];
+    let quantities = runs.quantities();
+    for (slot, &q) in quantities.iter().enumerate().filter(|(_, q)| runs.applies(**q)) {
+        let v = |i: usize| pilots[i].values[slot];
         if (0..pilots.len()).all(|i| v(i).is_finite()) {
             let (mesh, step) = (mesh_at.map(v), step_at.map(v));
             estimates.push(match layout {
@@ -669,6 +799,7 @@ pub fn estimate_error_laid(
         n_elements: n,
         time_step: dt,
         pilots,
+        quantities,
         estimates,
         notes,
         wall_s: start.elapsed().as_secs_f64(),

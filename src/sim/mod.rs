@@ -13,6 +13,7 @@ pub mod modes;
 pub mod monolithic;
 pub mod report;
 pub mod system;
+pub mod system_accuracy;
 pub mod system_dynamics;
 pub mod vessel;
 

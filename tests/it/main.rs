@@ -38,6 +38,7 @@ mod sections;
 mod stability;
 mod statics_validation;
 mod system;
+mod system_accuracy;
 mod system_dynamics;
 mod system_free_dynamics;
 mod system_free_points;

@@ -9,6 +9,7 @@ not pin them; a nonzero value the master sets wins."""
 
 import json
 import subprocess
+from pathlib import Path
 
 import pytest
 from fmpy import read_model_description
@@ -79,3 +80,32 @@ def test_a_quantity_the_scene_does_not_have_is_an_error(fmu_path, unzipped):
     with pytest.raises(Exception):
         started_slave(fmu_path, unzipped, scene="catenary", strings={"accuracy_quantity": "touchdown"},
                       reals={"accuracy": 1e-3})
+
+
+# Two of moored_vessel's chains hanging free, fore and aft (tests/it/system_accuracy.rs)
+HANGING = Path(__file__).resolve().parents[2] / "docs" / "cases" / "two_chains_hanging.toml"
+
+
+def test_a_system_fmu_chooses_what_the_command_line_chooses_for_the_design_motion(fmu_path, unzipped, riser_bin,
+                                                                                   tmp_path):
+    """A system of lines with `accuracy` (docs/theory.md section 16.14): the FMU's pilots of the
+    whole system on the design motion (a heave of 2.5 m at 10 s grown over a period, window 20-50 s)
+    choose what `riser run SYSTEM --heave 2.5,10 --duration 50` chooses on that same motion: the
+    level (chosen_n_elements, every line's elements here), the step, the tolerance and the estimate."""
+    scene = tmp_path / "two_chains.toml"
+    text = HANGING.read_text().replace("newton_tolerance = 1e-8", "newton_tolerance = 1e-8\naccuracy = 1e-2")
+    scene.write_text(text)
+    run = subprocess.run([riser_bin, "run", str(scene), "--heave", "2.5,10", "--duration", "50", "--json"],
+                         check=True, capture_output=True, text=True)
+    c = json.loads(run.stdout)["accuracy"]
+    s, vr = started_slave(fmu_path, unzipped, scene=str(scene))
+    try:
+        assert chosen(s, vr) == (c["chosen"]["n_elements"], c["chosen"]["time_step"],
+                                 c["chosen"]["newton_tolerance"])
+        assert s.getReal([vr["error_estimate"]])[0] == pytest.approx(c["estimate"], rel=1e-12)
+        assert c["met"] and 0.0 < c["estimate"] <= 1e-2
+        s.doStep(0.0, c["chosen"]["time_step"])
+        assert s.getReal([vr["top_tension"]])[0] > 0.0
+    finally:
+        s.terminate()
+        s.freeInstance()

@@ -120,7 +120,7 @@ def test_the_command_lines_system_run_json(system_scene, riser_bin):
 
 def test_bad_system_runs_are_named(system_scene, riser_bin):
     for args, needle in [(["--threads", "0"], "--threads must be at least 1"),
-                         (["--set", "time_step=0.1"], "--set"),
+                         (["--set", "n_elements=10"], "--set n_elements: not for a system scene"),
                          (["--fatigue", "D-air"], "--fatigue")]:
         done = subprocess.run([riser_bin, "run", str(system_scene), "--duration", "1", *args], capture_output=True,
                               text=True)

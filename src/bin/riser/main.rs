@@ -377,7 +377,14 @@ fn choose_numerics(
         None => accuracy::DesignRun::apply(scene, pinned, threads, &mut progress),
     }
     .map_err(|e| e.to_string())?;
-    if let Some(c) = &choice {
+    say_choice(&choice);
+    Ok((scene, choice))
+}
+
+/// The choice of `accuracy` on stderr: what was chosen, its notes and the
+/// warning where its estimate misses the target.
+fn say_choice(choice: &Option<riser::sim::accuracy::Choice>) {
+    if let Some(c) = choice {
         eprintln!("riser: {}", c.describe());
         for n in &c.notes {
             eprintln!("riser: note: {n}");
@@ -386,14 +393,12 @@ fn choose_numerics(
             eprintln!("riser: warning: {w}");
         }
     }
-    Ok((scene, choice))
 }
 
 /// The choice of `accuracy` under the JSON key `accuracy` (null when unset):
 /// target, quantity, estimate, orders, chosen, set_by_user, pilots (every
 /// round's), notes.
 fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Value {
-    use riser::sim::error_estimate::Quantity;
     let Some(c) = choice else { return serde_json::Value::Null };
     let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
     let orders: serde_json::Map<String, serde_json::Value> = c
@@ -401,10 +406,10 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
         .iter()
         .map(|p| {
             (
-                p.quantity.name().to_string(),
+                p.quantity.label(&c.line_names).into_owned(),
                 serde_json::json!({
                     "mesh": p.mesh_order, "step": p.step_order, "error": finite(p.error),
-                    "relative": finite(p.relative), "relative_to": p.relative_to.name(),
+                    "relative": finite(p.relative), "relative_to": p.relative_to.label(&c.line_names),
                 }),
             )
         })
@@ -415,11 +420,12 @@ fn choice_json(choice: &Option<riser::sim::accuracy::Choice>) -> serde_json::Val
         .enumerate()
         .flat_map(|(r, round)| {
             round.pilots.iter().map(move |p| {
-                let values: serde_json::Map<String, serde_json::Value> = Quantity::ALL
+                let values: serde_json::Map<String, serde_json::Value> = round
+                    .quantities
                     .iter()
-                    .zip(p.values)
+                    .zip(&p.values)
                     .filter(|(_, v)| v.is_finite())
-                    .map(|(q, v)| (q.name().to_string(), v.into()))
+                    .map(|(q, v)| (q.label(&c.line_names).into_owned(), (*v).into()))
                     .collect();
                 serde_json::json!({
                     "round": r + 1, "n_elements": p.n_elements, "time_step": p.time_step,
@@ -801,6 +807,7 @@ fn fatigue_add(
 fn error_estimate_json(
     e: &riser::sim::error_estimate::ErrorEstimate,
     headline: Option<riser::sim::error_estimate::Quantity>,
+    lines: &[String],
 ) -> serde_json::Value {
     use riser::sim::error_estimate::{Estimate, Quantity, Triplet};
     let finite = |v: f64| v.is_finite().then_some(v);
@@ -822,7 +829,7 @@ fn error_estimate_json(
     let (n, dt) = (e.n_elements, e.time_step);
     let one = |q: &Estimate| {
         serde_json::json!({
-            "quantity": q.quantity.name(),
+            "quantity": q.quantity.label(lines),
             "value": q.value,
             "extrapolated": q.extrapolated,
             "estimate": {
@@ -844,7 +851,7 @@ fn error_estimate_json(
         })
     };
     // the headline checked applicable before the run; not estimated: the quantity and why
-    let asked = headline.unwrap_or(Quantity::TopTensionMax);
+    let asked = headline.unwrap_or_else(|| e.estimates.first().map_or(Quantity::TopTensionMax, |x| x.quantity));
     let mut v = match e.of(asked) {
         Some(first) => one(first),
         None => serde_json::json!({"quantity": asked.name(), "value": null, "estimate": null}),
@@ -860,8 +867,8 @@ fn error_estimate_json(
                 .iter()
                 .map(|p| {
                     let mut values = serde_json::Map::new();
-                    for q in Quantity::ALL {
-                        values.insert(q.name().into(), finite(p.values[q.index()]).into());
+                    for (q, v) in e.quantities.iter().zip(&p.values) {
+                        values.insert(q.label(lines).into(), finite(*v).into());
                     }
                     serde_json::json!({"n_elements": p.n_elements, "time_step": p.time_step, "values": values, "wall_s": p.wall_s})
                 })
@@ -877,6 +884,7 @@ fn error_estimate_json(
 fn error_estimate_text(
     e: &riser::sim::error_estimate::ErrorEstimate,
     headline: Option<riser::sim::error_estimate::Quantity>,
+    lines: &[String],
 ) {
     let (w0, w1) = e.plan.window;
     outln!(
@@ -891,7 +899,7 @@ fn error_estimate_text(
     );
     for q in &e.estimates {
         if headline.is_none_or(|h| h == q.quantity) {
-            outln!("    {}", q.summary());
+            outln!("    {}", q.summary_of(lines));
         }
     }
     for n in &e.notes {
@@ -1469,7 +1477,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         });
         let mut v = v;
         if let (Some((e, headline)), Some(o)) = (&estimate, v.as_object_mut()) {
-            o.insert("error_estimate".into(), error_estimate_json(e, *headline));
+            o.insert("error_estimate".into(), error_estimate_json(e, *headline, &[]));
         }
         outln!("{v}");
     } else {
@@ -1588,7 +1596,7 @@ fn run(scene: &str, set: &[String], args: RunArgs) -> Result<(), String> {
         );
         outln!("  energy balance       {:.3e} J residual of {:.3e} J exchanged", balance, exchanged);
         if let Some((e, headline)) = &estimate {
-            error_estimate_text(e, *headline);
+            error_estimate_text(e, *headline, &[]);
         }
         outln!(
             "  {} steps, {:.2} Newton iterations/step, {} split steps; {:.2} s wall, {:.0}x real time",
@@ -1783,9 +1791,6 @@ fn main() -> ExitCode {
             };
             match (fatigue_spec(fatigue, scf, dff), quantity) {
                 (_, Err(m)) => Err(format!("--error-quantity: {m}")),
-                (Ok(_), _) if estimate_error && is_system => {
-                    Err("--estimate-error: a single line in this version, not a system of lines ([[line]])".to_string())
-                }
                 (Ok(_), _) if threads.is_some() && !is_system => {
                     Err("--threads: only for a system of lines ([[line]]); a single line runs on one".to_string())
                 }

@@ -87,13 +87,10 @@ pub fn system_json(sys: &SystemScene, st: &SystemStatics, wall: f64) -> serde_js
 
 /// `riser statics` of a system file.
 pub fn statics(path: &str, set: &[String], json: bool, out: bool, pose: Option<&str>) -> Result<(), String> {
-    if !set.is_empty() {
-        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
-    }
     if out {
         return Err("--out: not yet for a system scene; --json has every line's numbers".to_string());
     }
-    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
     let pose = parse_pose(pose)?;
     let on_vessel = sys.points.iter().any(|p| p.kind == riser::scene::system::PointKind::Vessel);
     if !on_vessel && pose.iter().any(|&v| v != 0.0) {

@@ -76,10 +76,17 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
         (args.motions, args.heave_until, args.ramp, args.duration, args.window);
     let (max_tangent_age, json, out) = (args.max_tangent_age, args.json, args.out);
     let (raos, fatigue, shape_times) = (args.raos, args.fatigue, args.shape_times);
-    let not_yet = |what: &str| Err(format!("{what}: not yet for a system scene ({})", "docs/guide/systems.md"));
-    if !set.is_empty() {
-        return not_yet("--set (edit the system's file)");
+    let estimate_error = args.estimate_error;
+    if let Some(Some(q)) = estimate_error
+        && q != riser::sim::error_estimate::Quantity::TopTensionMax
+    {
+        return Err(format!(
+            "--error-quantity {}: a system's estimate is of the vessel's resultant and each line's top tension, all \
+             of them (leave --error-quantity out)",
+            q.name()
+        ));
     }
+    let not_yet = |what: &str| Err(format!("{what}: not yet for a system scene ({})", "docs/guide/systems.md"));
     if raos.is_some() {
         return not_yet("--raos (give the vessel's motion by --surge, --heave, ...)");
     }
@@ -90,13 +97,42 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
         return not_yet("--shape-times (timeseries.csv has every line's tensions)");
     }
     crate::check_run_times(&motions, ramp, heave_until, duration, window)?;
-    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
+    let available = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = match threads {
         Some(0) => return Err("--threads must be at least 1".to_string()),
         Some(n) => n,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        None => available,
     }
     .min(sys.lines.len());
+    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
+    let ramp = ramp.unwrap_or(period);
+    let axes = crate::harmonic_axes(&motions, heave_until, ramp);
+    // the system's angles compose z-y-x (§17), as its lines' vessels do
+    let scene0 = sys.line_scene(0, V3::zeros());
+    let order = riser::sim::vessel::Vessel::of_scene(&scene0).order;
+    let motion = |t: f64| crate::vessel_motion_at(&axes, None, order, t);
+    // the steady window: after the motion's ramp and one period, and the sea's
+    let sea = riser::loads::waves::ramp_and_period(&scene0).map_err(|e| e.to_string())?;
+    let settled =
+        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
+    let current_grown = riser::loads::current_ramp(&scene0).duration;
+    let ((w0, w1), short) = crate::steady_window(window, settled, current_grown, duration);
+    // this run as its pilots repeat it: `accuracy` measures the numerics on
+    // it (docs/theory.md §16.14), --estimate-error the numerics run
+    let slowest = [(period > 0.0).then_some(period), sea.map(|(_, p)| p)].into_iter().flatten().reduce(f64::max);
+    let pilot_spec = riser::sim::system_accuracy::SystemRunSpec {
+        motion: &motion,
+        window: (w0, w1),
+        period: slowest,
+        irregular: riser::loads::waves::irregular(&scene0),
+        max_tangent_age,
+    };
+    let pinned = riser::sim::accuracy::Pinned::of_names(set.iter().map(|s| s.as_str()));
+    let mut said = |m: &str| eprintln!("riser: {m}");
+    let (sys, choice) = riser::sim::system_accuracy::apply(sys, &pilot_spec, pinned, available, &mut said)
+        .map_err(|e| e.to_string())?;
+    crate::say_choice(&choice);
     let dt = sys.analysis.time_step;
     let n_steps = riser::sim::internal_steps(duration, dt).map_err(|m| format!("--duration {m}"))?;
     let wall0 = std::time::Instant::now();
@@ -104,12 +140,6 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     for l in &mut run.lines {
         l.sim.integrator.options_mut().max_tangent_age = max_tangent_age;
     }
-    let period = motions.all().into_iter().flatten().map(|m| m.1).fold(0.0, f64::max);
-    let ramp = ramp.unwrap_or(period);
-    let axes = crate::harmonic_axes(&motions, heave_until, ramp);
-    // the system's angles compose z-y-x (§17), as its lines' vessels do
-    let order = run.lines[0].sim.vessel.order;
-    let motion = |t: f64| crate::vessel_motion_at(&axes, None, order, t);
     run.start(&motion(0.0));
     let targets: Vec<f64> =
         (1..=n_steps).map(|k| riser::sim::internal_step_end(0.0, duration, dt, k, n_steps)).collect();
@@ -195,13 +225,6 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
     let held = (0..n_kept).map(|k| series.iter().map(|s| s[k].held).sum::<f64>()).fold(0.0, f64::max);
     let balance_max = balance.iter().map(|b| b.abs()).fold(0.0, f64::max);
     let balance_scale = exchanged.max(riser::sim::report::ENERGY_RESOLUTION * held);
-    // the steady window: after the motion's ramp and one period, and the sea's
-    let scene0 = &run.lines[0].scene;
-    let sea = riser::loads::waves::ramp_and_period(scene0).map_err(|e| e.to_string())?;
-    let settled =
-        [(period > 0.0).then_some(ramp + period), sea.map(|(r, p)| r + p)].into_iter().flatten().reduce(f64::max);
-    let current_grown = riser::loads::current_ramp(scene0).duration;
-    let ((w0, w1), short) = crate::steady_window(window, settled, current_grown, duration);
     let mut warnings: Vec<String> = short.into_iter().collect();
     if let Some(sea) = run.lines[0].sim.sea.as_ref() {
         warnings.extend(riser::loads::waves::repeat_warning(sea.components(), duration));
@@ -257,6 +280,14 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
         write_csv(dir, &run, &series, &per_point[..n_kept.min(per_point.len())], &times, loads, &balance, &motion)
             .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
     }
+    // the error of these numerics on this run's own motion and sea (issue 51)
+    let names = riser::sim::system_accuracy::line_names(&sys);
+    let estimate = match estimate_error {
+        Some(_) => {
+            Some(riser::sim::system_accuracy::estimate_error(&sys, &pilot_spec, available).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
     let wall = wall0.elapsed().as_secs_f64();
     let steps: u64 = run.lines.iter().map(|l| l.sim.state.steps).sum();
     let iterations: u64 = run.lines.iter().map(|l| l.sim.state.newton_iterations).sum();
@@ -312,7 +343,12 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
             "wall_time": wall,
             "solve_wall_time": solve_wall,
             "real_time_factor": simulated / solve_wall.max(1e-12),
+            "accuracy": crate::choice_json(&choice),
         });
+        let mut v = v;
+        if let (Some(e), Some(o)) = (&estimate, v.as_object_mut()) {
+            o.insert("error_estimate".into(), crate::error_estimate_json(e, None, &names));
+        }
         outln!("{v}");
     } else {
         let kn = |v: f64| v / 1e3;
@@ -376,6 +412,10 @@ pub fn run(path: &str, set: &[String], args: crate::RunArgs, threads: Option<usi
             wall,
             simulated / solve_wall.max(1e-12)
         );
+        crate::choice_text(&choice);
+        if let Some(e) = &estimate {
+            crate::error_estimate_text(e, None, &names);
+        }
         if let Some(dir) = &out {
             outln!("  wrote {}", dir.join("timeseries.csv").display());
         }
@@ -464,10 +504,7 @@ pub fn model_description(path: &str) -> Result<(), String> {
 /// each line as the single-line scene it is (its frame at its vessel point,
 /// docs/theory.md §17.1), with the properties along it.
 pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
-    if !set.is_empty() {
-        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
-    }
-    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
     outln!("# system '{}': {} lines, {} points; {}", sys.name, sys.lines.len(), sys.points.len(), sys.description);
     outln!("# the system's frame: origin at the vessel's reference point at rest, z up");
     outln!("# {:<24} {:<8} {:>12} {:>12} {:>12}", "point", "kind", "x (m)", "y (m)", "z (m)");
@@ -500,10 +537,7 @@ pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
 /// independently (they meet only at the vessel): the system's modes are
 /// its lines', each line's `count` lowest, merged by period.
 pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(), String> {
-    if !set.is_empty() {
-        return Err("--set: not yet for a system scene (edit its file); docs/guide/systems.md".to_string());
-    }
-    let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
+    let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
     if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the modes") {
         return Err(m);
     }
