@@ -19,7 +19,7 @@
 
 use super::Simulation;
 use super::error::RiserError;
-use super::system::{POINT_CONTACT_AREA, solve_system};
+use super::system::{POINT_CONTACT_AREA, add_block, add_line_ends, condense, solve_system};
 use super::vessel::{Vessel, VesselLoads, VesselMotion};
 use crate::loads::current::Current;
 use crate::loads::waves::Ramp;
@@ -28,6 +28,7 @@ use crate::model::cable::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
+use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 /// Where a line's end is held in a dynamic run.
@@ -359,6 +360,21 @@ impl FreePointRun {
         (self.work_hydro, self.work_lines) = (v[12], v[13]);
     }
 
+    /// −∂f/∂x of its own static load (17.4) at its position, N/m: the
+    /// seabed's contact where it is in it (the weight and the buoyancy are
+    /// constant below the surface, as in the statics).
+    pub fn load_stiffness(&self) -> M3 {
+        let mut k = M3::zeros();
+        if let Some((z0, t, kp)) = self.bed
+            && z0 + t * self.position.x - self.position.z > 0.0
+        {
+            // f_z = k_p (h(x) − z), h(x) = z0 + tan x
+            k[(2, 2)] = kp;
+            k[(2, 0)] = -kp * t;
+        }
+        k
+    }
+
     /// ½ m |v|² + U(x), J (the added mass's kinetic energy is the water's: §5.4).
     pub fn energy(&self) -> f64 {
         0.5 * self.mass * self.velocity.norm_squared() + self.potential(self.position)
@@ -528,11 +544,22 @@ pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
 /// system's statics (§17.4): the points in equilibrium at rest, each line
 /// with a free end from its state there; and the free points.
 pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
+    build_at(sys, &[0.0; 6])
+}
+
+/// [`build`] with the free points and their lines in the system's statics
+/// with the vessel at `pose` (surge, sway, heave, roll, pitch, yaw; m, rad,
+/// z-y-x), the lines between a fixed and a vessel point at the neutral
+/// pose's (the caller moves them, as a single line's start is moved, §7.7).
+/// Each line keeps its frame at its vessel point at rest (a line hung from
+/// the vessel: its state from the pose's statics translated into that
+/// frame, its hang-off then where the vessel's start puts it).
+pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, FreePoints), String> {
     if let Some(m) = unsupported(sys) {
         return Err(m);
     }
     let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
-    let statics = if free.is_empty() { None } else { Some(solve_system(sys, &[0.0; 6], false)?) };
+    let statics = if free.is_empty() { None } else { Some(solve_system(sys, pose, false)?) };
     let at = |p: &PointSpec| match p.kind {
         PointKind::Vessel => EndAt::Vessel,
         PointKind::Fixed => EndAt::Fixed,
@@ -546,12 +573,15 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
         let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
         let (scene, sim, origin) = match (&statics, coupled) {
             (Some(st), true) => {
-                // its state at the free points' equilibrium
+                // its state at the free points' equilibrium, in its frame at rest
                 let ls = &st.lines[i];
-                let mut sim = Simulation::from_statics(&ls.scene, ls.report.clone()).map_err(|e| named(&e))?;
+                let origin = if hang_off_at == EndAt::Vessel { V3::from(vp.position) } else { ls.fairlead };
+                let scene = sys.line_scene_at(i, origin, ls.anchor);
+                let report = translated(ls.report.clone(), ls.fairlead - origin);
+                let mut sim = Simulation::from_statics(&scene, report).map_err(|e| named(&e))?;
                 // a failed trial is the points' step's to split, not the line's
                 sim.integrator.options_mut().max_halvings = 0;
-                (ls.scene.clone(), sim, ls.fairlead)
+                (scene, sim, origin)
             }
             _ => {
                 // at the neutral pose the vessel point is at ρ
@@ -603,6 +633,16 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
     let states: Vec<&State> = lines.iter().map(|l| &l.sim.state).collect();
     let free = FreePoints::new(points, ends, &states);
     Ok((lines, free))
+}
+
+/// A static state `report` moved by `d` (m): its configuration's and its
+/// shape's positions (the same equilibrium in a frame moved by −d).
+fn translated(mut report: super::report::StaticReport, d: V3) -> super::report::StaticReport {
+    report.solution.config.x.iter_mut().for_each(|x| *x += d);
+    for r in &mut report.shape {
+        (r.x, r.y, r.z) = (r.x + d.x, r.y + d.y, r.z + d.z);
+    }
+    report
 }
 
 impl SystemRun {
@@ -747,7 +787,73 @@ impl SystemRun {
     }
 }
 
+/// Why the stiffness of a system with free points could not be had at a
+/// state: a line's at its ends, or the free points' (17.8), singular.
+#[derive(Debug)]
+pub enum StiffnessError {
+    Line(LineError),
+    Singular,
+}
+
+impl std::fmt::Display for StiffnessError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StiffnessError::Line(e) => e.fmt(f),
+            StiffnessError::Singular => write!(
+                f,
+                "the free points' stiffness is singular at the state (a point its lines do not hold in some \
+                 direction)"
+            ),
+        }
+    }
+}
+
+/// The lines at free points' stiffness on the vessel at a state, the free
+/// points re-balanced ([`FreePoints::condensed_stiffness`]).
+#[derive(Debug, Clone)]
+pub struct Condensed {
+    /// The lines (the system's indices) hung from the vessel with an end at
+    /// a free point, whose hang-offs K_c couples.
+    pub lines: Vec<usize>,
+    /// K_c (17.8): −∂(their forces on the vessel)/∂(their hang-offs'
+    /// positions), 3 rows and columns a line in `lines`' order, N/m.
+    pub k: DMatrix<f64>,
+}
+
 impl FreePoints {
+    /// The translation stiffness of the lines at free points on their
+    /// vessel ends at the current state, the free points re-balanced: each
+    /// such line's two-end static stiffness at its current configuration
+    /// ([`Simulation::end_stiffness6`], 17.6) and each point's own load's
+    /// at its current position assembled over the vessel ends and the
+    /// points (17.7), the points condensed out (17.8). `sims` every line
+    /// of the system, named, in its order. At the statics this is
+    /// `riser statics`' K_c; during a run, the quasi-static tangent about
+    /// the state: no inertia, the points balanced statically about where
+    /// they are.
+    pub fn condensed_stiffness(&self, sims: &[(&str, &Simulation)]) -> Result<Condensed, StiffnessError> {
+        let lines: Vec<usize> = (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
+        let (nv, np) = (3 * lines.len(), 3 * self.points.len());
+        let mut k = DMatrix::<f64>::zeros(nv + np, nv + np);
+        let dof = |i: usize, at: EndAt| match at {
+            EndAt::Vessel => lines.iter().position(|&j| j == i).map(|p| 3 * p),
+            EndAt::Fixed => None,
+            EndAt::Free(p) => Some(nv + 3 * p),
+        };
+        for (i, e) in self.ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
+            let (name, sim) = sims[i];
+            let s6 = sim
+                .end_stiffness6()
+                .map_err(|error| StiffnessError::Line(LineError { line: name.to_string(), error }))?;
+            add_line_ends(&mut k, &s6, [dof(i, e.hang_off_at), dof(i, e.anchor_at)]);
+        }
+        for (p, point) in self.points.iter().enumerate() {
+            add_block(&mut k, nv + 3 * p, nv + 3 * p, &point.load_stiffness());
+        }
+        let k = condense(&k, nv).ok_or(StiffnessError::Singular)?;
+        Ok(Condensed { lines, k })
+    }
+
     /// The points `points` of a system whose lines' ends are `ends` and
     /// states `states` (in its order): each line with a free end a trial
     /// slot sized on its state.
