@@ -3159,6 +3159,121 @@ mod system_tests {
         std::fs::remove_dir_all(&dir).ok();
     }
 
+    const BRIDLE: &str = include_str!("../../docs/cases/bridle_mooring.toml");
+
+    /// The systems with free points the directional derivative is checked
+    /// on: the clump weight (one vessel line, the first line hung from the
+    /// clump), the bridle (two vessel lines coupled through the joint) and
+    /// the clump weight with a plain chain from a second fairlead (the
+    /// lines at a point condensed, a line on its own summed), coarsened.
+    fn free_point_systems() -> [(&'static str, String); 3] {
+        let clump = CLUMP.replace("n_elements = 60", "n_elements = 20").replace("n_elements = 52", "n_elements = 18");
+        let mixed = clump.clone()
+            + "\n[[point]]\nname = \"anchor2\"\nkind = \"fixed\"\nposition = [530.0, 0.0, -150.0]\n\
+               \n[[point]]\nname = \"fairlead2\"\nkind = \"vessel\"\nposition = [5.0, 0.0, -10.0]\n\
+               \n[[line]]\nname = \"plain\"\ntype = \"chain\"\nfrom = \"anchor2\"\nto = \"fairlead2\"\n\
+               length = 560.0\nn_elements = 40\n";
+        let bridle = BRIDLE.replace("n_elements = 300", "n_elements = 60").replace("n_elements = 20", "n_elements = 10");
+        [("clump", clump), ("bridle", bridle), ("mixed", mixed)]
+    }
+
+    /// The 6×6 of the FMU's directional derivative: ∂(top_force_*, top_moment_*)/∂(surge, …, yaw), a seed a column.
+    fn derivative6(i: &mut Instance) -> crate::math::M6 {
+        let unknowns: Vec<u32> = LOADS.iter().map(|n| vr_of(n).unwrap()).collect();
+        let mut j = crate::math::M6::zeros();
+        for (c, known) in ["surge", "sway", "heave", "roll", "pitch", "yaw"].iter().enumerate() {
+            let mut d = [0.0; 6];
+            assert_eq!(i.directional_derivative(&unknowns, &[vr_of(known).unwrap()], &[1.0], &mut d), Status::Ok);
+            j.set_column(c, &nalgebra::Vector6::from_row_slice(&d));
+        }
+        j
+    }
+
+    /// The directional derivative of a system with free points at its
+    /// static state (in initialisation mode, the vessel at the inputs' pose)
+    /// is the system's statics' stiffness with the free points re-balanced
+    /// (17.8, 17.9; `riser statics`' `stiffness`), its rotation columns
+    /// taken from the small global rotation δθ to the angle inputs by
+    /// δθ = R E(angles) δangles (14.2): at the neutral pose and at an offset
+    /// one, each 3×3 block within 1e-8 of its largest entry, and the loads
+    /// at the start the statics' at the pose. During a run the derivative
+    /// is the tangent at the run's state: linear in the seed, and not the
+    /// start's once the vessel has swayed 4 m.
+    #[test]
+    fn the_directional_derivative_with_free_points_is_the_statics_condensed_stiffness() {
+        use crate::math::rigid::RotationOrder;
+        let dir = scratch_dir("free-dd");
+        for (name, text) in free_point_systems() {
+            let path = dir.join(format!("{name}.toml"));
+            std::fs::write(&path, &text).unwrap();
+            let sys = SystemScene::from_toml(&text, name).unwrap();
+            for pose in [[0.0; 6], [5.0, -2.0, 0.5, 0.01, -0.015, 0.03]] {
+                let mut i = Instance::new("t", GUID, None, Arc::new(|_, _, _: &str| {}), false).unwrap();
+                let scene = Value::String(path.to_string_lossy().into_owned());
+                assert_eq!(i.set_param(vr_of("scene").unwrap(), scene), Status::Ok);
+                for (n, x) in ["surge", "sway", "heave", "roll", "pitch", "yaw"].iter().zip(pose) {
+                    assert_eq!(i.set_real(vr_of(n).unwrap(), x), Status::Ok);
+                }
+                i.enter_initialization_mode();
+                let j = derivative6(&mut i);
+                let st = crate::sim::system::solve_system(&sys, &pose, true).unwrap();
+                // the loads at the start are the statics' at the pose
+                let loads = loads(&mut i);
+                let scale = st.force.norm();
+                for c in 0..3 {
+                    assert!((loads[c] - st.force[c]).abs() <= 1e-8 * scale, "{name} {pose:?}: {loads:?} vs {}", st.force);
+                    assert!((loads[3 + c] - st.moment[c]).abs() <= 1e-8 * scale * 10.0, "{name} {pose:?}: {loads:?}");
+                }
+                // −K in the angles' columns: δθ = R E δangles
+                let angles = [pose[3], pose[4], pose[5]];
+                let r = RotationOrder::Zyx.rotation(angles);
+                let mut t = crate::math::M6::identity();
+                for k in 0..3 {
+                    let mut rates = [0.0; 3];
+                    rates[k] = 1.0;
+                    let col = r * RotationOrder::Zyx.body_rates(angles, rates);
+                    t.fixed_view_mut::<3, 1>(3, 3 + k).copy_from(&col);
+                }
+                let reference = -st.stiffness * t;
+                let mut worst = 0.0f64;
+                for (bi, bj) in [(0, 0), (0, 3), (3, 0), (3, 3)] {
+                    let b = |m: &crate::math::M6| m.fixed_view::<3, 3>(bi, bj).into_owned();
+                    let err = (b(&j) - b(&reference)).abs().max() / b(&reference).abs().max();
+                    worst = worst.max(err);
+                    assert!(err <= 1e-8, "{name} {pose:?} block ({bi}, {bj}): {} vs {}", b(&j), b(&reference));
+                }
+                eprintln!("{name} at {pose:?}: the FMU's 6x6 against the statics' condensed, worst block {worst:.2e}");
+                if pose[0] == 0.0 {
+                    // a run: the derivative at its state, linear in the seed
+                    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+                    let h = 0.1;
+                    for k in 0..50 {
+                        let tk = k as f64 * h;
+                        // across the chains' plane: each taut (a lying chain slackened by the run has no
+                        // tangent: the derivative says so, naming it)
+                        assert_eq!(i.set_real(vr_of("sway").unwrap(), 4.0 * (tk / 5.0).min(1.0)), Status::Ok);
+                        assert_eq!(i.do_step(tk, h), Status::Ok);
+                    }
+                    let jr = derivative6(&mut i);
+                    let seed = [0.3, -1.2, 2.0, 0.01, -0.02, 0.03];
+                    let knowns: Vec<u32> =
+                        ["surge", "sway", "heave", "roll", "pitch", "yaw"].iter().map(|n| vr_of(n).unwrap()).collect();
+                    let unknowns: Vec<u32> = LOADS.iter().map(|n| vr_of(n).unwrap()).collect();
+                    let mut d = [0.0; 6];
+                    assert_eq!(i.directional_derivative(&unknowns, &knowns, &seed, &mut d), Status::Ok);
+                    let expect = jr * nalgebra::Vector6::from_row_slice(&seed);
+                    for c in 0..6 {
+                        assert!((d[c] - expect[c]).abs() <= 1e-10 * expect.abs().max(), "{name}: {d:?} vs {expect}");
+                    }
+                    let moved = (jr - j).abs().max() / j.abs().max();
+                    eprintln!("{name}: after 4 m of sway the 6x6 changed by {moved:.2e} of its largest entry");
+                    assert!(moved > 1e-3, "{name}: {moved}");
+                }
+            }
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
     /// The master's parameters on a system: the numerics apply to every
     /// line; a line property is refused, named, unless it is the first
     /// line's value (a master that sets every start value).
