@@ -1555,8 +1555,13 @@ impl Instance {
     /// flex joint's spring is in series with the line, a pinned end has no
     /// moment), the moment about the reference point by
     /// δM = (δθ × Rρ) × F + Rρ × δF + δM_e, and the vessel-frame loads by
-    /// Rᵀ(δF − δθ × F), Rᵀ(δM − δθ × M). Any other variable is an error
-    /// naming it.
+    /// Rᵀ(δF − δθ × F), Rᵀ(δM − δθ × M). A system sums its lines' (§17.6);
+    /// with free points, the lines at them enter through the free points'
+    /// condensed stiffness on their vessel ends at the state (17.8, 17.9;
+    /// [`crate::sim::system_dynamics::FreePoints::condensed_stiffness`]: the
+    /// points re-balanced quasi-statically about where they are, as the
+    /// line's own tangent is its static one about its state). Any other
+    /// variable is an error naming it.
     pub fn directional_derivative(
         &mut self,
         unknowns: &[u32],
