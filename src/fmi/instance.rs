@@ -653,13 +653,15 @@ impl Instance {
         // in equilibrium (§17.4), as the command line's run builds them, with
         // the vessel where its inputs put it at the start (§17.8)
         let start_pose = |scene: &Scene| {
-            let vessel = crate::sim::vessel::Vessel { offset: V3::zeros(), ..crate::sim::vessel::Vessel::of_scene(scene) };
+            let vessel =
+                crate::sim::vessel::Vessel { offset: V3::zeros(), ..crate::sim::vessel::Vessel::of_scene(scene) };
             let m = self.history.start(self.coupling(), &vessel, &self.split_inputs());
             let [roll, pitch, yaw] = crate::sim::system::zyx_angles(&m.rotation);
             let u = m.displacement;
             [u.x, u.y, u.z, roll, pitch, yaw]
         };
-        let built = free_system.as_ref().map(|sys| crate::sim::system_dynamics::build_at(sys, &start_pose(&scenes[0].0)));
+        let built =
+            free_system.as_ref().map(|sys| crate::sim::system_dynamics::build_at(sys, &start_pose(&scenes[0].0)));
         let (mut built, mut free) = match built {
             Some(Ok((lines, free))) => (Some(lines.into_iter()), Some(free)),
             Some(Err(e)) => return self.fail(&format!("initialisation failed: {e}")),
@@ -3178,7 +3180,8 @@ mod system_tests {
                \n[[point]]\nname = \"fairlead2\"\nkind = \"vessel\"\nposition = [5.0, 0.0, -10.0]\n\
                \n[[line]]\nname = \"plain\"\ntype = \"chain\"\nfrom = \"anchor2\"\nto = \"fairlead2\"\n\
                length = 560.0\nn_elements = 40\n";
-        let bridle = BRIDLE.replace("n_elements = 300", "n_elements = 60").replace("n_elements = 20", "n_elements = 10");
+        let bridle =
+            BRIDLE.replace("n_elements = 300", "n_elements = 60").replace("n_elements = 20", "n_elements = 10");
         [("clump", clump), ("bridle", bridle), ("mixed", mixed)]
     }
 
@@ -3226,7 +3229,11 @@ mod system_tests {
                 let loads = loads(&mut i);
                 let scale = st.force.norm();
                 for c in 0..3 {
-                    assert!((loads[c] - st.force[c]).abs() <= 1e-8 * scale, "{name} {pose:?}: {loads:?} vs {}", st.force);
+                    assert!(
+                        (loads[c] - st.force[c]).abs() <= 1e-8 * scale,
+                        "{name} {pose:?}: {loads:?} vs {}",
+                        st.force
+                    );
                     assert!((loads[3 + c] - st.moment[c]).abs() <= 1e-8 * scale * 10.0, "{name} {pose:?}: {loads:?}");
                 }
                 // −K in the angles' columns: δθ = R E δangles

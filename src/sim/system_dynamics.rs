@@ -849,7 +849,8 @@ impl FreePoints {
     /// the state: no inertia, the points balanced statically about where
     /// they are.
     pub fn condensed_stiffness(&self, sims: &[(&str, &Simulation)]) -> Result<Condensed, StiffnessError> {
-        let lines: Vec<usize> = (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
+        let lines: Vec<usize> =
+            (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
         let (nv, np) = (3 * lines.len(), 3 * self.points.len());
         let mut k = DMatrix::<f64>::zeros(nv + np, nv + np);
         let dof = |i: usize, at: EndAt| match at {

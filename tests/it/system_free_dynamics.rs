@@ -141,8 +141,9 @@ fn the_systems_energy_balance_closes_with_free_points() {
 #[test]
 fn the_energy_balance_closes_with_a_buoy_in_waves() {
     let path = format!("{}/docs/cases/subsea_buoy_mooring.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(path).unwrap().replace("volume = 15.0", "cd_area = 7.4\nca = 0.5\nvolume = 15.0")
-        + "\n[waves]\nkind = \"airy\"\nheight = 8.0\nperiod = 15.0\ndirection = 30.0\n";
+    let text =
+        std::fs::read_to_string(path).unwrap().replace("volume = 15.0", "cd_area = 7.4\nca = 0.5\nvolume = 15.0")
+            + "\n[waves]\nkind = \"airy\"\nheight = 8.0\nperiod = 15.0\ndirection = 30.0\n";
     let sys = SystemScene::from_toml(&text, "buoy_in_waves").unwrap();
     let mut worst: f64 = 0.0;
     let (mut lo, mut hi) = (V3::repeat(f64::INFINITY), V3::repeat(f64::NEG_INFINITY));
