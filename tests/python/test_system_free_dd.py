@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from slaves import started_slave
+from test_vessel import rotation
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = {
@@ -55,26 +56,14 @@ def loads(st):
     return np.concatenate([st["top_force"], st["top_moment"]])
 
 
-def rotation(angles):
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (docs/theory.md 14.1)."""
-    def rot(axis, a):
-        c, s = np.cos(a), np.sin(a)
-        i, j = [(1, 2), (2, 0), (0, 1)][axis]
-        r = np.eye(3)
-        r[i, i], r[i, j], r[j, i], r[j, j] = c, -s, s, c
-        return r
-    rx, ry, rz = (rot(k, a) for k, a in enumerate(angles))
-    return rz @ ry @ rx
-
-
 def angles_to_rotation_vector(angles, eps=1e-6):
     """T: the small global rotation dtheta of an angles' change, column k = vee(dR/da_k R^T)."""
-    r = rotation(angles)
+    r = rotation("zyx", angles)
     t = np.zeros((3, 3))
     for k in range(3):
         e = np.zeros(3)
         e[k] = eps
-        w = (rotation(np.add(angles, e)) - rotation(np.subtract(angles, e))) / (2 * eps) @ r.T
+        w = (rotation("zyx", np.add(angles, e)) - rotation("zyx", np.subtract(angles, e))) / (2 * eps) @ r.T
         t[:, k] = [w[2, 1], w[0, 2], w[1, 0]]
     return t
 
