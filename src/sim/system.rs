@@ -989,8 +989,8 @@ pub fn condense(k: &DMatrix<f64>, nv: usize) -> Option<DMatrix<f64>> {
 
 /// The 6×6 stiffness on the reference point of the vessel points' condensed
 /// translation stiffness `kc` (3 rows and columns a point), each point's arm
-/// a_i and the lines' force on it f_i (17.9): Σ_ij [I; [a_i]×] K_ij [I, −[a_j]×]
-/// plus each point's geometric term −[f_i]×[a_i]× in the moment block.
+/// a_i and the lines' force on it f_i (17.9): `Σ_ij [I; [a_i]×] K_ij [I, −[a_j]×]`
+/// plus each point's geometric term `−[f_i]×[a_i]×` in the moment block.
 pub fn condensed_stiffness6(kc: &DMatrix<f64>, vessel: &[(V3, V3)], forces: &[V3]) -> M6 {
     let mut k6 = M6::zeros();
     for (i, (_, ai)) in vessel.iter().enumerate() {
