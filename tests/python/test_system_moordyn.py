@@ -39,6 +39,8 @@ Ca (the conventions are the same: weight and buoyancy rho g V of the whole volum
 
 The bridle (docs/cases/bridle_mooring.toml, a joint of three chains; `long`): 20 and 40 elements,
 60 s; its least-pull differences are discretisation (see the comment above its test).
+
+The subsea buoy in a regular wave (short, about 10 s): see the comment above its test.
 """
 
 from __future__ import annotations
