@@ -3312,8 +3312,9 @@ mod system_tests {
     /// by the sway input alone (no velocities) 4 m over 5 s, run the same
     /// to round-off (the lines' sums in another order): the force on the
     /// vessel within 1e-9 of its scale and the clump within 1e-9 m. (Planned
-    /// from the first line's hang-off, the clump's, the force differed by
-    /// 3e4 N of 5.9e5 N: the path's rotation started from the clump's.)
+    /// from the first line's hang-off, the clump's, each step's path started
+    /// from the clump's motion, not the vessel's: the sway force differed by
+    /// 3e4 N, the clump's hang-off moved with the vessel's inputs.)
     #[test]
     fn the_vessel_path_does_not_depend_on_which_line_is_first() {
         let dir = scratch_dir("first-line");
