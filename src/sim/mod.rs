@@ -27,7 +27,7 @@ use crate::model::rod::statics::StaticLoads;
 use crate::model::{DynamicOptions, DynamicsError, HangOff, Outputs, State};
 use crate::scene::{Model, Scene, SceneError};
 use crate::sim::report::{StaticReport, scene_static_loads, solve_scene};
-use crate::solve::eigen::hang_off_stiffness6;
+use crate::solve::eigen::{end_stiffness6, hang_off_stiffness6};
 use crate::solve::{Integrator, SolverLog, StepInfo};
 use error::RiserError;
 use vessel::Vessel;
@@ -437,6 +437,21 @@ impl Simulation {
             Engine::Cable(i) => {
                 hang_off_stiffness6(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg)
             }
+        };
+        Ok(s?)
+    }
+
+    /// The line's tangent stiffness at both its ends' positions at the
+    /// current state (docs/theory.md §17.4, eq. 17.6, with the static loads
+    /// as [`Simulation::hang_off_stiffness6`] takes them): [δR_h; δR_a] =
+    /// S [δx_h; δx_a], the change of the supports' forces on the line at its
+    /// hang-off and its anchor per metre of the ends' moves (global, N/m),
+    /// the interior in equilibrium, the ends pinned.
+    pub fn end_stiffness6(&self) -> Result<M6, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) => end_stiffness6(&RodLinearized::new(&i.model, &self.static_loads), cfg),
+            Engine::Cable(i) => end_stiffness6(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg),
         };
         Ok(s?)
     }

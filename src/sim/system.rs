@@ -620,13 +620,6 @@ impl FreeSystem<'_> {
             Held::Vessel(j) => Some(3 * j),
             Held::Free(j) => Some(3 * (nv + j)),
         };
-        let mut add = |r: usize, c: usize, b: &M3| {
-            for i in 0..3 {
-                for j in 0..3 {
-                    k[(r + i, c + j)] += b[(i, j)];
-                }
-            }
-        };
         for (i, (h, a)) in self.held.iter().enumerate() {
             if let Some(s) = &solved[i] {
                 // where the line's ends have no stiffness (a chain slack on the seabed), a shifted one
@@ -638,22 +631,15 @@ impl FreeSystem<'_> {
                         line_end_stiffness_shifted(l, &s.report, shift).map_err(|_| e)
                     })
                     .map_err(|e| (i, e))?;
-                let ends = [dof(*h), dof(*a)];
-                for (bi, ri) in ends.iter().enumerate() {
-                    for (bj, cj) in ends.iter().enumerate() {
-                        if let (Some(r), Some(c)) = (ri, cj) {
-                            add(*r, *c, &s6.fixed_view::<3, 3>(3 * bi, 3 * bj).into_owned());
-                        }
-                    }
-                }
+                add_line_ends(&mut k, &s6, [dof(*h), dof(*a)]);
             } else if let (Some(Some(s)), Some(r)) = (fixed_vessel.get(i), dof(*h)) {
-                add(r, r, s);
+                add_block(&mut k, r, r, s);
             }
         }
         for (j, p) in self.free.iter().enumerate() {
             let (_, kp) = point_load(self.sys, p, x[j]);
             let r = 3 * (nv + j);
-            add(r, r, &kp);
+            add_block(&mut k, r, r, &kp);
         }
         Ok(k)
     }
@@ -957,27 +943,55 @@ fn solve_with_free_points(
     if want_stiffness {
         let fixed_k: Vec<Option<M3>> = fixed_vessel_k.clone();
         let k = fs.stiffness(&x, &solved, &fixed_k).map_err(|(_, e)| e)?;
-        let nv = fs.vessel.len();
-        let kvv = k.view((0, 0), (3 * nv, 3 * nv));
-        let kvp = k.view((0, 3 * nv), (3 * nv, 3 * nf));
-        let kpv = k.view((3 * nv, 0), (3 * nf, 3 * nv));
-        let kpp = k.view((3 * nv, 3 * nv), (3 * nf, 3 * nf)).into_owned();
-        let x_pv = kpp
-            .lu()
-            .solve(&kpv.into_owned())
+        let kc = condense(&k, 3 * fs.vessel.len())
             .ok_or_else(|| "the free points' stiffness is singular at the equilibrium".to_string())?;
-        // K_c = K_vv − K_vp K_pp⁻¹ K_pv (17.8)
-        let kc = kvv.into_owned() - kvp * x_pv;
         stiffness = condensed_stiffness6(&kc, &fs.vessel, &on_vessel);
     }
     Ok(SystemStatics { pose: *pose, lines, points, iterations, force, moment, stiffness })
 }
 
+/// Adds the 3×3 block `b` to `k` at row `r`, column `c`.
+pub fn add_block(k: &mut DMatrix<f64>, r: usize, c: usize, b: &M3) {
+    for i in 0..3 {
+        for j in 0..3 {
+            k[(r + i, c + j)] += b[(i, j)];
+        }
+    }
+}
+
+/// Adds a line's two-end stiffness `s6` (17.6, [hang-off; anchor]) to the
+/// system's stiffness `k` (17.7) at its ends' first unknowns `ends` (None:
+/// a fixed end, which drops out).
+pub fn add_line_ends(k: &mut DMatrix<f64>, s6: &M6, ends: [Option<usize>; 2]) {
+    for (bi, ri) in ends.iter().enumerate() {
+        for (bj, cj) in ends.iter().enumerate() {
+            if let (Some(r), Some(c)) = (ri, cj) {
+                add_block(k, *r, *c, &s6.fixed_view::<3, 3>(3 * bi, 3 * bj).into_owned());
+            }
+        }
+    }
+}
+
+/// The stiffness `k` over the vessel points' positions (its first `nv`
+/// unknowns) and the free points' condensed on the vessel points, the free
+/// points re-balanced (17.8): K_c = K_vv − K_vp K_pp⁻¹ K_pv; None if K_pp
+/// is singular.
+pub fn condense(k: &DMatrix<f64>, nv: usize) -> Option<DMatrix<f64>> {
+    let np = k.nrows() - nv;
+    let kvv = k.view((0, 0), (nv, nv));
+    let kvp = k.view((0, nv), (nv, np));
+    let kpv = k.view((nv, 0), (np, nv));
+    let kpp = k.view((nv, nv), (np, np)).into_owned();
+    let x_pv = kpp.lu().solve(&kpv.into_owned())?;
+    let kc = kvv.into_owned() - kvp * x_pv;
+    kc.iter().all(|v| v.is_finite()).then_some(kc)
+}
+
 /// The 6×6 stiffness on the reference point of the vessel points' condensed
 /// translation stiffness `kc` (3 rows and columns a point), each point's arm
-/// a_i and the lines' force on it f_i (17.9): Σ_ij [I; [a_i]×] K_ij [I, −[a_j]×]
-/// plus each point's geometric term −[f_i]×[a_i]× in the moment block.
-fn condensed_stiffness6(kc: &DMatrix<f64>, vessel: &[(V3, V3)], forces: &[V3]) -> M6 {
+/// a_i and the lines' force on it f_i (17.9): `Σ_ij [I; [a_i]×] K_ij [I, −[a_j]×]`
+/// plus each point's geometric term `−[f_i]×[a_i]×` in the moment block.
+pub fn condensed_stiffness6(kc: &DMatrix<f64>, vessel: &[(V3, V3)], forces: &[V3]) -> M6 {
     let mut k6 = M6::zeros();
     for (i, (_, ai)) in vessel.iter().enumerate() {
         let axi = skew(ai);

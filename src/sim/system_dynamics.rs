@@ -19,15 +19,16 @@
 
 use super::Simulation;
 use super::error::RiserError;
-use super::system::{POINT_CONTACT_AREA, solve_system};
+use super::system::{POINT_CONTACT_AREA, add_block, add_line_ends, condense, solve_system};
 use super::vessel::{Vessel, VesselLoads, VesselMotion};
 use crate::loads::current::Current;
-use crate::loads::waves::Ramp;
+use crate::loads::waves::{Ramp, Sea, WaterPoint};
 use crate::math::{M3, V3};
 use crate::model::cable::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
+use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 /// Where a line's end is held in a dynamic run.
@@ -327,6 +328,12 @@ pub struct FreePointRun {
     current_frame_z: f64,
     current_s: f64,
     current_ramp: Ramp,
+    /// The sea (None: still water) in the frame of the line at `sea_origin`
+    /// (the line's sea, its ramp from the start), and the water's motion
+    /// at the step's predicted midpoint, held over the step (§13.6).
+    sea: Option<Sea>,
+    sea_origin: V3,
+    water: WaterPoint,
 }
 
 impl FreePointRun {
@@ -359,6 +366,21 @@ impl FreePointRun {
         (self.work_hydro, self.work_lines) = (v[12], v[13]);
     }
 
+    /// −∂f/∂x of its own static load (17.4) at its position, N/m: the
+    /// seabed's contact where it is in it (the weight and the buoyancy are
+    /// constant below the surface, as in the statics).
+    pub fn load_stiffness(&self) -> M3 {
+        let mut k = M3::zeros();
+        if let Some((z0, t, kp)) = self.bed
+            && z0 + t * self.position.x - self.position.z > 0.0
+        {
+            // f_z = k_p (h(x) − z), h(x) = z0 + tan x
+            k[(2, 2)] = kp;
+            k[(2, 0)] = -kp * t;
+        }
+        k
+    }
+
     /// ½ m |v|² + U(x), J (the added mass's kinetic energy is the water's: §5.4).
     pub fn energy(&self) -> f64 {
         0.5 * self.mass * self.velocity.norm_squared() + self.potential(self.position)
@@ -370,11 +392,23 @@ impl FreePointRun {
         self.energy() - self.initial_energy - self.work_hydro - self.work_lines
     }
 
+    /// The waves' velocity and acceleration (m/s, m/s²; ramped) at the
+    /// point's midpoint predicted for the step, `x_pred` its predicted end,
+    /// at `t_mid`, kept for the step's rows (as a line's Gauss points take
+    /// them, §13.6: held over the Newton iterations); still water without a sea.
+    fn freeze_water(&mut self, x_pred: V3, t_mid: f64) {
+        self.water = match &self.sea {
+            Some(sea) => sea.water(&((self.position + x_pred) * 0.5 - self.sea_origin), t_mid),
+            None => WaterPoint::STILL,
+        };
+    }
+
     /// The point's own rows of the step (17.14) at the end-of-step position
     /// `x1` from the start of the step (`self`), step `h`, midpoint time
     /// `t_mid`: the inertia less the weight, buoyancy, contact and water, its
     /// derivative with respect to x1 (the contact's and the drag's at the
-    /// midpoint: a quasi-Newton), and the water's force (drag, added mass), N.
+    /// midpoint: a quasi-Newton), and the water's force (drag, added mass,
+    /// the waves' inertia: 17.18), N.
     fn own_rows(&self, x1: V3, h: f64, t_mid: f64) -> (V3, M3, V3) {
         let (x0, v0) = (self.position, self.velocity);
         let dx = x1 - x0;
@@ -415,14 +449,17 @@ impl FreePointRun {
                 }
             }
         }
-        // water: drag on the velocity relative to the current at the
-        // midpoint, v½ = Δx/h, and the added mass's inertia (§5.4)
+        // water: drag on the velocity relative to the current and the
+        // waves at the midpoint, v½ = Δx/h, the added mass's inertia (§5.4)
+        // and the waves' (Froude–Krylov and added mass, 17.18)
         let xm = (x0 + x1) * 0.5;
-        let u = self.current.velocity(self.current_s, xm.z - self.current_frame_z).0 * self.current_ramp.at(t_mid).0;
+        let u = self.current.velocity(self.current_s, xm.z - self.current_frame_z).0 * self.current_ramp.at(t_mid).0
+            + self.water.velocity;
         let w = u - dx / h;
         let c = 0.5 * self.water_density * self.cd_area;
         let wn = w.norm();
-        let f_water = w * (c * wn) - dv * self.added_mass;
+        let inertia = self.water_density * self.volume + self.added_mass;
+        let f_water = w * (c * wn) + self.water.acceleration * inertia - dv * self.added_mass;
         if c > 0.0 && wn > 0.0 {
             k += (M3::identity() * wn + w * w.transpose() / wn) * (c / h);
         }
@@ -477,18 +514,11 @@ pub struct FreePoints {
 }
 
 /// Why a system cannot be run in this version, or None: a rod line at a
-/// free point (its anchor end cannot move), free points in waves.
+/// free point (its anchor end cannot move).
 pub fn unsupported(sys: &SystemScene) -> Option<String> {
     let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
     if free.is_empty() {
         return None;
-    }
-    if sys.waves.is_some() {
-        return Some(format!(
-            "free point(s) {}: a free point in waves (their kinematics on the point) is not yet in this version; \
-             run it in still water with a current (docs/guide/systems.md)",
-            free.join(", ")
-        ));
     }
     let rods: Vec<&str> = sys
         .lines
@@ -528,11 +558,22 @@ pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
 /// system's statics (§17.4): the points in equilibrium at rest, each line
 /// with a free end from its state there; and the free points.
 pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
+    build_at(sys, &[0.0; 6])
+}
+
+/// [`build`] with the free points and their lines in the system's statics
+/// with the vessel at `pose` (surge, sway, heave, roll, pitch, yaw; m, rad,
+/// z-y-x), the lines between a fixed and a vessel point at the neutral
+/// pose's (the caller moves them, as a single line's start is moved, §7.7).
+/// Each line keeps its frame at its vessel point at rest (a line hung from
+/// the vessel: its state from the pose's statics translated into that
+/// frame, its hang-off then where the vessel's start puts it).
+pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, FreePoints), String> {
     if let Some(m) = unsupported(sys) {
         return Err(m);
     }
     let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
-    let statics = if free.is_empty() { None } else { Some(solve_system(sys, &[0.0; 6], false)?) };
+    let statics = if free.is_empty() { None } else { Some(solve_system(sys, pose, false)?) };
     let at = |p: &PointSpec| match p.kind {
         PointKind::Vessel => EndAt::Vessel,
         PointKind::Fixed => EndAt::Fixed,
@@ -546,12 +587,15 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
         let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
         let (scene, sim, origin) = match (&statics, coupled) {
             (Some(st), true) => {
-                // its state at the free points' equilibrium
+                // its state at the free points' equilibrium, in its frame at rest
                 let ls = &st.lines[i];
-                let mut sim = Simulation::from_statics(&ls.scene, ls.report.clone()).map_err(|e| named(&e))?;
+                let origin = if hang_off_at == EndAt::Vessel { V3::from(vp.position) } else { ls.fairlead };
+                let scene = sys.line_scene_at(i, origin, ls.anchor);
+                let report = translated(ls.report.clone(), ls.fairlead - origin);
+                let mut sim = Simulation::from_statics(&scene, report).map_err(|e| named(&e))?;
                 // a failed trial is the points' step's to split, not the line's
                 sim.integrator.options_mut().max_halvings = 0;
-                (ls.scene.clone(), sim, ls.fairlead)
+                (scene, sim, origin)
             }
             _ => {
                 // at the neutral pose the vessel point is at ρ
@@ -595,6 +639,9 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
             current_frame_z: l.ends.origin.z,
             current_s,
             current_ramp: crate::loads::current_ramp(&l.scene),
+            sea: l.sim.sea.clone(),
+            sea_origin: l.ends.origin,
+            water: WaterPoint::STILL,
         };
         point.initial_energy = point.energy();
         points.push(point);
@@ -603,6 +650,16 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
     let states: Vec<&State> = lines.iter().map(|l| &l.sim.state).collect();
     let free = FreePoints::new(points, ends, &states);
     Ok((lines, free))
+}
+
+/// A static state `report` moved by `d` (m): its configuration's and its
+/// shape's positions (the same equilibrium in a frame moved by −d).
+fn translated(mut report: super::report::StaticReport, d: V3) -> super::report::StaticReport {
+    report.solution.config.x.iter_mut().for_each(|x| *x += d);
+    for r in &mut report.shape {
+        (r.x, r.y, r.z) = (r.x + d.x, r.y + d.y, r.z + d.z);
+    }
+    report
 }
 
 impl SystemRun {
@@ -747,7 +804,74 @@ impl SystemRun {
     }
 }
 
+/// Why the stiffness of a system with free points could not be had at a
+/// state: a line's at its ends, or the free points' (17.8), singular.
+#[derive(Debug)]
+pub enum StiffnessError {
+    Line(LineError),
+    Singular,
+}
+
+impl std::fmt::Display for StiffnessError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StiffnessError::Line(e) => e.fmt(f),
+            StiffnessError::Singular => write!(
+                f,
+                "the free points' stiffness is singular at the state (a point its lines do not hold in some \
+                 direction)"
+            ),
+        }
+    }
+}
+
+/// The lines at free points' stiffness on the vessel at a state, the free
+/// points re-balanced ([`FreePoints::condensed_stiffness`]).
+#[derive(Debug, Clone)]
+pub struct Condensed {
+    /// The lines (the system's indices) hung from the vessel with an end at
+    /// a free point, whose hang-offs K_c couples.
+    pub lines: Vec<usize>,
+    /// K_c (17.8): −∂(their forces on the vessel)/∂(their hang-offs'
+    /// positions), 3 rows and columns a line in `lines`' order, N/m.
+    pub k: DMatrix<f64>,
+}
+
 impl FreePoints {
+    /// The translation stiffness of the lines at free points on their
+    /// vessel ends at the current state, the free points re-balanced: each
+    /// such line's two-end static stiffness at its current configuration
+    /// ([`Simulation::end_stiffness6`], 17.6) and each point's own load's
+    /// at its current position assembled over the vessel ends and the
+    /// points (17.7), the points condensed out (17.8). `sims` every line
+    /// of the system, named, in its order. At the statics this is
+    /// `riser statics`' K_c; during a run, the quasi-static tangent about
+    /// the state: no inertia, the points balanced statically about where
+    /// they are.
+    pub fn condensed_stiffness(&self, sims: &[(&str, &Simulation)]) -> Result<Condensed, StiffnessError> {
+        let lines: Vec<usize> =
+            (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
+        let (nv, np) = (3 * lines.len(), 3 * self.points.len());
+        let mut k = DMatrix::<f64>::zeros(nv + np, nv + np);
+        let dof = |i: usize, at: EndAt| match at {
+            EndAt::Vessel => lines.iter().position(|&j| j == i).map(|p| 3 * p),
+            EndAt::Fixed => None,
+            EndAt::Free(p) => Some(nv + 3 * p),
+        };
+        for (i, e) in self.ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
+            let (name, sim) = sims[i];
+            let s6 = sim
+                .end_stiffness6()
+                .map_err(|error| StiffnessError::Line(LineError { line: name.to_string(), error }))?;
+            add_line_ends(&mut k, &s6, [dof(i, e.hang_off_at), dof(i, e.anchor_at)]);
+        }
+        for (p, point) in self.points.iter().enumerate() {
+            add_block(&mut k, nv + 3 * p, nv + 3 * p, &point.load_stiffness());
+        }
+        let k = condense(&k, nv).ok_or(StiffnessError::Singular)?;
+        Ok(Condensed { lines, k })
+    }
+
     /// The points `points` of a system whose lines' ends are `ends` and
     /// states `states` (in its order): each line with a free end a trial
     /// slot sized on its state.
@@ -809,10 +933,13 @@ impl FreePoints {
         }
     }
 
-    /// Starts the points' current ramps at `start` s (a restored state's, §5.11).
+    /// Starts the points' current's and waves' ramps at `start` s (a restored state's, §5.11).
     pub fn set_ramps_start(&mut self, start: f64) {
         for p in &mut self.points {
             p.current_ramp.start = start;
+            if let Some(sea) = p.sea.as_mut() {
+                sea.set_ramp_start(start);
+            }
         }
     }
 
@@ -899,8 +1026,9 @@ impl FreePoints {
         }
         let tol = tol.unwrap_or(1e-8);
         // the predictor: the quadratic of the cable's (§5.7)
-        for (x, p) in self.x1.iter_mut().zip(&self.points) {
+        for (x, p) in self.x1.iter_mut().zip(self.points.iter_mut()) {
             *x = p.position + (p.mean_vel[0] * 2.0 - p.mean_vel[1]) * h;
+            p.freeze_water(*x, t0 + 0.5 * h);
         }
         let mut worst = (0.0, 0);
         for it in 0..=MAX_POINT_ITERATIONS {
@@ -1110,4 +1238,66 @@ fn on_threads<T: Send, R: Send>(
 /// (without free points; with them, [`SystemRun::energy_balance`]).
 pub fn energy_balance_residual(outputs: &[Outputs], e0: &[f64]) -> f64 {
     outputs.iter().zip(e0).map(|(o, e)| o.energy_balance_residual(*e)).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The subsea buoy mooring (docs/cases) with the buoy's drag area and
+    /// added mass (C_dA 7.4 m², C_a 0.5), coarsened, in a regular wave of
+    /// 8 m and 15 s travelling at 30° from +x, its phase 40°, in the 200 m
+    /// of the seabed, without stretching or ramp (the closed form's).
+    fn buoy_in_waves() -> SystemScene {
+        let text = include_str!("../../docs/cases/subsea_buoy_mooring.toml")
+            .replace("n_elements = 44", "n_elements = 11")
+            .replace("n_elements = 66", "n_elements = 16")
+            .replace("volume = 15.0", "cd_area = 7.4\nca = 0.5\nvolume = 15.0")
+            + "\n[waves]\nkind = \"airy\"\nheight = 8.0\nperiod = 15.0\ndirection = 30.0\nphase = 40.0\nramp = 0.0\n\
+               stretching = \"none\"\n";
+        SystemScene::from_toml(&text, "buoy_in_waves").unwrap()
+    }
+
+    /// A free point held still in an Airy wave takes the Morison force of
+    /// linear theory worked by hand (17.18): with k from ω² = g k tanh kd
+    /// (Newton), θ = k (x cos β + y sin β) − ω t + φ,
+    /// u = a ω [cosh k(z + d) cos θ (cos β, sin β), sinh k(z + d) sin θ] / sinh kd,
+    /// a_w = a ω² [cosh k(z + d) sin θ (cos β, sin β), −sinh k(z + d) cos θ] / sinh kd,
+    /// f = ½ ρ C_dA |u| u + (1 + C_a) ρ V a_w: within 1e-12 of |f| at
+    /// eight times over a period.
+    #[test]
+    fn a_point_held_still_in_an_airy_wave_takes_the_closed_form_morison_force() {
+        let sys = buoy_in_waves();
+        let (_, mut free) = build(&sys).unwrap();
+        let p = &mut free.points[0];
+        let (rho, g, d) = (1025.0, 9.80665, 200.0);
+        let (a, period, beta, phi) = (4.0, 15.0, 30f64.to_radians(), 40f64.to_radians());
+        let omega = 2.0 * std::f64::consts::PI / period;
+        let mut k = omega * omega / g;
+        for _ in 0..50 {
+            let f = g * k * (k * d).tanh() - omega * omega;
+            let df = g * (k * d).tanh() + g * k * d / (k * d).cosh().powi(2);
+            k -= f / df;
+        }
+        let x = p.position;
+        assert!(x.z < -50.0 && x.z > -150.0, "the buoy at {x}");
+        let (cd_a, volume, ca) = (7.4, 15.0, 0.5);
+        let mut worst = 0.0f64;
+        for n in 0..8 {
+            let t = 3.0 + n as f64 * period / 8.0;
+            let theta = k * (x.x * beta.cos() + x.y * beta.sin()) - omega * t + phi;
+            let (c, s) = ((k * (x.z + d)).cosh() / (k * d).sinh(), (k * (x.z + d)).sinh() / (k * d).sinh());
+            let u = V3::new(beta.cos() * c * theta.cos(), beta.sin() * c * theta.cos(), s * theta.sin()) * (a * omega);
+            let acc = V3::new(beta.cos() * c * theta.sin(), beta.sin() * c * theta.sin(), -s * theta.cos())
+                * (a * omega * omega);
+            let expected = u * (0.5 * rho * cd_a * u.norm()) + acc * ((1.0 + ca) * rho * volume);
+            // held still: x⁺ = x⁻, at rest (v⁺ = v⁻ = 0)
+            p.freeze_water(x, t);
+            let (_, _, f) = p.own_rows(x, 0.1, t);
+            let err = (f - expected).norm() / expected.norm();
+            worst = worst.max(err);
+            assert!(err <= 1e-12, "t = {t} s: {f} against {expected}");
+        }
+        eprintln!("a buoy held in an 8 m, 15 s Airy wave: the Morison force within {worst:.1e} of the closed form");
+    }
 }

@@ -491,7 +491,7 @@ pub fn model_description(path: &str) -> Result<(), String> {
         ));
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
-    // free points in waves, a rod at a free point: not in the FMU's dynamics either
+    // a rod at a free point: not in the FMU's dynamics either
     if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
         return Err(m);
     }

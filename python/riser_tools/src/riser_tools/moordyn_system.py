@@ -390,13 +390,29 @@ class Sea:
         return r * u, r * du + dr * u
 
 
+def point_water_velocity(u: np.ndarray, du: np.ndarray, v: np.ndarray, point: Point, rho: float) -> np.ndarray:
+    """The water velocity to hand MoorDyn-C's Free point so that its drag, 1/2 rho CdA |U* - v|
+    (U* - v), is riser's whole wave load on a point (docs/theory.md (17.18)): the drag on the
+    relative velocity u - v plus the waves' inertia (1 + Ca) rho V du, which MoorDyn-C 2.7's point
+    leaves out (its Point.cpp: "TODO add Ud to inertia force"). U* = v + F / |F| sqrt(|F| / c),
+    c = 1/2 rho CdA, F the sum; the point needs a drag area."""
+    c = 0.5 * rho * point.cd_area
+    w = u - v
+    f = c * np.linalg.norm(w) * w + (1.0 + point.ca) * rho * point.volume * du
+    size = np.linalg.norm(f)
+    return v if size == 0.0 else v + f / size * np.sqrt(size / c)
+
+
 def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion, duration: float,
-        dtm: float, sample: float, coupling: int = 1, blow_up: float = 1e9, sea: Sea | None = None) -> SystemRunResult:
+        dtm: float, sample: float, coupling: int = 1, blow_up: float = 1e9, sea: Sea | None = None,
+        point_wave_inertia: bool = False) -> SystemRunResult:
     """One MoorDyn run of `duration` s: MoorDyn's initial-condition solver (Init, its dynamic
     relaxation to the static state at the neutral pose), then a `Step` call every `coupling`
     internal steps of `dtm`, the body at the exact position of the call's start and the secant
     velocity to the next (MoorDyn moves it linearly within the call, landing exactly on the
-    motion at each call's end); outputs every `sample` s (a whole number of calls)."""
+    motion at each call's end); outputs every `sample` s (a whole number of calls). With
+    `point_wave_inertia`, each Free point's water velocity is [`point_water_velocity`]'s (the
+    waves' inertia on the point through its drag, held over the call)."""
     md = _moordyn()
     dtc, per_sample, ncalls = coupling_calls(dtm, coupling, sample, duration)
     tc = np.arange(ncalls + 1) * dtc
@@ -435,8 +451,17 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
         vessel_end = [system.vessel_end(ln) for ln in system.lines]
         point_handles = {p: md.GetPoint(s, ids[p]) for p in free}
         md.Init(s, xs[0], [0.0] * 6)
+        free_index: dict[str, int] = {}
         if sea is not None:
             md.ExternalWaveKinInit(s)
+            # each Free point's entry among the coordinates (after the lines' nodes)
+            coords = np.array(md.ExternalWaveKinGetCoordinates(s)).reshape(-1, 3)
+            n_nodes = sum(md.GetLineNumberNodes(h) for h in handles)
+            for p, h in point_handles.items():
+                at = np.flatnonzero(np.all(coords[n_nodes:] == np.array(md.GetPointPos(h)), axis=1))
+                if len(at) != 1:
+                    raise CaseError(f"MoorDyn's wave kinematics coordinates: point {p} not found once")
+                free_index[p] = n_nodes + int(at[0])
         ic_time = time.perf_counter() - t0
 
         def record(j: int, f6: Sequence[float]) -> bool:
@@ -469,7 +494,13 @@ def run(input_path: str | Path, system: System, nseg: int, motion: VesselMotion,
             for i in range(ncalls):
                 if sea is not None:
                     # the water at the call's midpoint, at the nodes where the call starts (held over it)
-                    u, du = sea.kinematics(ts[i] + 0.5 * dtc, np.array(md.ExternalWaveKinGetCoordinates(s)))
+                    coords = np.array(md.ExternalWaveKinGetCoordinates(s)).reshape(-1, 3)
+                    u, du = sea.kinematics(ts[i] + 0.5 * dtc, coords)
+                    if point_wave_inertia:
+                        for p, h in point_handles.items():
+                            k = free_index[p]
+                            u[k] = point_water_velocity(u[k], du[k], np.array(md.GetPointVel(h)),
+                                                        system.points[p], system.rho)
                     md.ExternalWaveKinSet(s, u.tolist(), du.tolist(), ts[i] + 0.5 * dtc)
                 f6 = step(s, xs[i], vs[i], ts[i], dtc)
                 steps += coupling

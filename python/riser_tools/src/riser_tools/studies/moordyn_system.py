@@ -187,18 +187,46 @@ def dtm_clump(nseg: int, shortest: float = 260.0) -> float:
     return CALL / math.ceil(CALL / (0.025 * shortest / 260.0 / nseg))
 
 
+@dataclass
+class Airy:
+    """A regular wave both codes take: riser's `[waves] kind = "airy"` (no stretching), MoorDyn's
+    external kinematics of the same component (`ms.Sea`), the depth the seabed's."""
+
+    height: float               # m
+    period: float               # s
+    direction: float = 0.0      # deg
+    phase: float = 0.0          # deg
+    ramp: float = 0.0           # s
+
+    def toml(self) -> str:
+        return (f'\n[waves]\nkind = "airy"\nheight = {self.height!r}\nperiod = {self.period!r}\n'
+                f'direction = {self.direction!r}\nphase = {self.phase!r}\nramp = {self.ramp!r}\n'
+                f'stretching = "none"\n')
+
+    def sea(self, system: ms.System) -> ms.Sea:
+        one = np.ones(1)
+        return ms.Sea(one / self.period, one * self.height / 2, one * self.phase, one * self.direction,
+                      system.depth, system.g, self.ramp)
+
+
 def clump_pair(bin_: str, out: Path, n: int, motions: tuple[Motion, ...] = MOTIONS,
                duration: float = CLUMP_DURATION, window: tuple[float, float] = CLUMP_WINDOW,
-               ba: float = BA, threads: int | None = None, case: Path = CLUMP) -> Pair:
+               ba: float = BA, threads: int | None = None, case: Path = CLUMP, points: str = "",
+               waves: Airy | None = None) -> Pair:
     """Both codes on a case with free points (default docs/cases/clump_weight_mooring.toml;
     issue 49, point 2) at `n` elements (segments) a line, the lines with MoorDyn's OC3
     hydrodynamics (`HYDRO`) and each free point with its own drag area and added mass (the
-    case's `cd_area`, `ca`; MoorDyn's Free point)."""
-    name = case.stem.replace("_mooring", "")
+    case's `cd_area`, `ca`, or `points`' keys added to every free point; MoorDyn's Free point).
+    In `waves`, MoorDyn's points take the waves' inertia through their water velocity
+    (`ms.point_water_velocity`: MoorDyn-C's point has none)."""
+    name = case.stem.replace("_mooring", "") + ("_waves" if waves else "")
     d = out / f"{name}_{n}"
     d.mkdir(parents=True, exist_ok=True)
     scene = d / "scene.toml"
-    scene.write_text(ms.edit_scene(case.read_text(), n_elements=n, line_type=HYDRO))
+    text = ms.edit_scene(case.read_text(), n_elements=n, line_type=HYDRO)
+    if points:
+        text = text.replace('kind = "free"\n', 'kind = "free"\n' + points)
+    scene.write_text(text + (waves.toml() if waves else ""))
     t0 = time.perf_counter()
     series, summary = ms.run_riser(bin_, scene, d / "riser", motions, duration, threads=threads, window=window)
     riser_wall = time.perf_counter() - t0
@@ -208,9 +236,11 @@ def clump_pair(bin_: str, out: Path, n: int, motions: tuple[Motion, ...] = MOTIO
     for pt in summary.get("points", []):
         system.points[pt["name"]].position = tuple(pt["static_position"])
     dtm = dtm_clump(n, min(line.length for line in system.lines))
-    inp = ms.write_input(d / "moordyn" / "lines.txt", system, n, dtm, ba=ba, options=MD_OPTIONS)
+    inp = ms.write_input(d / "moordyn" / "lines.txt", system, n, dtm, ba=ba,
+                         options={**MD_OPTIONS, **({"WaveKin": 1} if waves else {})})
     md = ms.run(inp, system, n, ms.VesselMotion(motions), duration, dtm, SAMPLE,
-                coupling=int(round(CALL / dtm)))
+                coupling=int(round(CALL / dtm)), sea=waves.sea(system) if waves else None,
+                point_wave_inertia=waves is not None)
     if not md.ok:
         raise RuntimeError(f"MoorDyn on {case.name} at {n} segments stopped at t = {md.t_fail} s")
     return Pair(name, n, series, summary, riser_wall, md, system)
