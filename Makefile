@@ -8,7 +8,7 @@ TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test check rust-test fmt lint venv clean doc paper fmu vessel-fmu fmu-test fmu-test-release check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
+.PHONY: all build demo test check rust-test fmt lint test-build venv clean doc paper fmu vessel-fmu fmu-test fmu-test-release check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
 
 all: build
 
@@ -118,16 +118,23 @@ TEST_CARGO := $(LINTED) $(CARGO)
 fmt:
 	$(CARGO) fmt --check
 
-# formatting, then the lints of every target with the tests' build (`make check`, `make test`)
-lint: fmt
+# formatting, then the lints of every target with the tests' build
+lint: fmt test-build
+
+test-build:
 	@test -n "$(CLIPPY_DRIVER)" || { echo "clippy-driver not found: rustup component add clippy"; exit 1; }
 	$(TEST_CARGO) test --profile $(TEST_PROFILE) --no-run --all-targets
 
 rust-test:
 	$(TEST_CARGO) test --profile $(TEST_PROFILE)
 
+# rustdoc needs the dependencies checked (their metadata, dev profile): in a
+# target directory of its own, so that `make test` runs it beside the tests'
+# build (cargo locks a target directory for a whole command). The pages:
+# target/rustdoc/doc/riser/index.html.
+DOC_TARGET := target/rustdoc
 doc:
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
+	RUSTDOCFLAGS="-D warnings" CARGO_TARGET_DIR=$(DOC_TARGET) $(CARGO) doc --no-deps
 
 # fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
 # build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
@@ -164,8 +171,15 @@ fmu-test-release: fmu
 	$(PY) -m pytest -q -m "not long" tests/python
 
 # Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
-# the FMU packaged from the same build through fmpy and libcosim.
-test: lint doc rust-test fmu-test
+# the FMU packaged from the same build through fmpy and libcosim. The venv's
+# install (pip, mostly waiting on files) and rustdoc (its check of the
+# dependencies fills the cores the build's critical path leaves idle) run
+# beside the linted build; `make test` fails if any of the three does.
+test: fmt
+	@$(MAKE) --no-print-directory venv doc & side=$$!; \
+	$(MAKE) --no-print-directory test-build; built=$$?; \
+	wait $$side; beside=$$?; test $$built -eq 0 -a $$beside -eq 0
+	$(MAKE) --no-print-directory rust-test fmu-test
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
 # tests, and the FMU's Python tests but the long fuzz and Dask ones, against an
