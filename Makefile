@@ -110,7 +110,9 @@ TEST_PROFILE := fasttest
 # __CLIPPY_HACKERY__), so the dependencies are compiled once, for the tests,
 # instead of also being checked in the dev profile for clippy (a minute and a
 # half of a fresh clone's `make test`). Every cargo command of the fasttest
-# profile below runs with the same two variables, or cargo would rebuild riser.
+# profile below runs with the same two variables, and so do the Python tests
+# (two build examples with cargo): without them cargo builds riser again (its
+# artifacts are told apart by the wrapper; they do not replace each other).
 CLIPPY_DRIVER ?= $(shell rustup which clippy-driver 2>/dev/null || command -v clippy-driver)
 LINTED := RUSTC_WORKSPACE_WRAPPER=$(CLIPPY_DRIVER) CLIPPY_ARGS=-D__CLIPPY_HACKERY__warnings
 TEST_CARGO := $(LINTED) $(CARGO)
@@ -121,9 +123,11 @@ fmt:
 # formatting, then the lints of every target with the tests' build
 lint: fmt test-build
 
+# `cargo build --all-targets` builds what `cargo test` runs (the examples as
+# programs, as `cargo test` and the Python tests build them) and the benchmarks.
 test-build:
 	@test -n "$(CLIPPY_DRIVER)" || { echo "clippy-driver not found: rustup component add clippy"; exit 1; }
-	$(TEST_CARGO) test --profile $(TEST_PROFILE) --no-run --all-targets
+	$(TEST_CARGO) build --profile $(TEST_PROFILE) --all-targets
 
 rust-test:
 	$(TEST_CARGO) test --profile $(TEST_PROFILE)
@@ -157,7 +161,7 @@ vessel-fmu: venv
 # printed at the end.
 PYTEST_WORKERS ?= 2
 fmu-test: venv check-fmu
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" \
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" \
 		-n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 # The long comparisons that `make test` leaves out (tests marked `long`: the FMU's growing
@@ -165,7 +169,7 @@ fmu-test: venv check-fmu
 .PHONY: check-long
 check-long: venv check-fmu
 	$(TEST_CARGO) test --profile $(TEST_PROFILE) -- --ignored
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long -n $(PYTEST_WORKERS) --dist loadfile tests/python
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long -n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 fmu-test-release: fmu
 	$(PY) -m pytest -q -m "not long" tests/python
@@ -187,7 +191,7 @@ test: fmt
 # link is waited for. `make test` remains the gate.
 CHECK_DIR := out/check
 check: lint rust-test venv check-fmu
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
 		$(PY) -m pytest -q -m "not long" -n $(PYTEST_WORKERS) --dist loadfile tests/python -k "not fuzz and not sweep and not scatter"
 
 # The FMU of the fasttest build: the library and the CLI as `cargo test`
