@@ -178,7 +178,11 @@ fmu-test-release: fmu
 # the FMU packaged from the same build through fmpy and libcosim. The venv's
 # install (pip, mostly waiting on files) and rustdoc (its check of the
 # dependencies fills the cores the build's critical path leaves idle) run
-# beside the linted build; `make test` fails if any of the three does.
+# beside the linted build; `make test` fails if any of the three does. Not
+# incremental: a fresh build writes the incremental cache for nothing (about
+# 10 s of a fresh clone); the artifacts are the same for cargo, so `make
+# check`'s incremental rebuilds after it start from them.
+test: export CARGO_INCREMENTAL := 0
 test: fmt
 	@$(MAKE) --no-print-directory venv doc & side=$$!; \
 	$(MAKE) --no-print-directory test-build; built=$$?; \
