@@ -176,18 +176,19 @@ fmu-test-release: fmu
 
 # Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
 # the FMU packaged from the same build through fmpy and libcosim. The venv's
-# install (pip, mostly waiting on files) and rustdoc (its check of the
-# dependencies fills the cores the build's critical path leaves idle) run
-# beside the linted build; `make test` fails if any of the three does. Not
-# incremental: a fresh build writes the incremental cache for nothing (about
-# 10 s of a fresh clone); the artifacts are the same for cargo, so `make
-# check`'s incremental rebuilds after it start from them.
+# install (pip, mostly files) and rustdoc (it checks the dependencies again)
+# run in the background, niced, while the linted build and the Rust tests run:
+# they take the cores the build's critical path and the tests' tail leave
+# idle; the Python tests wait for them, and `make test` fails if any part does.
+# Not incremental: a fresh build writes the incremental cache for nothing
+# (about 10 s of a fresh clone); cargo's fingerprint is the same, so `make
+# check`'s incremental rebuilds after it start from its artifacts.
 test: export CARGO_INCREMENTAL := 0
 test: fmt
-	@$(MAKE) --no-print-directory venv doc & side=$$!; \
-	$(MAKE) --no-print-directory test-build; built=$$?; \
-	wait $$side; beside=$$?; test $$built -eq 0 -a $$beside -eq 0
-	$(MAKE) --no-print-directory rust-test fmu-test
+	@nice -n 10 $(MAKE) --no-print-directory venv doc & side=$$!; \
+	$(MAKE) --no-print-directory test-build rust-test; tests=$$?; \
+	wait $$side; beside=$$?; test $$tests -eq 0 -a $$beside -eq 0
+	$(MAKE) --no-print-directory fmu-test
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
 # tests, and the FMU's Python tests but the long fuzz and Dask ones, against an
