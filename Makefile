@@ -132,13 +132,13 @@ test-build:
 rust-test:
 	$(TEST_CARGO) test --profile $(TEST_PROFILE)
 
-# rustdoc needs the dependencies checked (their metadata, dev profile): in a
-# target directory of its own, so that `make test` runs it beside the tests'
-# build (cargo locks a target directory for a whole command). The pages:
-# target/rustdoc/doc/riser/index.html.
-DOC_TARGET := target/rustdoc
+# rustdoc needs the dependencies checked (their metadata from a check, not
+# from a build): in the tests' profile and target directory it reuses the
+# build's proc macros and build scripts and checks only the libraries (with
+# the wrapper's variables, or cargo would build riser's build script again).
+# The pages: target/doc/riser/index.html.
 doc:
-	RUSTDOCFLAGS="-D warnings" CARGO_TARGET_DIR=$(DOC_TARGET) $(CARGO) doc --no-deps
+	RUSTDOCFLAGS="-D warnings" $(TEST_CARGO) doc --no-deps --profile $(TEST_PROFILE)
 
 # fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
 # build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
@@ -176,18 +176,22 @@ fmu-test-release: fmu
 
 # Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
 # the FMU packaged from the same build through fmpy and libcosim. The venv's
-# install (pip, mostly files) and rustdoc (it checks the dependencies again)
-# run in the background, niced, while the linted build and the Rust tests run:
-# they take the cores the build's critical path and the tests' tail leave
-# idle; the Python tests wait for them, and `make test` fails if any part does.
-# Not incremental: a fresh build writes the incremental cache for nothing
-# (about 10 s of a fresh clone); cargo's fingerprint is the same, so `make
-# check`'s incremental rebuilds after it start from its artifacts.
+# install (pip, mostly files) runs niced in the background from the start;
+# rustdoc runs niced beside the Rust tests' run (cargo holds the target
+# directory's lock while it builds, not while the tests run), in the cores
+# their tail leaves idle; the Python tests wait for all three, and `make test`
+# fails if any part does. Not incremental: a fresh build writes the
+# incremental cache for nothing (about 10 s of a fresh clone); cargo's
+# fingerprint is the same, so `make check`'s incremental rebuilds after it
+# start from its artifacts.
 test: export CARGO_INCREMENTAL := 0
 test: fmt
-	@nice -n 10 $(MAKE) --no-print-directory venv doc & side=$$!; \
-	$(MAKE) --no-print-directory test-build rust-test; tests=$$?; \
-	wait $$side; beside=$$?; test $$tests -eq 0 -a $$beside -eq 0
+	@nice -n 10 $(MAKE) --no-print-directory venv & venv=$$!; \
+	$(MAKE) --no-print-directory test-build || { wait $$venv; exit 1; }; \
+	$(MAKE) --no-print-directory rust-test & rust=$$!; \
+	nice -n 10 $(MAKE) --no-print-directory doc; doc=$$?; \
+	wait $$rust; rust=$$?; wait $$venv; venv=$$?; \
+	test $$doc -eq 0 -a $$rust -eq 0 -a $$venv -eq 0
 	$(MAKE) --no-print-directory fmu-test
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
