@@ -113,7 +113,9 @@ TEST_PROFILE := fasttest
 # profile below runs with the same two variables, and so do the Python tests
 # (two build examples with cargo): without them cargo builds riser again (its
 # artifacts are told apart by the wrapper; they do not replace each other).
-CLIPPY_DRIVER ?= $(shell rustup which clippy-driver 2>/dev/null || command -v clippy-driver)
+ifndef CLIPPY_DRIVER
+CLIPPY_DRIVER := $(shell rustup which clippy-driver 2>/dev/null || command -v clippy-driver)
+endif
 LINTED := RUSTC_WORKSPACE_WRAPPER=$(CLIPPY_DRIVER) CLIPPY_ARGS=-D__CLIPPY_HACKERY__warnings
 TEST_CARGO := $(LINTED) $(CARGO)
 
