@@ -8,7 +8,7 @@ TOOLS := $(VENV)/bin/riser-tools
 BIN := target/release/riser
 DEMO_DIR := out/demo
 
-.PHONY: all build demo test check rust-test lint venv clean doc paper fmu vessel-fmu fmu-test fmu-test-release check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
+.PHONY: all build demo test check rust-test fmt lint test-build venv clean doc paper fmu vessel-fmu fmu-test fmu-test-release check-fmu stability study noise moordyn moordyn-seabed lowe-langley accuracy fuzz valgrind
 
 all: build
 
@@ -97,20 +97,50 @@ bench-fmu:
 bench-sweep: venv fmu
 	$(TOOLS) bench-sweep
 
-# clippy in the dev profile: `doc` then reuses its check of the dependencies.
-lint:
-	$(CARGO) fmt --check
-	$(CARGO) clippy --all-targets -- -D warnings
-
 # The Rust tests in the `fasttest` profile (Cargo.toml): optimised as the
 # physics needs, without the release profile's fat LTO, which made the test
 # binaries' link the longest part of `make test`.
 TEST_PROFILE := fasttest
-rust-test:
-	$(CARGO) test --profile $(TEST_PROFILE)
 
+# The lints ride on the tests' build: riser's own crates (the library, the
+# command line, the build script, the unit and integration tests, the
+# benchmarks, the examples: every target `cargo clippy --all-targets` lints)
+# are compiled by clippy's driver, as `cargo clippy` itself runs it (cargo's
+# RUSTC_WORKSPACE_WRAPPER; clippy's arguments in CLIPPY_ARGS, separated by
+# __CLIPPY_HACKERY__), so the dependencies are compiled once, for the tests,
+# instead of also being checked in the dev profile for clippy (a minute and a
+# half of a fresh clone's `make test`). Every cargo command of the fasttest
+# profile below runs with the same two variables, and so do the Python tests
+# (two build examples with cargo): without them cargo builds riser again (its
+# artifacts are told apart by the wrapper; they do not replace each other).
+ifndef CLIPPY_DRIVER
+CLIPPY_DRIVER := $(shell rustup which clippy-driver 2>/dev/null || command -v clippy-driver)
+endif
+LINTED := RUSTC_WORKSPACE_WRAPPER=$(CLIPPY_DRIVER) CLIPPY_ARGS=-D__CLIPPY_HACKERY__warnings
+TEST_CARGO := $(LINTED) $(CARGO)
+
+fmt:
+	$(CARGO) fmt --check
+
+# formatting, then the lints of every target with the tests' build
+lint: fmt test-build
+
+# `cargo build --all-targets` builds what `cargo test` runs (the examples as
+# programs, as `cargo test` and the Python tests build them) and the benchmarks.
+test-build:
+	@test -n "$(CLIPPY_DRIVER)" || { echo "clippy-driver not found: rustup component add clippy"; exit 1; }
+	$(TEST_CARGO) build --profile $(TEST_PROFILE) --all-targets
+
+rust-test:
+	$(TEST_CARGO) test --profile $(TEST_PROFILE)
+
+# rustdoc needs the dependencies checked (their metadata from a check, not
+# from a build): in the tests' profile and target directory it reuses the
+# build's proc macros and build scripts and checks only the libraries (with
+# the wrapper's variables, or cargo would build riser's build script again).
+# The pages: target/doc/riser/index.html.
 doc:
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
+	RUSTDOCFLAGS="-D warnings" $(TEST_CARGO) doc --no-deps --profile $(TEST_PROFILE)
 
 # fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
 # build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
@@ -133,22 +163,38 @@ vessel-fmu: venv
 # printed at the end.
 PYTEST_WORKERS ?= 2
 fmu-test: venv check-fmu
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" \
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m "not long" \
 		-n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 # The long comparisons that `make test` leaves out (tests marked `long`: the FMU's growing
 # high-frequency oscillation over 150 s at 160 elements, ...), against the same FMU.
 .PHONY: check-long
 check-long: venv check-fmu
-	cargo test --profile $(TEST_PROFILE) -- --ignored
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long -n $(PYTEST_WORKERS) --dist loadfile tests/python
+	$(TEST_CARGO) test --profile $(TEST_PROFILE) -- --ignored
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser $(PY) -m pytest -q -m long -n $(PYTEST_WORKERS) --dist loadfile tests/python
 
 fmu-test-release: fmu
 	$(PY) -m pytest -q -m "not long" tests/python
 
 # Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
-# the FMU packaged from the same build through fmpy and libcosim.
-test: lint doc rust-test fmu-test
+# the FMU packaged from the same build through fmpy and libcosim. The venv's
+# install (pip, mostly files) runs niced in the background from the start;
+# rustdoc runs niced beside the Rust tests' run (cargo holds the target
+# directory's lock while it builds, not while the tests run), in the cores
+# their tail leaves idle; the Python tests wait for all three, and `make test`
+# fails if any part does. Not incremental: a fresh build writes the
+# incremental cache for nothing (about 10 s of a fresh clone); cargo's
+# fingerprint is the same, so `make check`'s incremental rebuilds after it
+# start from its artifacts.
+test: export CARGO_INCREMENTAL := 0
+test: fmt
+	@nice -n 10 $(MAKE) --no-print-directory venv & venv=$$!; \
+	$(MAKE) --no-print-directory test-build || { wait $$venv; exit 1; }; \
+	$(MAKE) --no-print-directory rust-test & rust=$$!; \
+	nice -n 10 $(MAKE) --no-print-directory doc; doc=$$?; \
+	wait $$rust; rust=$$?; wait $$venv; venv=$$?; \
+	test $$doc -eq 0 -a $$rust -eq 0 -a $$venv -eq 0
+	$(MAKE) --no-print-directory fmu-test
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
 # tests, and the FMU's Python tests but the long fuzz and Dask ones, against an
@@ -156,14 +202,14 @@ test: lint doc rust-test fmu-test
 # link is waited for. `make test` remains the gate.
 CHECK_DIR := out/check
 check: lint rust-test venv check-fmu
-	RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
+	$(LINTED) RISER_FMU=$(CHECK_DIR)/riser.fmu RISER_BIN=target/$(TEST_PROFILE)/riser \
 		$(PY) -m pytest -q -m "not long" -n $(PYTEST_WORKERS) --dist loadfile tests/python -k "not fuzz and not sweep and not scatter"
 
 # The FMU of the fasttest build: the library and the CLI as `cargo test`
 # builds them (its cdylib stays in deps/), not `cargo build`'s, which would
 # rebuild faer and the crate without the dev-dependency's feature (a minute).
 check-fmu: venv
-	$(CARGO) test --profile $(TEST_PROFILE) --no-run
+	$(TEST_CARGO) test --profile $(TEST_PROFILE) --no-run
 	$(TOOLS) package-fmu --bin target/$(TEST_PROFILE)/riser \
 		--lib target/$(TEST_PROFILE)/deps/libriser.so --out $(CHECK_DIR)/riser.fmu
 
