@@ -9,6 +9,7 @@
 mod common;
 
 mod accuracy;
+mod accuracy_fallback;
 mod cable;
 mod cli;
 mod design_numbers;
