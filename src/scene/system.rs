@@ -58,6 +58,14 @@ pub struct PointSpec {
     /// A free point's added-mass coefficient (default 0; the dynamics'): added mass C_a ρ V.
     #[serde(default)]
     pub ca: Option<f64>,
+    /// A free point's vertical extent, m (default none: a point, its
+    /// buoyancy whole below the still water line and none above): a
+    /// vertical cylinder of its `volume` centred on its position, of
+    /// waterplane area `volume`/`height`, whose buoyancy, added mass, drag
+    /// and waves' inertia go with its draft (a surface buoy; docs/theory.md
+    /// §17.10).
+    #[serde(default)]
+    pub height: Option<f64>,
 }
 
 impl PointSpec {
@@ -79,6 +87,92 @@ impl PointSpec {
     /// Added-mass coefficient.
     pub fn ca(&self) -> f64 {
         self.ca.unwrap_or(0.0)
+    }
+
+    /// Its buoyancy's shape: a point, or a vertical cylinder of height H
+    /// (`height`) and waterplane area V/H.
+    pub fn floater(&self) -> Floater {
+        Floater { volume: self.volume(), height: self.height }
+    }
+}
+
+/// A free point's buoyant volume and how it meets the water surface
+/// (docs/theory.md §17.10, eqs 17.23–17.25): without a height, the whole
+/// volume below the still water line and none above (a step at the
+/// surface); with one, a vertical cylinder of height H centred on the
+/// point, its waterplane area A = V/H, its draft
+/// d(ζ) = clamp(H/2 − ζ, 0, H) for its centre ζ above the surface, its
+/// displaced volume A d.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Floater {
+    /// V, m³.
+    pub volume: f64,
+    /// H, m (None: a point).
+    pub height: Option<f64>,
+}
+
+impl Floater {
+    /// The submerged fraction s = d/H at a centre ζ m above the surface
+    /// (a point: 1 below it, 0 at and above it).
+    pub fn submerged(&self, zeta: f64) -> f64 {
+        match self.height {
+            None => f64::from(u8::from(zeta < 0.0)),
+            Some(h) => (0.5 - zeta / h).clamp(0.0, 1.0),
+        }
+    }
+
+    /// The displaced volume V s (m³) at ζ and its derivative in ζ (m²:
+    /// −A where the cylinder is partly submerged, else 0).
+    pub fn displaced(&self, zeta: f64) -> (f64, f64) {
+        match self.height {
+            None => (self.volume * self.submerged(zeta), 0.0),
+            Some(h) => {
+                let s = self.submerged(zeta);
+                let slope = if s > 0.0 && s < 1.0 { -self.volume / h } else { 0.0 };
+                (self.volume * s, slope)
+            }
+        }
+    }
+
+    /// Q(ζ) = ∫ displaced dζ, zero clear of the water, m⁴ (17.24): the
+    /// buoyancy's potential is −ρ g Q(z − z_s); Q = V ζ fully submerged
+    /// (ζ ≤ −H/2), −A d²/2 partly (d the draft), 0 clear of the water; a
+    /// point: V min(ζ, 0).
+    pub fn potential(&self, zeta: f64) -> f64 {
+        match self.height {
+            None => self.volume * zeta.min(0.0),
+            Some(h) => {
+                let a = self.volume / h;
+                let d = (0.5 * h - zeta).clamp(0.0, h);
+                -0.5 * a * d * d - self.volume * (-zeta - 0.5 * h).max(0.0)
+            }
+        }
+    }
+
+    /// The displaced volume's mean over a step of the centre from ζ₀ to ζ₁
+    /// (m³), so that ρ g times it is the discrete gradient of the
+    /// buoyancy's potential, ρ g (Q(ζ₁) − Q(ζ₀))/(ζ₁ − ζ₀) (17.25): the
+    /// midpoint's where both ends are on one piece of the draft (it is
+    /// linear there) or the step is too short for the quotient, else the
+    /// quotient; and its derivative in ζ₁ (m²). A cylinder only.
+    pub fn mean_displaced(&self, zeta0: f64, zeta1: f64) -> (f64, f64) {
+        let h = self.height.unwrap_or(0.0);
+        let piece = |z: f64| {
+            if z <= -0.5 * h {
+                0
+            } else if z >= 0.5 * h {
+                2
+            } else {
+                1
+            }
+        };
+        if piece(zeta0) == piece(zeta1) || (zeta1 - zeta0).abs() <= 1e-9 * h {
+            let (v, dv) = self.displaced(0.5 * (zeta0 + zeta1));
+            return (v, 0.5 * dv);
+        }
+        let g = (self.potential(zeta1) - self.potential(zeta0)) / (zeta1 - zeta0);
+        let (v1, _) = self.displaced(zeta1);
+        (g, (v1 - g) / (zeta1 - zeta0))
     }
 }
 
@@ -406,7 +500,8 @@ impl SystemScene {
             seen.push((what, name));
         }
         for p in &self.points {
-            let keys = [("mass", p.mass), ("volume", p.volume), ("cd_area", p.cd_area), ("ca", p.ca)];
+            let keys =
+                [("mass", p.mass), ("volume", p.volume), ("cd_area", p.cd_area), ("ca", p.ca), ("height", p.height)];
             for (key, v) in keys {
                 let Some(v) = v else { continue };
                 if p.kind != PointKind::Free {
@@ -422,6 +517,13 @@ impl SystemScene {
                     err(
                         format!("point.{}.{key}", p.name),
                         format!("{v} must be finite, within [0, {MAX_POINT_VALUE:e}]"),
+                    );
+                } else if key == "height" && v == 0.0 {
+                    err(
+                        format!("point.{}.height", p.name),
+                        "must be above 0 m: leave `height` out for a point whose buoyancy is whole below the \
+                         surface"
+                            .to_string(),
                     );
                 }
             }

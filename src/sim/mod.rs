@@ -15,6 +15,7 @@ pub mod report;
 pub mod system;
 pub mod system_accuracy;
 pub mod system_dynamics;
+pub mod system_modes;
 pub mod vessel;
 
 use crate::loads::waves::{Sea, sea_of};

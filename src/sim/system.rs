@@ -284,15 +284,26 @@ enum Held {
 pub const POINT_CONTACT_AREA: f64 = 1.0;
 
 /// A free point's own load at `x` (weight, buoyancy below the water
-/// surface, the seabed's contact, eq. 17.4) and its stiffness −∂f/∂x.
+/// surface, the seabed's contact, eq. 17.4; a point with a `height`, its
+/// draft's buoyancy, 17.23) and its stiffness −∂f/∂x.
 pub fn point_load(sys: &SystemScene, p: &PointSpec, x: V3) -> (V3, M3) {
     let env = &sys.environment;
     let g = env.gravity;
     let mut f = V3::new(0.0, 0.0, -p.mass() * g);
-    if x.z < env.water_surface_z {
-        f.z += env.water_density * g * p.volume();
-    }
     let mut k = M3::zeros();
+    match p.height {
+        None => {
+            if x.z < env.water_surface_z {
+                f.z += env.water_density * g * p.volume();
+            }
+        }
+        Some(_) => {
+            // a cylinder at the surface (17.23): ρ g A d, its stiffness ρ g A while partly submerged
+            let (v, dv) = p.floater().displaced(x.z - env.water_surface_z);
+            f.z += env.water_density * g * v;
+            k[(2, 2)] -= env.water_density * g * dv;
+        }
+    }
     if let Some(b) = &sys.seabed {
         let depth = b.height_at(x.x, x.y) - x.z;
         if depth > 0.0 {
@@ -885,10 +896,11 @@ fn solve_with_free_points(
         let p = fs.free[k];
         let env = &sys.environment;
         let net_up = env.gravity * (env.water_density * p.volume() - p.mass());
-        let floats = if net_up > 0.0 {
+        let floats = if net_up > 0.0 && p.height.is_none() {
             format!(
                 " It is buoyant (net {:.3} kN up): unless its lines hold it under water it rises to the surface \
-                 (z = {} m), where its buoyancy, full below and none above, has no equilibrium.",
+                 (z = {} m), where its buoyancy, full below and none above, has no equilibrium (give it a \
+                 `height` to float there: docs/guide/systems.md).",
                 net_up / 1e3,
                 env.water_surface_z
             )

@@ -26,7 +26,7 @@ use crate::loads::waves::{Ramp, Sea, WaterPoint};
 use crate::math::{M3, V3};
 use crate::model::cable::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
-use crate::scene::system::{PointKind, PointSpec, SystemScene, VesselEnd};
+use crate::scene::system::{Floater, PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
 use nalgebra::DMatrix;
 use std::sync::Mutex;
@@ -301,6 +301,14 @@ pub struct FreePointRun {
     /// Displaced volume V, m³, and drag area C_d A, m².
     pub volume: f64,
     pub cd_area: f64,
+    /// How its volume meets the surface: a point, or a cylinder of a
+    /// height (§17.10).
+    pub floater: Floater,
+    /// Its submerged fraction over the step (§17.10: at its predicted
+    /// midpoint, held over the Newton iterations; 1 for a point, whose
+    /// buoyancy alone meets the surface), scaling its drag, added mass and
+    /// the waves' inertia on it.
+    wet: f64,
     /// Position and velocity at the run's time (global), m and m/s.
     pub position: V3,
     pub velocity: V3,
@@ -341,7 +349,11 @@ impl FreePointRun {
     /// buoyancy below the water surface U_b = −ρ g V min(z, z_s), the
     /// seabed's contact U_c = ½ k_p ((h(x) − z)⁺)².
     pub fn potential(&self, x: V3) -> f64 {
-        let ub = -self.water_density * self.gravity * self.volume * x.z.min(self.surface_z);
+        let ub = match self.floater.height {
+            None => -self.water_density * self.gravity * self.volume * x.z.min(self.surface_z),
+            // −ρ g Q(z − z_s) (17.24)
+            Some(_) => -self.water_density * self.gravity * self.floater.potential(x.z - self.surface_z),
+        };
         let uc = self.bed.map_or(0.0, |(z0, t, kp)| 0.5 * kp * (z0 + t * x.x - x.z).max(0.0).powi(2));
         self.mass * self.gravity * x.z + ub + uc
     }
@@ -368,14 +380,19 @@ impl FreePointRun {
 
     /// −∂f/∂x of its own static load (17.4) at its position, N/m: the
     /// seabed's contact where it is in it (the weight and the buoyancy are
-    /// constant below the surface, as in the statics).
+    /// constant below the surface, as in the statics), and a floating
+    /// cylinder's waterplane stiffness ρ g A (17.23).
     pub fn load_stiffness(&self) -> M3 {
         let mut k = M3::zeros();
+        if self.floater.height.is_some() {
+            let (_, dv) = self.floater.displaced(self.position.z - self.surface_z);
+            k[(2, 2)] = -self.water_density * self.gravity * dv;
+        }
         if let Some((z0, t, kp)) = self.bed
             && z0 + t * self.position.x - self.position.z > 0.0
         {
             // f_z = k_p (h(x) − z), h(x) = z0 + tan x
-            k[(2, 2)] = kp;
+            k[(2, 2)] += kp;
             k[(2, 0)] = -kp * t;
         }
         k
@@ -396,11 +413,25 @@ impl FreePointRun {
     /// point's midpoint predicted for the step, `x_pred` its predicted end,
     /// at `t_mid`, kept for the step's rows (as a line's Gauss points take
     /// them, §13.6: held over the Newton iterations); still water without a sea.
+    /// A cylinder (§17.10) takes them at the centre of its part below the
+    /// still water line, and its submerged fraction at the predicted
+    /// midpoint under the waves' elevation there.
     fn freeze_water(&mut self, x_pred: V3, t_mid: f64) {
+        let mut at = (self.position + x_pred) * 0.5;
+        let mid = at.z;
+        if let Some(h) = self.floater.height {
+            let (bottom, top) = (at.z - 0.5 * h, (at.z + 0.5 * h).min(self.surface_z));
+            if top > bottom {
+                at.z = 0.5 * (bottom + top);
+            }
+        }
         self.water = match &self.sea {
-            Some(sea) => sea.water(&((self.position + x_pred) * 0.5 - self.sea_origin), t_mid),
+            Some(sea) => sea.water(&(at - self.sea_origin), t_mid),
             None => WaterPoint::STILL,
         };
+        if self.floater.height.is_some() {
+            self.wet = self.floater.submerged(mid - self.surface_z - self.water.elevation);
+        }
     }
 
     /// The point's own rows of the step (17.14) at the end-of-step position
@@ -415,20 +446,41 @@ impl FreePointRun {
         let v1 = dx * (2.0 / h) - v0;
         let dv = (v1 - v0) / h;
         let mut r = dv * self.mass;
-        let mut k = M3::identity() * ((self.mass + self.added_mass) * 2.0 / (h * h));
+        let added_mass = self.added_mass * self.wet;
+        let mut k = M3::identity() * ((self.mass + added_mass) * 2.0 / (h * h));
         // weight (linear: exact)
         r.z += self.mass * self.gravity;
         // buoyancy: the discrete gradient of U_b (a step in its slope at z_s)
-        let rho_g_v = self.water_density * self.gravity * self.volume;
-        let ub = |z: f64| -rho_g_v * z.min(self.surface_z);
-        let fb = if (x1.z - x0.z).abs() > 0.0 && (x0.z.max(x1.z) > self.surface_z) {
-            -(ub(x1.z) - ub(x0.z)) / (x1.z - x0.z)
-        } else if x0.z.max(x1.z) <= self.surface_z {
-            rho_g_v
-        } else {
-            0.0
-        };
-        r.z -= fb;
+        let rho_g = self.water_density * self.gravity;
+        // a cylinder's in waves beyond the still water's: the water's (17.25)
+        let mut f_wave_buoyancy = 0.0;
+        match self.floater.height {
+            None => {
+                let rho_g_v = rho_g * self.volume;
+                let ub = |z: f64| -rho_g_v * z.min(self.surface_z);
+                let fb = if (x1.z - x0.z).abs() > 0.0 && (x0.z.max(x1.z) > self.surface_z) {
+                    -(ub(x1.z) - ub(x0.z)) / (x1.z - x0.z)
+                } else if x0.z.max(x1.z) <= self.surface_z {
+                    rho_g_v
+                } else {
+                    0.0
+                };
+                r.z -= fb;
+            }
+            Some(_) => {
+                let (z0, z1) = (x0.z - self.surface_z, x1.z - self.surface_z);
+                let eta = self.water.elevation;
+                let (still, d_still) = self.floater.mean_displaced(z0, z1);
+                r.z -= rho_g * still;
+                if eta != 0.0 {
+                    let (cut, d_cut) = self.floater.mean_displaced(z0 - eta, z1 - eta);
+                    f_wave_buoyancy = rho_g * (cut - still);
+                    k[(2, 2)] -= rho_g * d_cut;
+                } else {
+                    k[(2, 2)] -= rho_g * d_still;
+                }
+            }
+        }
         // the seabed: U_c of the penetration p = h(x) − z, linear in x (a
         // discrete gradient in p, along ∇p = (tan, 0, −1))
         if let Some((z0, t, kp)) = self.bed {
@@ -456,10 +508,13 @@ impl FreePointRun {
         let u = self.current.velocity(self.current_s, xm.z - self.current_frame_z).0 * self.current_ramp.at(t_mid).0
             + self.water.velocity;
         let w = u - dx / h;
-        let c = 0.5 * self.water_density * self.cd_area;
+        let c = 0.5 * self.water_density * self.cd_area * self.wet;
         let wn = w.norm();
-        let inertia = self.water_density * self.volume + self.added_mass;
-        let f_water = w * (c * wn) + self.water.acceleration * inertia - dv * self.added_mass;
+        let inertia = self.water_density * self.volume * self.wet + added_mass;
+        let mut f_water = w * (c * wn) + self.water.acceleration * inertia - dv * added_mass;
+        if f_wave_buoyancy != 0.0 {
+            f_water.z += f_wave_buoyancy;
+        }
         if c > 0.0 && wn > 0.0 {
             k += (M3::identity() * wn + w * w.transpose() / wn) * (c / h);
         }
@@ -538,20 +593,6 @@ pub fn unsupported(sys: &SystemScene) -> Option<String> {
     })
 }
 
-/// Why `what` (the modes) cannot take a system with free points in this
-/// version, or None: their dynamics is `riser run`'s and the FMU's.
-pub fn free_points_refused(sys: &SystemScene, what: &str) -> Option<String> {
-    let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
-    (!free.is_empty()).then(|| {
-        format!(
-            "free point(s) {}: {what} of a system with free points (joints, clump weights, buoys) is not yet in \
-             this version; `riser run` and the FMU run its dynamics and `riser statics` solves it \
-             (docs/guide/systems.md)",
-            free.join(", ")
-        )
-    })
-}
-
 /// Each line of `sys` set up for a dynamic run ([`SystemRun::new`]): its
 /// single-line run from its statics at the neutral pose (the lines' statics
 /// as `riser statics SYSTEM` solves them, §17.1); with free points, the
@@ -624,6 +665,8 @@ pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, Fre
             added_mass: p.ca() * env.water_density * p.volume(),
             volume: p.volume(),
             cd_area: p.cd_area(),
+            floater: p.floater(),
+            wet: 1.0,
             position: st.position,
             velocity: V3::zeros(),
             static_position: st.position,

@@ -163,10 +163,90 @@ pub fn lowest_modes<L: Linearized>(line: &L, cfg: &RodConfig, count: usize) -> R
         }
     }
     let b = l.transpose() * &x;
-    let count = count.min(nf);
+    let wanted = wanted_modes(&b, count.min(nf), asymmetry < 1e-9)?;
+    let modes = wanted
+        .into_iter()
+        .map(|(mu, imag, y)| {
+            // φ = C⁻¹ L y = X y, mass-normalised
+            let xy = &x * &y;
+            let mut phi = vec![0.0; n];
+            for (i, &f) in free.iter().enumerate() {
+                phi[f] = xy[(i, 0)];
+            }
+            let mut mphi = vec![0.0; n];
+            m_band.mul_add(&phi, &mut mphi);
+            let norm: f64 = phi.iter().zip(&mphi).map(|(a, b)| a * b).sum::<f64>().sqrt();
+            if norm > 0.0 {
+                phi.iter_mut().for_each(|v| *v /= norm);
+            }
+            Mode { eigenvalue: SHIFT + 1.0 / mu, eigenvalue_imag: imag, vector: phi }
+        })
+        .collect();
+    Ok(Modes { modes, size: nf, asymmetry })
+}
+
+/// The `count` lowest modes of K φ = λ M φ given as dense matrices over the
+/// free unknowns (a system of lines joined at free points, docs/theory.md
+/// §17.9, eq. 17.21): the shift-inverted form of [`lowest_modes`] with
+/// faer's dense LU with partial pivoting for C = K − σ M. The modes'
+/// vectors are over these unknowns, mass-normalised φᵀ M φ = 1.
+pub fn lowest_modes_dense(k: &Mat<f64>, m: &Mat<f64>, count: usize) -> Result<Modes, EigenError> {
+    use faer::linalg::solvers::Solve;
+    if count == 0 {
+        return Err(EigenError::NoModes);
+    }
+    let n = k.nrows();
+    if n == 0 {
+        return Err(EigenError::NoFreeUnknowns);
+    }
+    let finite = |a: &Mat<f64>| (0..n).all(|j| (0..n).all(|i| a[(i, j)].is_finite()));
+    if !finite(k) || !finite(m) {
+        return Err(EigenError::NotFinite);
+    }
+    let (mut asym, mut kmax) = (0.0f64, 0.0f64);
+    for j in 0..n {
+        for i in 0..=j {
+            asym = asym.max((k[(i, j)] - k[(j, i)]).abs());
+            kmax = kmax.max(k[(i, j)].abs());
+        }
+    }
+    let asymmetry = if kmax > 0.0 { asym / kmax } else { 0.0 };
+    let llt = m.llt(Side::Lower).map_err(|_| EigenError::MassNotPositive)?;
+    let l = llt.L().to_owned();
+    let c = Mat::from_fn(n, n, |i, j| k[(i, j)] - SHIFT * m[(i, j)]);
+    // X = C⁻¹ L
+    let x = c.partial_piv_lu().solve(&l);
+    if !finite(&x) {
+        return Err(EigenError::Linear(LinearSolveError::NonFinite));
+    }
+    let b = l.transpose() * &x;
+    let wanted = wanted_modes(&b, count.min(n), asymmetry < 1e-9)?;
+    let modes = wanted
+        .into_iter()
+        .map(|(mu, imag, y)| {
+            let phi = &x * &y;
+            let mphi = m * &phi;
+            let norm = (0..n).map(|i| phi[(i, 0)] * mphi[(i, 0)]).sum::<f64>().sqrt();
+            let scale = if norm > 0.0 { 1.0 / norm } else { 1.0 };
+            Mode {
+                eigenvalue: SHIFT + 1.0 / mu,
+                eigenvalue_imag: imag,
+                vector: (0..n).map(|i| phi[(i, 0)] * scale).collect(),
+            }
+        })
+        .collect();
+    Ok(Modes { modes, size: n, asymmetry })
+}
+
+/// The wanted modes of the shift-inverted B = Lᵀ C⁻¹ L (eq. 8.2): the
+/// `count` largest μ = 1/(λ − σ) with their eigenvectors y, as (μ, the
+/// imaginary part of λ, y); B solved as self-adjoint when `symmetric`, as a
+/// general real matrix otherwise (of a complex-conjugate pair, one).
+fn wanted_modes(b: &Mat<f64>, count: usize, symmetric: bool) -> Result<Vec<(f64, f64, Mat<f64>)>, EigenError> {
+    let nf = b.nrows();
     // (μ, imaginary part of λ, y) of the wanted modes
     let mut wanted: Vec<(f64, f64, Mat<f64>)> = Vec::with_capacity(count);
-    if asymmetry < 1e-9 {
+    if symmetric {
         let sym = Mat::from_fn(nf, nf, |i, j| 0.5 * (b[(i, j)] + b[(j, i)]));
         let evd = sym.self_adjoint_eigen(Side::Lower).map_err(|_| EigenError::NotConverged)?;
         let (s, u) = (evd.S(), evd.U());
@@ -198,25 +278,7 @@ pub fn lowest_modes<L: Linearized>(line: &L, cfg: &RodConfig, count: usize) -> R
             wanted.push((s[c].re, im, Mat::from_fn(nf, 1, |i, _| u[(i, c)].re)));
         }
     }
-    let modes = wanted
-        .into_iter()
-        .map(|(mu, imag, y)| {
-            // φ = C⁻¹ L y = X y, mass-normalised
-            let xy = &x * &y;
-            let mut phi = vec![0.0; n];
-            for (i, &f) in free.iter().enumerate() {
-                phi[f] = xy[(i, 0)];
-            }
-            let mut mphi = vec![0.0; n];
-            m_band.mul_add(&phi, &mut mphi);
-            let norm: f64 = phi.iter().zip(&mphi).map(|(a, b)| a * b).sum::<f64>().sqrt();
-            if norm > 0.0 {
-                phi.iter_mut().for_each(|v| *v /= norm);
-            }
-            Mode { eigenvalue: SHIFT + 1.0 / mu, eigenvalue_imag: imag, vector: phi }
-        })
-        .collect();
-    Ok(Modes { modes, size: nf, asymmetry })
+    Ok(wanted)
 }
 
 /// The line's tangent stiffness at the hang-off about `cfg` (eq. 8.6):

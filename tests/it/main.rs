@@ -43,6 +43,8 @@ mod system_accuracy;
 mod system_dynamics;
 mod system_free_dynamics;
 mod system_free_points;
+mod system_modes;
+mod system_surface_buoy;
 mod wall_stresses;
 mod waves;
 mod waves_dynamics;

@@ -172,22 +172,21 @@ fn bad_systems_with_free_points_are_named() {
 }
 
 #[test]
-fn the_modes_refuse_free_points_naming_them_and_the_fmu_takes_them() {
+fn the_modes_and_the_fmu_take_free_points() {
     let bridle = path("bridle_mooring");
     let sys = case("bridle_mooring");
-    let m = riser::sim::system_dynamics::free_points_refused(&sys, "the modes").expect("refused");
-    assert!(m.contains("joint") && m.contains("not yet"), "{m}");
     // `riser run` and the FMU run them (tests/it/system_free_dynamics.rs, src/fmi/instance.rs)
     assert!(riser::sim::system_dynamics::unsupported(&sys).is_none());
     // the FMU's path: the system with the master's numerics besides its lines' scenes
     let built = riser::fmi::system::line_scenes(&sys, &[]).unwrap();
     assert_eq!(built.scenes.len(), sys.lines.len());
     assert_eq!(built.free.as_ref(), Some(&sys));
-    // the command line: the modes refused, the FMU's model description names the point's outputs
+    // the command line: the modes joined at the point (docs/theory.md §17.9; their checks in
+    // tests/it/system_modes.rs), the FMU's model description names the point's outputs
     let run = |args: &[&str]| std::process::Command::new(env!("CARGO_BIN_EXE_riser")).args(args).output().unwrap();
-    let out = run(&["modes", bridle.as_str()]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.contains("free point(s) joint"), "{err}");
+    let out = run(&["modes", bridle.as_str(), "--count", "3"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && text.contains("joined at free point(s) joint"), "{text}");
     let out = run(&["model-description", "--scene", bridle.as_str()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let md = String::from_utf8_lossy(&out.stdout);

@@ -533,29 +533,59 @@ pub fn print_system(path: &str, set: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-/// `riser modes SYSTEM`: with the vessel held, the lines vibrate
-/// independently (they meet only at the vessel): the system's modes are
-/// its lines', each line's `count` lowest, merged by period.
+/// `riser modes SYSTEM`: with the vessel held, the lines between a fixed
+/// and a vessel point vibrate alone (they meet only at the vessel): their
+/// modes are each line's `count` lowest; the lines joined at free points
+/// vibrate together with the points (docs/theory.md §17.9): their `count`
+/// lowest joined modes. All merged by period.
 pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(), String> {
     let sys = SystemScene::load(path).and_then(|s| s.with_overrides(set)).map_err(|e| e.to_string())?;
-    if let Some(m) = riser::sim::system_dynamics::free_points_refused(&sys, "the modes") {
-        return Err(m);
-    }
     let t0 = std::time::Instant::now();
+    let has_free = sys.points.iter().any(|p| p.kind == riser::scene::system::PointKind::Free);
+    let joined = if has_free { Some(riser::sim::system_modes::joined_modes(&sys, count)?) } else { None };
+    let alone = |i: &usize| joined.as_ref().is_none_or(|j| !j.lines.contains(i));
     let mut lines = Vec::new();
     for (i, l) in sys.lines.iter().enumerate() {
+        if !alone(&i) {
+            continue;
+        }
         let (_, vp, _) = sys.ends(i);
         let scene = sys.line_scene(i, V3::from(vp.position));
         let rep = riser::sim::modes::scene_modes(&scene, count).map_err(|e| format!("line '{}': {e}", l.name))?;
         lines.push((l.name.clone(), rep));
     }
     let wall = t0.elapsed().as_secs_f64();
-    let mut merged: Vec<(&str, &riser::sim::modes::SceneMode)> =
-        lines.iter().flat_map(|(n, r)| r.modes.iter().map(move |m| (n.as_str(), m))).collect();
-    merged.sort_by(|a, b| b.1.period.total_cmp(&a.1.period));
+    // a row: a line's own mode, or a joined one
+    enum Row<'a> {
+        Alone(&'a str, &'a riser::sim::modes::SceneMode),
+        Joined(&'a riser::sim::system_modes::JoinedMode),
+    }
+    let period = |r: &Row| match r {
+        Row::Alone(_, m) => m.period,
+        Row::Joined(m) => m.period,
+    };
+    let mut merged: Vec<Row> =
+        lines.iter().flat_map(|(n, r)| r.modes.iter().map(move |m| Row::Alone(n.as_str(), m))).collect();
+    if let Some(j) = &joined {
+        merged.extend(j.modes.iter().map(Row::Joined));
+    }
+    merged.sort_by(|a, b| period(b).total_cmp(&period(a)));
+    // a joined mode's parts, the largest share first: (kind, name, share, direction)
+    let parts = |m: &riser::sim::system_modes::JoinedMode| {
+        let j = joined.as_ref().expect("a joined mode has its problem");
+        let mut v: Vec<(&str, &str, f64, &str)> = m
+            .lines
+            .iter()
+            .zip(&j.lines)
+            .map(|(p, &i)| ("line", sys.lines[i].name.as_str(), p.share, p.direction))
+            .chain(m.points.iter().zip(&j.point_names).map(|(p, n)| ("point", n.as_str(), p.share, p.direction)))
+            .collect();
+        v.sort_by(|a, b| b.2.total_cmp(&a.2));
+        v
+    };
     if json {
         let finite = |v: f64| v.is_finite().then_some(v);
-        let v = serde_json::json!({
+        let mut v = serde_json::json!({
             "scene": sys.name,
             "system": true,
             "lines": lines.iter().map(|(n, r)| serde_json::json!({
@@ -563,29 +593,93 @@ pub fn modes(path: &str, set: &[String], count: usize, json: bool) -> Result<(),
                 "periods": r.modes.iter().map(|m| finite(m.period)).collect::<Vec<_>>(),
                 "directions": r.modes.iter().map(|m| m.direction.name()).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
-            "modes": merged.iter().map(|(n, m)| serde_json::json!({
-                "line": n, "number": m.number, "period": finite(m.period), "direction": m.direction.name(),
-            })).collect::<Vec<_>>(),
+            "modes": merged.iter().map(|r| match r {
+                Row::Alone(n, m) => serde_json::json!({
+                    "line": n, "number": m.number, "period": finite(m.period), "direction": m.direction.name(),
+                }),
+                Row::Joined(m) => {
+                    let p = parts(m);
+                    serde_json::json!({
+                        "joined": true,
+                        "number": m.number,
+                        "period": finite(m.period),
+                        "frequency": m.frequency,
+                        "most": p[0].1,
+                        "direction": p[0].3,
+                        "parts": p.iter().map(|(kind, name, share, dir)| serde_json::json!({
+                            "kind": kind, "name": name, "share": share, "direction": dir,
+                        })).collect::<Vec<_>>(),
+                    })
+                }
+            }).collect::<Vec<_>>(),
             "wall_time": wall,
         });
+        if let (Some(j), Some(o)) = (&joined, v.as_object_mut()) {
+            o.insert(
+                "joined".into(),
+                serde_json::json!({
+                    "lines": j.lines.iter().map(|&i| sys.lines[i].name.as_str()).collect::<Vec<_>>(),
+                    "points": j.statics.points.iter().map(|p| serde_json::json!({
+                        "name": p.name, "position": [p.position.x, p.position.y, p.position.z],
+                    })).collect::<Vec<_>>(),
+                    "unknowns": j.unknowns,
+                    "asymmetry": j.asymmetry,
+                    "periods": j.modes.iter().map(|m| finite(m.period)).collect::<Vec<_>>(),
+                    "point_displacements": j.modes.iter().map(|m| m.point_displacements.iter()
+                        .map(|d| [d.x, d.y, d.z]).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                }),
+            );
+        }
         outln!("{v}");
         return Ok(());
     }
-    outln!(
-        "riser modes: system '{}' ({} lines; the vessel held, each line's {count} lowest modes, longest period first)",
-        sys.name,
-        sys.lines.len()
-    );
+    match &joined {
+        None => outln!(
+            "riser modes: system '{}' ({} lines; the vessel held, each line's {count} lowest modes, longest period \
+             first)",
+            sys.name,
+            sys.lines.len()
+        ),
+        Some(j) => outln!(
+            "riser modes: system '{}' ({} lines; the vessel held; line(s) {} joined at free point(s) {}: their {count} \
+             lowest modes together ({} unknowns); each other line's {count} lowest; longest period first)",
+            sys.name,
+            sys.lines.len(),
+            j.lines.iter().map(|&i| sys.lines[i].name.as_str()).collect::<Vec<_>>().join(", "),
+            j.point_names.join(", "),
+            j.unknowns
+        ),
+    }
     outln!("  {:>4} {:<24} {:>6} {:>12} {:>12}  direction", "", "line", "mode", "period (s)", "freq (Hz)");
-    for (k, (n, m)) in merged.iter().enumerate() {
-        outln!(
-            "  {:>4} {n:<24} {:>6} {:>12.4} {:>12.5}  {}",
-            k + 1,
-            m.number,
-            m.period,
-            m.frequency,
-            m.direction.name()
-        );
+    for (k, r) in merged.iter().enumerate() {
+        match r {
+            Row::Alone(n, m) => outln!(
+                "  {:>4} {n:<24} {:>6} {:>12.4} {:>12.5}  {}",
+                k + 1,
+                m.number,
+                m.period,
+                m.frequency,
+                m.direction.name()
+            ),
+            Row::Joined(m) => {
+                let p = parts(m);
+                let most: Vec<String> = p
+                    .iter()
+                    .take(3)
+                    .filter(|x| x.2 >= 0.01)
+                    .map(|(kind, name, share, dir)| format!("{kind} {name} {:.0}% {dir}", 100.0 * share))
+                    .collect();
+                outln!(
+                    "  {:>4} {:<24} {:>6} {:>12.4} {:>12.5}  {}",
+                    k + 1,
+                    "(joined)",
+                    m.number,
+                    m.period,
+                    m.frequency,
+                    most.join(", ")
+                )
+            }
+        }
     }
     outln!("  {:.2} s", wall);
     Ok(())
