@@ -109,8 +109,12 @@ impl BandLu {
         let (kl, kv, ld) = (self.kl, self.kl + self.ku, self.ld);
         let mut ju = 0;
         for j in 0..n {
-            let km = kl.min(n - 1 - j);
             let d = self.at(j, j);
+            // rows j+1..j+km: down to the column's last nonzero (a block
+            // band's columns end 9 to 20 rows below the diagonal; below that
+            // the entries are zeros, which neither the pivot search nor the
+            // update changes)
+            let km = self.ab[d + 1..=d + kl.min(n - 1 - j)].iter().rposition(|&v| v != 0.0).map_or(0, |r| r + 1);
             // pivot: the largest entry of column j on or below the diagonal,
             // unless the diagonal is within PIVOT_THRESHOLD of it (threshold
             // partial pivoting: fewer row swaps, less fill above the band)
