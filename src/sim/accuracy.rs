@@ -810,9 +810,20 @@ pub fn choose_on(
         // beyond the pilots: a proposal the next round measures, if it is cheaper
         let Some((n, dt)) = cheapest(&models, target, (layout, base), ladders, true) else {
             // nothing this round's pilots reach meets the target: a round about
-            // finer numerics, on the axes that do not converge (both if none)
-            let unconverged = |axis: fn(&QuantityModel) -> Axis| models.iter().any(|m| axis(m).unconverged());
-            let (mesh, step) = (unconverged(|m| m.mesh), unconverged(|m| m.step));
+            // finer numerics, on the axes that do not converge or whose error at the
+            // finest level the round measured is above half the allowed one (both if none)
+            let finest_ratio = match layout {
+                Layout::Base => 1.0,
+                Layout::Corner => 0.25,
+            };
+            let refine = |axis: fn(&QuantityModel) -> Axis| {
+                models.iter().any(|m| {
+                    let a = axis(m);
+                    a.unconverged()
+                        || a.error_at(finest_ratio).is_none_or(|e| e > 0.5 * target * m.scale / SAFETY)
+                })
+            };
+            let (mesh, step) = (refine(|m| m.mesh), refine(|m| m.step));
             let either = !(mesh || step);
             let next = (
                 if !pinned.n_elements && (mesh || either) { 2 * base.0 } else { base.0 },
