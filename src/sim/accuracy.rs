@@ -819,8 +819,7 @@ pub fn choose_on(
             let refine = |axis: fn(&QuantityModel) -> Axis| {
                 models.iter().any(|m| {
                     let a = axis(m);
-                    a.unconverged()
-                        || a.error_at(finest_ratio).is_none_or(|e| e > 0.5 * target * m.scale / SAFETY)
+                    a.unconverged() || a.error_at(finest_ratio).is_none_or(|e| e > 0.5 * target * m.scale / SAFETY)
                 })
             };
             let (mesh, step) = (refine(|m| m.mesh), refine(|m| m.step));
