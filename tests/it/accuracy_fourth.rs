@@ -115,3 +115,40 @@ fn the_fourth_level_s_error_of_the_candidate() {
     let Axis::Fourth { error, converges, .. } = fourth_level([10.0, 11.0, 10.5, 11.5]) else { panic!() };
     assert!(!converges && (error - 1.0).abs() < 1e-12, "{error}");
 }
+
+/// The 460 m lazy wave of issue 51 (docs/cases/lazy_wave_460m.toml, its
+/// buoyancy modules a `[[section]]`): its statics is a lazy wave (a sag
+/// bend below a hog bend, the hog bend on the buoyant section, S in [230,
+/// 345] m, the line not floating), and `accuracy` takes only meshes with
+/// nodes on its sections' joints (230 and 345 m: multiples of 4 elements).
+/// Its accuracy at 1e-3 against a fine reference is a recorded run
+/// (docs/accuracy.md, "The fourth level": the reference takes minutes).
+#[test]
+fn the_460_m_lazy_wave_of_sections_is_a_lazy_wave_and_its_meshes_have_nodes_on_its_joints() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases/lazy_wave_460m.toml");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_riser"))
+        .args(["statics", path, "--json"])
+        .output()
+        .expect("riser runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("floats"), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // shape rows: S, x, y, z, tension
+    let shape: Vec<(f64, f64)> =
+        v["shape"].as_array().unwrap().iter().map(|r| (r[0].as_f64().unwrap(), r[3].as_f64().unwrap())).collect();
+    let interior = |k: usize| k > 0 && k + 1 < shape.len();
+    let sag = (0..shape.len()).filter(|&k| interior(k) && shape[k].1 < shape[k - 1].1 && shape[k].1 < shape[k + 1].1);
+    let hog = (0..shape.len()).filter(|&k| interior(k) && shape[k].1 > shape[k - 1].1 && shape[k].1 > shape[k + 1].1);
+    let (sag, hog): (Vec<usize>, Vec<usize>) = (sag.collect(), hog.collect());
+    assert!(sag.len() == 1 && hog.len() == 1, "sag bends {sag:?}, hog bends {hog:?}");
+    let ((s_sag, z_sag), (s_hog, z_hog)) = (shape[sag[0]], shape[hog[0]]);
+    assert!(
+        s_sag < s_hog && z_sag < z_hog && (230.0..=345.0).contains(&s_hog),
+        "sag {s_sag} m at {z_sag} m, hog {s_hog} m at {z_hog} m"
+    );
+    assert!(v["top_tension"].as_f64().unwrap() > v["bottom_tension"].as_f64().unwrap());
+    let scene = riser::scene::Scene::load(path).unwrap();
+    for (n, fits) in [(32, true), (60, true), (64, true), (30, false), (46, false), (62, false)] {
+        assert_eq!(riser::sim::accuracy::nodes_on_buoyancy_ends(&scene, n), fits, "{n} elements");
+    }
+}
