@@ -14,9 +14,10 @@
 //! choice is the cheapest (n, Δt) by the cost n/Δt (the work of a run: an
 //! element-step is the unit, Newton's iterations a step about alike) with
 //!
-//!   E_q(n, Δt) ≤ ε |q*_s| / S    for each quantity q of the target        (16.18)
+//!   E_q(n, Δt) ≤ ε |q_s| / S    for each quantity q of the target        (16.18)
 //!
-//! q*_s the extrapolated value the quantity is relative to (the top
+//! q_s the value the quantity is relative to at the round's shared pilot
+//! (since docs/theory.md §16.15; the extrapolated one before) (the top
 //! tension's maximum for its min, mean and max; the touchdown's largest arc
 //! length for its extremes; itself otherwise), S = [`SAFETY`]. Where the
 //! choice lies outside the pilots' span (coarser than n₀ or Δt₀, finer than
@@ -46,7 +47,7 @@
 
 use super::error::{AccuracyError, RiserError};
 use super::error_estimate::{
-    Convergence, ErrorEstimate, Layout, LinePilots, PilotRuns, Quantity, RunSpec, Triplet, estimate_on,
+    Convergence, ErrorEstimate, Layout, LinePilots, Pilot, PilotRuns, Quantity, RunSpec, Triplet, estimate_on,
 };
 use crate::scene::{AccuracyQuantity, Scene};
 
@@ -84,11 +85,16 @@ pub fn newton_tolerance_for(target: f64) -> f64 {
 }
 
 /// True where the mesh of `n` elements has a node at each end of every
-/// buoyancy section (a section's end inside an element smears its step in
-/// the load over it: the lazy wave's 12 elements missed by 3.5e-2).
+/// buoyancy section and at every joint between `[[section]]`s (a section's
+/// end inside an element smears its step in the load over it: the lazy
+/// wave's 12 elements missed by 3.5e-2; and where the joint falls inside
+/// its element changes from mesh to mesh without a trend, which makes the
+/// mesh triplets of a lazy wave of sections non-monotone: docs/theory.md
+/// §16.15).
 pub fn nodes_on_buoyancy_ends(scene: &Scene, n: usize) -> bool {
     let l = scene.line.length;
-    scene.buoyancy.iter().flat_map(|b| [b.start, b.end]).filter(|&e| e > 0.0 && e < l).all(|e| {
+    let joints = scene.pieces().into_iter().skip(1).map(|p| p.start);
+    scene.buoyancy.iter().flat_map(|b| [b.start, b.end]).chain(joints).filter(|&e| e > 0.0 && e < l).all(|e| {
         let k = e / l * n as f64;
         (k - k.round()).abs() < 1e-6
     })
@@ -163,7 +169,7 @@ pub fn criteria(
     }
 }
 
-/// Below this fraction of the allowed error ε |q*_s| / S, a triplet's
+/// Below this fraction of the allowed error ε |q_s| / S, a triplet's
 /// spread is the floor of the pilots (Newton's tolerance, the sampling of
 /// the extremes): its pattern says nothing of an order ([`Axis::Floor`]).
 pub const FLOOR_FRACTION: f64 = 0.1;
@@ -184,6 +190,14 @@ pub enum Axis {
     /// level (a quarter of the base) is taken, its error the last change
     /// |q₂ − q₃| (the finer two agreeing: 0 from half the base).
     Unconverged { error: f64, from: f64 },
+    /// Not monotone above the floor on the round's three levels, and a
+    /// fourth level run beyond the candidate on this axis (twice its
+    /// elements, or half its step: [`fourth_level`]): the candidate's
+    /// error from the three finest levels q_b, q_c, q_d (16.22), taken at
+    /// the candidate's level only (a quarter of the base). `converges`:
+    /// the change out of the candidate is smaller than the change into it
+    /// (|R'| < 1); where not, the error is the larger of the two changes.
+    Fourth { error: f64, ratio: Option<f64>, converges: bool, values: [f64; 4] },
 }
 
 impl Axis {
@@ -208,7 +222,14 @@ impl Axis {
             Axis::Floor { spread } if ratio <= 1.0 + EPS => Some(spread),
             Axis::Floor { spread } => (ratio <= 2.0 + EPS).then_some(spread * ratio * ratio),
             Axis::Unconverged { error, from } => (ratio <= from + EPS).then_some(error),
+            Axis::Fourth { error, .. } => (ratio <= 0.25 + EPS).then_some(error),
         }
+    }
+
+    /// The axis does not converge: unconverged above the floor, or its
+    /// fourth level's change not smaller than the change before it.
+    pub fn unconverged(&self) -> bool {
+        matches!(self, Axis::Unconverged { .. } | Axis::Fourth { converges: false, .. })
     }
 
     /// The observed order (None: not monotone, or at the floor).
@@ -225,13 +246,50 @@ impl Axis {
     }
 }
 
+/// The candidate's error on an axis whose round's triplet q_a, q_b, q_c
+/// (the candidate q_c its finest) does not converge monotonically, from a
+/// fourth level q_d beyond the candidate (twice its elements, or half its
+/// step) and the three finest (docs/theory.md §16.15):
+///
+///   R' = (q_c − q_d)/(q_b − q_c),
+///   e_c = |q_c − q_d| / (1 − R')      0 ≤ R' < 1   (Richardson's)
+///   e_c = |q_c − q_d|                 −1 < R' < 0  (the bound)           (16.22)
+///
+/// Where the errors shrink without changing sign the candidate's is that
+/// of the middle level of a geometric sequence with ratio R'; where they
+/// alternate and shrink, q* lies between q_c and q_d, so |q_c − q_d| bounds
+/// the candidate's error, and is 1 + |R'| < 2 times it for a geometric
+/// sequence (its |q_c − q_d|/(1 − R') would be the error itself, but with
+/// |R'| near 1 the sequence is not known to be geometric: the jumper's
+/// minimum at 0.2, 0.1, 0.05, 0.025 s alternates with R' −0.72 and that
+/// estimate was 0.65 of its error). Where |R'| ≥ 1 (or q_b = q_c ≠ q_d)
+/// the candidate's neighbours do not show convergence: the error is the
+/// larger of the two changes about it, max(|q_b − q_c|, |q_c − q_d|), and
+/// the axis is not converged.
+pub fn fourth_level(values: [f64; 4]) -> Axis {
+    let [_, qb, qc, qd] = values;
+    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (into, out) = (qb - qc, qc - qd);
+    if out.abs() <= super::error_estimate::AGREE * scale {
+        return Axis::Fourth { error: out.abs(), ratio: None, converges: true, values };
+    }
+    let ratio = (into.abs() > super::error_estimate::AGREE * scale).then(|| out / into);
+    match ratio {
+        Some(r) if (0.0..1.0).contains(&r) => {
+            Axis::Fourth { error: out.abs() / (1.0 - r), ratio, converges: true, values }
+        }
+        Some(r) if r > -1.0 => Axis::Fourth { error: out.abs(), ratio, converges: true, values },
+        _ => Axis::Fourth { error: into.abs().max(out.abs()), ratio, converges: false, values },
+    }
+}
+
 /// One quantity's model (16.17) from a round of pilots.
 #[derive(Debug, Clone, PartialEq)]
 pub struct QuantityModel {
     pub quantity: Quantity,
     /// The quantity its error is relative to (16.18).
     pub relative_to: Quantity,
-    /// |q*| of `relative_to`.
+    /// |q_s| of `relative_to` at the round's shared pilot (its candidate).
     pub scale: f64,
     pub mesh: Axis,
     pub step: Axis,
@@ -251,7 +309,7 @@ pub struct Predicted {
     pub relative_to: Quantity,
     /// E of (16.17), in the quantity's unit.
     pub error: f64,
-    /// E / |q*_s|.
+    /// E / |q_s|.
     pub relative: f64,
     pub mesh_order: Option<f64>,
     pub step_order: Option<f64>,
@@ -361,7 +419,12 @@ fn models(
                     round.notes.join("; ")
                 },
             })?;
-            let scale = round.of(s).map_or(e.extrapolated.abs(), |x| x.extrapolated.abs());
+            // the value at the pilot both triplets share (a round's candidate), not the
+            // extrapolation: a triplet far from its asymptotic range extrapolates anywhere (the lazy
+            // wave's steps of 6.4, 3.2, 1.6 s: q* −1.1e5 N of a 2.2e4 N top tension), and the
+            // difference is of the order of the error itself (docs/theory.md §16.15)
+            let shared = |x: &super::error_estimate::Estimate| x.step.values[2].abs();
+            let scale = round.of(s).map_or(shared(e), shared);
             let allowed = target * scale / SAFETY;
             Ok(QuantityModel {
                 quantity: q,
@@ -461,6 +524,107 @@ fn in_span(base: (usize, f64), n: usize, dt: f64) -> (bool, bool) {
     (n >= base.0 && n <= 4 * base.0, dt <= base.1 * (1.0 + eps) && dt >= base.1 / 4.0 * (1.0 - eps))
 }
 
+/// An observed order below this, where the scheme is second order in both
+/// the step (generalized-α) and the mesh, is not taken as the asymptotic
+/// range: the triplet's extrapolation to the candidate is checked by a
+/// fourth level where it matters ([`ambiguous`]).
+pub const SLOW_ORDER: f64 = 1.0;
+
+/// Whether an axis' error at a round's candidate (a quarter of the base)
+/// is ambiguous, so that a fourth level beyond the candidate decides it
+/// (16.22): not monotone above the floor ([`Axis::Unconverged`] with a
+/// change), or monotone with an observed order below [`SLOW_ORDER`] and an
+/// extrapolated error at the candidate above the floor ([`FLOOR_FRACTION`]
+/// of `allowed`).
+fn ambiguous(axis: &Axis, allowed: f64) -> bool {
+    match *axis {
+        Axis::Unconverged { error, .. } => error > 0.0,
+        Axis::Power { e0, order } => order < SLOW_ORDER && e0 * 0.25f64.powf(order) > FLOOR_FRACTION * allowed,
+        _ => false,
+    }
+}
+
+/// The fourth levels of a round of [`Layout::Corner`] about `candidate`
+/// (n_c, Δt_c) on the axes where a quantity of the target does not
+/// converge monotonically above the floor ([`Axis::Unconverged`]): the
+/// mesh (2n_c, Δt_c), the step (n_c, Δt_c/2), run (or taken from `known`)
+/// and added to the round's pilots; those axes' models become
+/// [`Axis::Fourth`] (16.22). Returns what it could not run.
+fn fourth_levels(
+    problem: &Problem,
+    round: &mut ErrorEstimate,
+    models: &mut [QuantityModel],
+    (n, dt): (usize, f64),
+    (target, tolerance): (f64, f64),
+    threads: usize,
+    known: &[Pilot],
+) -> Vec<String> {
+    let needs =
+        |axis: fn(&QuantityModel) -> Axis| models.iter().any(|m| ambiguous(&axis(m), target * m.scale / SAFETY));
+    let mut levels = Vec::new();
+    if needs(|m| m.mesh) && 2 * n <= MAX_ELEMENTS && (problem.fits)(2 * n) {
+        levels.push((2 * n, dt));
+    }
+    if needs(|m| m.step) && dt / 2.0 >= MIN_STEP {
+        levels.push((n, dt / 2.0));
+    }
+    if levels.is_empty() {
+        return Vec::new();
+    }
+    let start = std::time::Instant::now();
+    let plan = round.plan;
+    let same = |p: &Pilot, (ne, h): (usize, f64)| p.n_elements == ne && (p.time_step / h - 1.0).abs() < 1e-12;
+    let run = |l: (usize, f64)| match known.iter().find(|p| same(p, l)) {
+        Some(p) => Ok(Pilot { wall_s: 0.0, reused: true, ..p.clone() }),
+        None => problem.runs.run(&plan, l.0, l.1, tolerance),
+    };
+    let results: Vec<((usize, f64), Result<Pilot, RiserError>)> = if threads > 1 && levels.len() > 1 {
+        std::thread::scope(|s| {
+            let handles: Vec<_> = levels.iter().map(|&l| (l, s.spawn(move || run(l)))).collect();
+            handles
+                .into_iter()
+                .map(|(l, h)| {
+                    let r = h.join().unwrap_or_else(|_| {
+                        Err(RiserError::Unsupported("an error estimate's pilot thread stopped".to_string()))
+                    });
+                    (l, r)
+                })
+                .collect()
+        })
+    } else {
+        levels.iter().map(|&l| (l, run(l))).collect()
+    };
+    let mut notes = Vec::new();
+    for ((ne, h), r) in results {
+        let pilot = match r {
+            Ok(p) => p,
+            Err(e) => {
+                notes.push(format!("the fourth level's pilot at {ne} elements, time_step {h} s failed ({e})"));
+                continue;
+            }
+        };
+        let mesh = ne != n;
+        for m in models.iter_mut() {
+            let axis = if mesh { &mut m.mesh } else { &mut m.step };
+            if !ambiguous(axis, target * m.scale / SAFETY) {
+                continue;
+            }
+            let (Some(slot), Some(e)) = (round.quantities.iter().position(|q| *q == m.quantity), round.of(m.quantity))
+            else {
+                continue;
+            };
+            let [qa, qb, qc] = if mesh { e.mesh.values } else { e.step.values };
+            let qd = pilot.values[slot];
+            if qd.is_finite() {
+                *axis = fourth_level([qa, qb, qc, qd]);
+            }
+        }
+        round.pilots.push(pilot);
+    }
+    round.wall_s += start.elapsed().as_secs_f64();
+    notes
+}
+
 /// The base (n₀, Δt₀) of the round of [`Layout::Corner`] whose candidate,
 /// its finest pilot (4n₀, Δt₀/4), is `(n, dt)` or the least finer mesh
 /// whose quarter has nodes on the buoyancy sections' ends.
@@ -554,6 +718,8 @@ pub fn choose_on(
     let mut starts = starts.into_iter();
     let mut base = starts.next().unwrap_or(scene_numerics);
     let mut rounds: Vec<ErrorEstimate> = Vec::new();
+    // each round's models (its fourth levels' in them)
+    let mut round_models: Vec<Vec<QuantityModel>> = Vec::new();
     let mut notes = Vec::new();
     let start = std::time::Instant::now();
     // the finest pilot of a round about `base` (the numerics the user set kept)
@@ -619,8 +785,22 @@ pub fn choose_on(
             },
             Err(e) => return Err(e),
         };
-        let models = models(&round, criteria, target)?;
+        let mut round = round;
+        let mut models = models(&round, criteria, target)?;
+        if layout == Layout::Corner {
+            let candidate = (4 * base.0, base.1 / 4.0);
+            notes.extend(fourth_levels(
+                problem,
+                &mut round,
+                &mut models,
+                candidate,
+                (target, tolerance),
+                threads,
+                &known,
+            ));
+        }
         rounds.push(round);
+        round_models.push(models.clone());
         let ladders = (&meshes(fits, base.0, pinned.n_elements)[..], &steps(base.1, pinned.time_step)[..]);
         if let Some(numerics) = cheapest(&models, target, (layout, base), ladders, false)
             && best.as_ref().is_none_or(|b| cost(numerics) < cost(b.numerics))
@@ -630,10 +810,19 @@ pub fn choose_on(
         // beyond the pilots: a proposal the next round measures, if it is cheaper
         let Some((n, dt)) = cheapest(&models, target, (layout, base), ladders, true) else {
             // nothing this round's pilots reach meets the target: a round about
-            // finer numerics, on the axes that do not converge (both if none)
-            let unconverged =
-                |axis: fn(&QuantityModel) -> Axis| models.iter().any(|m| matches!(axis(m), Axis::Unconverged { .. }));
-            let (mesh, step) = (unconverged(|m| m.mesh), unconverged(|m| m.step));
+            // finer numerics, on the axes that do not converge or whose error at the
+            // finest level the round measured is above half the allowed one (both if none)
+            let finest_ratio = match layout {
+                Layout::Base => 1.0,
+                Layout::Corner => 0.25,
+            };
+            let refine = |axis: fn(&QuantityModel) -> Axis| {
+                models.iter().any(|m| {
+                    let a = axis(m);
+                    a.unconverged() || a.error_at(finest_ratio).is_none_or(|e| e > 0.5 * target * m.scale / SAFETY)
+                })
+            };
+            let (mesh, step) = (refine(|m| m.mesh), refine(|m| m.step));
             let either = !(mesh || step);
             let next = (
                 if !pinned.n_elements && (mesh || either) { 2 * base.0 } else { base.0 },
@@ -667,7 +856,7 @@ pub fn choose_on(
         None => {
             // the target beyond what the pilots' levels reach: the last round's finest
             let round = rounds.len() - 1;
-            let models = models(&rounds[round], criteria, target)?;
+            let models = round_models[round].clone();
             notes.push(format!(
                 "no mesh and step within the pilots of {} round(s) is estimated to meet the target: the finest \
                  pilot's numerics taken",
@@ -698,9 +887,34 @@ pub fn choose_on(
     };
     for m in &models {
         let Some(e) = rounds[round].of(m.quantity) else { continue };
-        for (axis, t, what) in [(m.mesh, &e.mesh, mesh_levels), (m.step, &e.step, step_levels)] {
-            if let (Axis::Unconverged { .. }, Some(note)) = (axis, t.note(what)) {
-                notes.push(format!("{}: {note}", m.quantity.label(line_names)));
+        for (axis, t, what, finer) in
+            [(m.mesh, &e.mesh, mesh_levels, "2n elements"), (m.step, &e.step, step_levels, "dt/2")]
+        {
+            let label = m.quantity.label(line_names);
+            match (axis, t.note(what)) {
+                (Axis::Unconverged { .. }, Some(note)) => notes.push(format!("{label}: {note}")),
+                (Axis::Fourth { error, ratio, converges, values }, _) => {
+                    let r = ratio.map_or("undefined".to_string(), |r| format!("{r:.3}"));
+                    notes.push(format!(
+                        "{label}: {what}: not monotone ({}, R = {}): {:.6e}, {:.6e}, {:.6e}; a fourth level ({finer}): \
+                         {:.6e}; {}",
+                        t.class.name(),
+                        t.ratio.map_or("undefined".to_string(), |r| format!("{r:.3}")),
+                        values[0],
+                        values[1],
+                        values[2],
+                        values[3],
+                        if converges {
+                            format!("the three finest converge (R' = {r}), the candidate's error {error:.3e} (16.22)")
+                        } else {
+                            format!(
+                                "the three finest do not converge either (R' = {r}): the larger change about the \
+                                 candidate taken, {error:.3e}"
+                            )
+                        }
+                    ));
+                }
+                _ => {}
             }
         }
     }

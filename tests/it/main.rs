@@ -10,6 +10,7 @@ mod common;
 
 mod accuracy;
 mod accuracy_fallback;
+mod accuracy_fourth;
 mod cable;
 mod cli;
 mod design_numbers;
