@@ -94,7 +94,19 @@ AFTER = Predictor("least squares per step (after)", 0)
 # for polynomials up to the degree, the design's alternations removed, least energy in the band
 # θ ∈ [band π, π]; {design index: (band, degree, taps)}
 CONSISTENT_TAPS = 16
-CONSISTENT = {0: (0.5, 7, 16), 1: (0.2, 6, 16), 2: (0.5, 7, 10)}
+CONSISTENT = {0: (0.5, 7, 16), 2: (0.5, 7, 10)}
+# the middle steps' (design 1) slope and curvature before (7.3b): (7.3a) over the 12-point fit
+CONSISTENT_BEFORE = {1: (0.2, 6, 16)}
+
+# the middle steps' end state once 16 uniform points are known (src/fmi/input_path.rs MIDDLE, docs/theory.md
+# (7.3b)): value, h slope, h² curvature rows over the samples, newest first; made by
+# riser_tools.studies.input_path_designs.middle (tests/python/test_input_path_designs.py checks that both agree)
+MIDDLE_INDEX = 1
+MIDDLE = np.array([
+    [1.10686149600138206e+00, 1.66516409633037488e+00, -3.21827362416745810e-01, -1.96296204997106716e+00, -1.42771721382891159e+00, 2.75634168118161993e-01, 1.17923447366829759e+00, 1.35551429710970295e+00, 9.00128038519326212e-01, -6.45825313695147729e-01, -1.43544946842579013e+00, -7.68317126757119162e-01, 5.25096698255769434e-01, 7.95505791083823910e-01, -2.63266617733257519e-02, -2.14713862218730456e-01],
+    [2.31445889093842938e+00, -1.03007561033404649e+00, -3.65662634716576651e+00, 1.68879277768112401e-01, 1.68081597206679101e+00, 2.31990046986055409e+00, -2.24624657929354321e-01, -7.58825412545436340e-01, -1.14501539612833225e+00, -1.06379571654908878e+00, 4.90173330612225788e-01, 9.98953159268168411e-01, 9.37664144969606594e-01, -9.23466262280445482e-01, -3.96845937363598411e-01, 2.88430094812179627e-01],
+    [4.60882214215601582e+00, -1.00858410737331390e+01, 1.50901665701786625e+00, 6.27035543536816853e+00, 1.95290042179400047e+00, 1.12716885970424974e+00, -1.36933127491955169e+01, 6.76199470283274717e+00, 1.84392581922143628e+00, 3.82217809611544723e+00, -4.08802759575547370e+00, -3.54625250973207118e+00, 6.33717168445940349e+00, -4.07909747481149942e+00, 1.52950362030226894e+00, -2.70506035743905526e-01],
+])
 
 
 def consistent_weights(p: Predictor, band: float, degree: int, taps: int = CONSISTENT_TAPS) -> np.ndarray:
@@ -135,12 +147,21 @@ def design_weights(h: float) -> np.ndarray:
     """The end-state filters input_path.rs uses at uniform steps h once its window is full."""
     index = next(i for i, (below, _) in enumerate(DESIGNS) if h < below)
     p = DESIGNS[index][1]
+    if index == MIDDLE_INDEX:
+        return MIDDLE.copy()
     return consistent_weights(p, *CONSISTENT[index]) if index in CONSISTENT else predictor_weights(p)
 
 
 def design(h: float) -> Predictor:
     """The design input_path.rs uses for a step of h s."""
     return next(p for below, p in DESIGNS if h < below)
+
+
+def design_window(h: float) -> int:
+    """The samples the end value of a step of h s reads once its window is full (its design's, 16
+    for the middle steps' MIDDLE)."""
+    d = design(h)
+    return MIDDLE.shape[1] if d is DESIGNS[MIDDLE_INDEX][1] else d.taps
 
 
 def resolve(p: Predictor, h: float) -> Predictor:
@@ -218,12 +239,17 @@ def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
 def predicted_end_values(samples, h: float) -> np.ndarray:
     """The end values input_path.rs predicts at uniform steps h for the displacement sequence
     `samples` (oldest first), the start included: with n < taps samples known, the design keeps
-    min(alt, n − 4) nuisances and min(poly, n − nuisances) coefficients. The hang-off is at entry k
-    at the end of step k."""
+    min(alt, n − 4) nuisances and min(poly, n − nuisances) coefficients; the middle steps take
+    MIDDLE's value row once 16 points are known (7.3b). The hang-off is at entry k at the end of
+    step k."""
     d = design(h)
+    middle = d is DESIGNS[MIDDLE_INDEX][1]
     samples = np.asarray(samples, dtype=float)
     out = np.zeros(len(samples))
     for k in range(len(samples)):
+        if middle and k + 1 >= MIDDLE.shape[1]:
+            out[k] = MIDDLE[0] @ samples[k::-1][: MIDDLE.shape[1]]
+            continue
         n = min(k + 1, d.taps)
         alt = min(d.n_alt, max(0, n - 4))
         w = predictor_weights(Predictor("", min(d.n_poly, n - alt), alt, n))

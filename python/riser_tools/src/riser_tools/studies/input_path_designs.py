@@ -100,8 +100,10 @@ class Candidate:
 
 
 def today() -> Candidate:
-    return Candidate("today: LS 12 pts, 2 nuis. + (7.3a) m16 d6 a0.2",
-                     ca.consistent_weights(ca.DESIGNS[1][1], *ca.CONSISTENT[1]))
+    """The middle steps' design before (7.3b) (session 16): the 12-point least-squares quartic with
+    two nuisances, the slope and curvature of (7.3a) over 16 samples (degree 6, band from 0.2 π)."""
+    return Candidate("before: LS 12 pts, 2 nuis. + (7.3a) m16 d6 a0.2",
+                     ca.consistent_weights(ca.DESIGNS[1][1], *ca.CONSISTENT_BEFORE[1]))
 
 
 def long_steps() -> Candidate:
