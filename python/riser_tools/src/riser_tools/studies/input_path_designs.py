@@ -198,46 +198,6 @@ def measures(c: Candidate, h: float, resp) -> dict:
                 gain=gain, onset=onset, alt=alt, noise0=noise[0], noise2=noise[2])
 
 
-def candidates(h: float) -> list[Candidate]:
-    out = [today(), long_steps()]
-    # session 16's 16-tap alternative
-    v = band_value(16, 4, 2, 0.3)
-    out.append(Candidate("band v16 d4 q2 a0.3 + r16 d8 a0.25", rates(v, 16, 8, 2, 0.25)))
-    # windows bounded in time: least-squares quartic / band-limited value over fewer taps
-    for taps in (7, 8, 9, 10):
-        v = least_squares_value(5, 2, taps)
-        for m, d, a in ((taps, min(taps - 3, 7), 0.3), (max(taps, 10), 7, 0.5), (12, 7, 0.35)):
-            if d >= 5 and m <= 16:
-                out.append(Candidate(f"LS {taps} pts q2 + (7.3a) m{m} d{d} a{a}", rates(v, m, d, 2, a)))
-    for taps, deg, band in ((8, 5, 0.4), (10, 5, 0.35), (10, 6, 0.35), (12, 6, 0.3), (12, 5, 0.3), (16, 6, 0.25)):
-        v = band_value(taps, deg, 2, band)
-        for m, d, a in ((max(taps, 10), 7, 0.4), (16, 8, 0.25)):
-            out.append(Candidate(f"band v{taps} d{deg} q2 a{band} + r{m} d{d} a{a}", rates(v, m, d, 2, a)))
-    return out
-
-
-def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m riser_tools.studies.input_path_designs", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--h", default="0.1,0.15,0.2")
-    ap.add_argument("--response", default=str(ca.ROOT / "docs" / "coupling_response.csv"))
-    args = ap.parse_args(argv)
-    resp = ca.read_response(Path(args.response))
-    print("| design | h | N | end | inside / Aω² | kink (m/s²) | ring | noise v, c | onset (kN) | proxy | gain |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
-    for h in [float(x) for x in args.h.split(",")]:
-        for c in candidates(h):
-            m = measures(c, h, resp)
-            print(f"| {m['name']} | {h:g} | {m['taps']} | {m['end']:.1e} | {m['inside']:.1e} | {m['kink']:.3f} | "
-                  f"{m['ring']:.2f} | {m['noise0']:.1f}, {m['noise2']:.0f} | {m['onset']:.2f} | {m['proxy']:.2f} | "
-                  f"{m['gain']:.2f} |", flush=True)
-    return 0
-
-
-if __name__ == "__main__":
-    main()
-
-
 # --- joint designs: all three rows at once, a quadratic objective under the exactness constraints --------------
 
 def resonance_band(h: float, f=(3.9, 4.1), n: int = 41) -> np.ndarray:
@@ -389,3 +349,79 @@ def middle(resp=None) -> Candidate:
 def rust_table(w: np.ndarray) -> str:
     rows = ",\n".join("    [" + ", ".join(f"{float(x):.17e}" for x in row) + "]" for row in w)
     return "pub const MIDDLE: [[f64; TAPS]; 3] = [\n" + rows + ",\n];"
+
+
+def candidates(resp) -> list[Candidate]:
+    """The designs of the page's table: the one before (7.3b), the long steps' exactly determined one
+    used at the middle steps, session 16's band-limited 16-tap alternative, a window bounded in time
+    (8 points), joint designs of the sweep, and the middle design (7.3b)."""
+    out = [today(), long_steps()]
+    v = band_value(16, 4, 2, 0.3)
+    out.append(Candidate("band value 16 pts d4 a0.3 + rates 16 d8 a0.25 (session 16)", rates(v, 16, 8, 2, 0.25)))
+    v = least_squares_value(5, 2, 8)
+    out.append(Candidate("LS 8 pts + (7.3a) m8 d5 a0.3 (a window bounded in time)", rates(v, 8, 5, 2, 0.3)))
+    out.append(joint(0.2, 12, 4, 6, 2, resp, lam_acc=1, lam_ring=1, lam_high=1e-3,
+                     name="joint 12 pts, tuned at 0.2 s alone (c1)"))
+    kw = dict(lam_acc=1, lam_ring=1, lam_high=1e-3, loop_h=MIDDLE_STEPS)
+    out.append(joint(MIDDLE_STEPS, 16, 4, 6, 2, resp, lam_loop=1, loop_band=(0.22, 1.0),
+                     name="joint 16 pts, rates d6, loop 1 (c6)", **kw))
+    out.append(joint(MIDDLE_STEPS, 16, 4, 7, 2, resp, lam_loop=10, loop_band=(0.22, 1.0), lam_end=10,
+                     name="joint 16 pts, rates d7, loop 10, end 10 (c7)", **kw))
+    out.append(middle(resp))
+    return out
+
+
+PAGE_HEAD = """# The input path's design at the middle steps (0.075-0.21 s): the study
+
+Made by `python -m riser_tools.studies.input_path_designs` (riser_tools/studies/input_path_designs.py;
+docs/theory.md §7.1, (7.3b)). Filter-level measures of candidate end-state designs (value, h slope, h²
+curvature rows over the last N samples) at uniform communication steps h, without the line but for
+the catenary's measured answers at the hang-off (docs/coupling_response.csv):
+
+* *end*: the end value's error on a 10 s sine, |E₀(θ) − e^{iθ}| per unit amplitude;
+* *inside*: the quintic path's (7.2) acceleration error inside the steps on that sine, / (A ω²);
+* *kink*: the path's largest acceleration error (m/s²) after a jerk jump of 0.23 m/s³ (the test
+  heave's ramp end); *ring*: that error's Fourier amplitude at 2.0-2.6 Hz (the steel catenary's axial
+  modes) in units of the jerk's own J/ω²;
+* *noise*: √Σw² of the value row (white sampled noise's gain);
+* *onset (kN)*: the catenary's tension swing when a ±1e-5 m alternation starts mid-run (§7.3);
+* *proxy*: max |L(θ)| (7.9), the 2000 t vessel, over θ where the line's axial resonance (3.9-4.1 Hz)
+  aliases at h (0.36-0.44 π at 0.2 s: session 16 found 0.46-0.47 for loops bounded in libcosim at
+  0.2 s, 0.57 and 0.79 for growing ones); *gain*: the same over θ ≥ π/2.
+"""
+
+
+def page(resp) -> list[str]:
+    lines = [PAGE_HEAD, "| design | h (s) | N | end | inside / Aω² | kink (m/s²) | ring | noise | onset (kN) | proxy "
+             "| gain |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for c in candidates(resp):
+        for h in MIDDLE_STEPS:
+            m = measures(c, h, resp)
+            lines.append(f"| {m['name']} | {h:g} | {m['taps']} | {m['end']:.1e} | {m['inside']:.1e} | {m['kink']:.3f} | "
+                         f"{m['ring']:.2f} | {m['noise0']:.1f} | {m['onset']:.2f} | {m['proxy']:.2f} | {m['gain']:.2f} |")
+    return lines
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m riser_tools.studies.input_path_designs", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--response", default=str(ca.ROOT / "docs" / "coupling_response.csv"))
+    ap.add_argument("--docs", default=str(ca.ROOT / "docs"))
+    ap.add_argument("--rust", action="store_true", help="print the middle design as src/fmi/input_path.rs's MIDDLE")
+    args = ap.parse_args(argv)
+    resp = ca.read_response(Path(args.response))
+    if args.rust:
+        print(rust_table(middle(resp).w))
+        return 0
+    lines = page(resp)
+    print("\n".join(lines))
+    # the generated part ends where the hand-written sections (## …) begin: keep those
+    doc = Path(args.docs) / "input_path_designs.md"
+    old = doc.read_text() if doc.exists() else ""
+    tail = old[old.index("\n## ") + 1:] if "\n## " in old else ""
+    doc.write_text("\n".join(lines) + "\n\n" + tail)
+    return 0
+
+
+if __name__ == "__main__":
+    main()
