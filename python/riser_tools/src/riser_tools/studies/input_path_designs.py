@@ -347,7 +347,7 @@ def middle(resp=None) -> Candidate:
 
 
 def rust_table(w: np.ndarray) -> str:
-    rows = ",\n".join("    [" + ", ".join(f"{float(x):.17e}" for x in row) + "]" for row in w)
+    rows = ",\n".join("    [" + ", ".join(repr(float(x)) for x in row) + "]" for row in w)
     return "pub const MIDDLE: [[f64; TAPS]; 3] = [\n" + rows + ",\n];"
 
 
