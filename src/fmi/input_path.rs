@@ -116,12 +116,14 @@ pub const DESIGNS: [(f64, Design); 3] = [
 /// step, 1.8, 5 and 39 % of A ω² inside the steps at 0.05, 0.1 and 0.2 s
 /// for a heave at 10 s, harmless at the step's end but not to a line
 /// stepped inside the communication step (§16.6). With these the path's
-/// acceleration is within 3e-6, 4e-4 and 1.1e-2 of A ω². For the two
-/// smoothing designs the degree and band are the highest and widest with
-/// which a 2000 t vessel coupled both ways in libcosim stays as bounded as
-/// with Q's own (`tests/python/test_coupling.py`): degree 7 at 0.2 s grows a
-/// 1 Hz oscillation (the line's axial resonance near 4 Hz, aliased) to
-/// ±30 kN, as does degree 6 with the band from 0.5 π. The exactly
+/// acceleration is within 3e-6 of A ω² at 0.05 s. For the 16-point
+/// design the degree and band are the highest and widest with which a
+/// 2000 t vessel coupled both ways in libcosim stays as bounded as with Q's
+/// own (`tests/python/test_coupling.py`). The middle steps (0.075-0.21 s)
+/// take [`MIDDLE`] instead: with (7.3a) over the 12-point fit (d = 6, a =
+/// 0.2) their path erred 4e-4 and 1.1e-2 of A ω² at 0.1 and 0.2 s, and
+/// degree 7 there grew the vessel's loop at 0.2 s (a 1 Hz oscillation, the
+/// line's axial resonance near 4 Hz aliased, to ±30 kN). The exactly
 /// determined design of long steps takes degree 7 over ten samples (one
 /// degree of freedom left to the band): the path's acceleration inside the
 /// step within 4e-4, 1.1e-3 and 2.1e-2 of A ω² at 0.25, 0.3 and 0.5 s, where
@@ -132,8 +134,40 @@ pub const DESIGNS: [(f64, Design); 3] = [
 /// low-passed (docs/theory.md §7.3, "Long communication steps"). Changing
 /// steps keep Q's own; after a change of step the window of uniform points
 /// must be full again (fifteen intervals, for every design).
-pub const CONSISTENT: [Option<(f64, usize, usize)>; 3] =
-    [Some((0.5, 7, TAPS)), Some((0.2, 6, TAPS)), Some((0.5, 7, 10))];
+pub const CONSISTENT: [Option<(f64, usize, usize)>; 3] = [Some((0.5, 7, TAPS)), None, Some((0.5, 7, 10))];
+
+/// The index in [`DESIGNS`] of the middle steps (0.075 s to 0.21 s).
+const MIDDLE_DESIGN: usize = 1;
+
+/// The end state of the middle steps (0.075 ≤ h < 0.21 s) once sixteen
+/// uniform points are known (docs/theory.md (7.3b)): (Q, h Q', h² Q'') =
+/// Σ_k MIDDLE[·][k] u_k, k = 0 the current sample. All three rows at once,
+/// under the constraints of (7.1) and (7.3a): the value exact one step ahead
+/// for quartics, the slope and curvature those of the end values' sequence
+/// for polynomials of degree ≤ 7, the alternations (−1)^k and ξ_k (−1)^k
+/// removed from every row; of such filters the one that minimises, at 0.1,
+/// 0.15 and 0.2 s, the path's acceleration error inside the steps and its
+/// end value's error on a 10 s heave, its answer to a jerk (a ramp's end) at
+/// the steel catenary's axial modes (2-2.6 Hz), and, weighted thirty times,
+/// the catenary's measured answer to the end states at θ = ωh from 0.18 π
+/// to π, where the line's axial resonance (about 4 Hz) aliases at these
+/// steps and a vessel's loop grows on it (7.9). Made by
+/// `riser_tools.studies.input_path_designs.middle` (docs/input_path_designs.md),
+/// checked against its constraints by the unit test
+/// `the_middle_design_keeps_the_constraints_of_7_1_and_7_3a`. Against the
+/// 12-point least-squares quartic with the slope and curvature of (7.3a),
+/// d = 6, a = 0.2 (before): the path's acceleration inside the steps within
+/// 1.3e-3 of A ω² at 0.2 s (1.1e-2 before), the end value 1.0e-3 of A
+/// (7.8e-4); a line stepped at 0.1 s inside 0.2 s steps steady within 0.09 kN
+/// of `riser run` on the steel catenary (1.55 kN), and the 2000 t vessel's
+/// loop in libcosim bounded from 0.08 to 0.2 s and stationary at 0.205 s
+/// (where it grew before).
+#[rustfmt::skip]
+pub const MIDDLE: [[f64; TAPS]; 3] = [
+    [1.106861496001382, 1.6651640963303749, -0.3218273624167458, -1.9629620499710672, -1.4277172138289116, 0.275634168118162, 1.1792344736682976, 1.355514297109703, 0.9001280385193262, -0.6458253136951477, -1.4354494684257901, -0.7683171267571192, 0.5250966982557694, 0.7955057910838239, -0.026326661773325752, -0.21471386221873046],
+    [2.3144588909384294, -1.0300756103340465, -3.6566263471657665, 0.1688792777681124, 1.680815972066791, 2.319900469860554, -0.22462465792935432, -0.7588254125454363, -1.1450153961283323, -1.0637957165490888, 0.4901733306122258, 0.9989531592681684, 0.9376641449696066, -0.9234662622804455, -0.3968459373635984, 0.2884300948121796],
+    [4.608822142156016, -10.085841073733139, 1.5090166570178662, 6.2703554353681685, 1.9529004217940005, 1.1271688597042497, -13.693312749195517, 6.761994702832747, 1.8439258192214363, 3.8221780961154472, -4.088027595755474, -3.546252509732071, 6.3371716844594035, -4.079097474811499, 1.529503620302269, -0.2705060357439055],
+];
 
 /// The largest degree of [`CONSISTENT`] (the size of its linear system).
 const CONSISTENT_DEGREE: usize = 7;
@@ -687,6 +721,10 @@ impl InputHistory {
         let index = if uniform { DESIGNS.iter().position(|x| x.1 == design(h)).unwrap_or(2) } else { 2 };
         let d = DESIGNS[index].1;
         let n = (known + 1).min(d.taps);
+        if index == MIDDLE_DESIGN && uniform && known + 1 >= TAPS {
+            // the middle steps once sixteen uniform points are known: (7.3b)
+            return std::array::from_fn(|c| (0..TAPS).map(|k| MIDDLE[c][k] * value(k)).sum());
+        }
         if let Some((_, _, m)) = CONSISTENT[index].filter(|&(_, _, m)| uniform && known + 1 >= m) {
             // a fixed-step master once the filters' window is full: the end value
             // of the fit, its slope and curvature those of the end values' sequence
@@ -1527,6 +1565,51 @@ mod tests {
             }
             // the value row is the fit's own
             assert_eq!(w[0], uniform_weights(index)[0]);
+        }
+    }
+
+    #[test]
+    fn the_middle_design_keeps_the_constraints_of_7_1_and_7_3a() {
+        // (7.3b): the value row predicts every quartic one step ahead, the slope and
+        // curvature rows are those of the end values' sequence Σ_k w0_k u(σ − k) for
+        // every polynomial of degree ≤ 7, and no row answers (−1)^k or ξ_k (−1)^k
+        // (ξ_k = −k/15): the table's digits hold what its design imposed
+        let w = &MIDDLE;
+        let scale = (TAPS - 1) as f64;
+        let xi = |k: usize| -(k as f64) / scale;
+        for p in 0..=4 {
+            let got: f64 = (0..TAPS).map(|k| w[0][k] * xi(k).powi(p)).sum();
+            assert!((got - (1.0 / scale).powi(p)).abs() < 1e-12, "value, degree {p}: {got}");
+        }
+        for p in 0..=7i32 {
+            for r in 1..3i32 {
+                let falling: f64 = (0..r).map(|m| (p - m) as f64).product();
+                let got: f64 = (0..TAPS).map(|k| w[r as usize][k] * xi(k).powi(p)).sum();
+                let want: f64 = if p < r {
+                    0.0
+                } else {
+                    (0..TAPS).map(|k| w[0][k] * falling / scale.powi(r) * xi(k).powi(p - r)).sum()
+                };
+                assert!((got - want).abs() < 1e-12, "degree {p}, order {r}: {got} {want}");
+            }
+        }
+        for q in 0..2 {
+            for (r, row) in w.iter().enumerate() {
+                let got: f64 = (0..TAPS).map(|k| row[k] * if k % 2 == 0 { 1.0 } else { -1.0 } * xi(k).powi(q)).sum();
+                assert!(got.abs() < 1e-12, "nuisance {q}, row {r}: {got}");
+            }
+        }
+        // and a fixed-step master at 0.1 s follows a quartic exactly with it once sixteen points are known
+        let h = 0.1;
+        let u = |t: f64| 0.3 * t - 0.02 * t * t + 1e-3 * t.powi(3) - 2e-5 * t.powi(4);
+        let times: Vec<f64> = (0..=40).map(|k| k as f64 * h).collect();
+        let (_, paths) = drive(&times, Some(&u), None);
+        let du = |t: f64| 0.3 - 0.04 * t + 3e-3 * t * t - 8e-5 * t.powi(3);
+        let ddu = |t: f64| -0.04 + 6e-3 * t - 2.4e-4 * t * t;
+        for p in &paths[20..] {
+            let s = p.t + h;
+            let e = [p.end[0][0] - u(s), p.end[0][1] - h * du(s), p.end[0][2] - h * h * ddu(s)];
+            assert!(e.iter().all(|x| x.abs() < 1e-12), "t {}: {e:?}", p.t);
         }
     }
 

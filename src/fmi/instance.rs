@@ -982,8 +982,10 @@ impl Instance {
     fn warn_split(&mut self, h: f64, n: u64, dt: f64) {
         let Some(target) = self.scene.as_ref().map(|s| s.analysis.accuracy).filter(|a| *a > 0.0) else { return };
         self.warned_split = true;
+        let step = format!("{dt:.4}");
+        let step = step.trim_end_matches('0').trim_end_matches('.');
         let msg = format!(
-            "accuracy {target:e}: the communication step of {h} s takes {n} internal steps of {dt} s; between \
+            "accuracy {target:e}: the communication step of {h} s takes {n} internal steps of {step} s; between \
              communication points the hang-off follows a path predicted from the inputs, whose acceleration misses \
              the motion's for 16 communication steps (10 at steps of 0.21 s and longer) at the start and after a \
              jerk of the motion (where a ramp ends: 12 % of it at 0.05 s, 30-40 % at 0.2 s), an error the \
@@ -1107,8 +1109,9 @@ impl Instance {
             Ok(n) => n,
             Err(m) => return self.fail(&format!("fmi2DoStep: communication step {m}")),
         };
+        let step = crate::sim::even_internal_step(h, dt, n);
         if n > 1 && !self.warned_split {
-            self.warn_split(h, n, dt);
+            self.warn_split(h, n, step);
         }
         let sim = self.sim.as_mut().unwrap();
         // the bounded step (§7.6): K · n · w̄ + the allowance, w̄ the run's
@@ -1148,7 +1151,7 @@ impl Instance {
             });
         }
         'steps: for k in 1..=n {
-            let target = if k == n { t_end } else { now + k as f64 * dt };
+            let target = if k == n { t_end } else { now + k as f64 * step };
             // a system's free points with the lines at them (§17.7)
             if let Some(free) = self.free.as_mut() {
                 let mut lines = super::system::FmuLines { first: sim, first_name, others: &mut self.others };

@@ -94,7 +94,19 @@ AFTER = Predictor("least squares per step (after)", 0)
 # for polynomials up to the degree, the design's alternations removed, least energy in the band
 # θ ∈ [band π, π]; {design index: (band, degree, taps)}
 CONSISTENT_TAPS = 16
-CONSISTENT = {0: (0.5, 7, 16), 1: (0.2, 6, 16), 2: (0.5, 7, 10)}
+CONSISTENT = {0: (0.5, 7, 16), 2: (0.5, 7, 10)}
+# the middle steps' (design 1) slope and curvature before (7.3b): (7.3a) over the 12-point fit
+CONSISTENT_BEFORE = {1: (0.2, 6, 16)}
+
+# the middle steps' end state once 16 uniform points are known (src/fmi/input_path.rs MIDDLE, docs/theory.md
+# (7.3b)): value, h slope, h² curvature rows over the samples, newest first; made by
+# riser_tools.studies.input_path_designs.middle (tests/python/test_input_path_designs.py checks that both agree)
+MIDDLE_INDEX = 1
+MIDDLE = np.array([
+    [1.106861496001382, 1.6651640963303749, -0.3218273624167458, -1.9629620499710672, -1.4277172138289116, 0.275634168118162, 1.1792344736682976, 1.355514297109703, 0.9001280385193262, -0.6458253136951477, -1.4354494684257901, -0.7683171267571192, 0.5250966982557694, 0.7955057910838239, -0.026326661773325752, -0.21471386221873046],
+    [2.3144588909384294, -1.0300756103340465, -3.6566263471657665, 0.1688792777681124, 1.680815972066791, 2.319900469860554, -0.22462465792935432, -0.7588254125454363, -1.1450153961283323, -1.0637957165490888, 0.4901733306122258, 0.9989531592681684, 0.9376641449696066, -0.9234662622804455, -0.3968459373635984, 0.2884300948121796],
+    [4.608822142156016, -10.085841073733139, 1.5090166570178662, 6.2703554353681685, 1.9529004217940005, 1.1271688597042497, -13.693312749195517, 6.761994702832747, 1.8439258192214363, 3.8221780961154472, -4.088027595755474, -3.546252509732071, 6.3371716844594035, -4.079097474811499, 1.529503620302269, -0.2705060357439055],
+])
 
 
 def consistent_weights(p: Predictor, band: float, degree: int, taps: int = CONSISTENT_TAPS) -> np.ndarray:
@@ -135,12 +147,21 @@ def design_weights(h: float) -> np.ndarray:
     """The end-state filters input_path.rs uses at uniform steps h once its window is full."""
     index = next(i for i, (below, _) in enumerate(DESIGNS) if h < below)
     p = DESIGNS[index][1]
+    if index == MIDDLE_INDEX:
+        return MIDDLE.copy()
     return consistent_weights(p, *CONSISTENT[index]) if index in CONSISTENT else predictor_weights(p)
 
 
 def design(h: float) -> Predictor:
     """The design input_path.rs uses for a step of h s."""
     return next(p for below, p in DESIGNS if h < below)
+
+
+def design_window(h: float) -> int:
+    """The samples the end value of a step of h s reads once its window is full (its design's, 16
+    for the middle steps' MIDDLE)."""
+    d = design(h)
+    return MIDDLE.shape[1] if d is DESIGNS[MIDDLE_INDEX][1] else d.taps
 
 
 def resolve(p: Predictor, h: float) -> Predictor:
@@ -218,12 +239,17 @@ def predictor_weights(p: Predictor, taus=None) -> np.ndarray:
 def predicted_end_values(samples, h: float) -> np.ndarray:
     """The end values input_path.rs predicts at uniform steps h for the displacement sequence
     `samples` (oldest first), the start included: with n < taps samples known, the design keeps
-    min(alt, n − 4) nuisances and min(poly, n − nuisances) coefficients. The hang-off is at entry k
-    at the end of step k."""
+    min(alt, n − 4) nuisances and min(poly, n − nuisances) coefficients; the middle steps take
+    MIDDLE's value row once 16 points are known (7.3b). The hang-off is at entry k at the end of
+    step k."""
     d = design(h)
+    middle = d is DESIGNS[MIDDLE_INDEX][1]
     samples = np.asarray(samples, dtype=float)
     out = np.zeros(len(samples))
     for k in range(len(samples)):
+        if middle and k + 1 >= MIDDLE.shape[1]:
+            out[k] = MIDDLE[0] @ samples[k::-1][: MIDDLE.shape[1]]
+            continue
         n = min(k + 1, d.taps)
         alt = min(d.n_alt, max(0, n - 4))
         w = predictor_weights(Predictor("", min(d.n_poly, n - alt), alt, n))
