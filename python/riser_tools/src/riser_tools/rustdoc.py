@@ -77,9 +77,10 @@ def rustdoc_command(root: Path, profile: str, cargo: str, rustdoc: str, out: Pat
 
     deps_dir = Path(externs[1].split("=", 1)[1]).parent  # target/PROFILE/deps (or CARGO_TARGET_DIR's)
     out = out or deps_dir.parent.parent / "doc"
+    # the source path relative to the package, as cargo gives it (the source pages name it)
     cmd = [rustdoc, f"--edition={lib['edition']}", "--crate-type", "lib", "--crate-name",
-           lib["name"].replace("-", "_"), lib["src_path"], "-o", str(out), "-L", f"dependency={deps_dir}",
-           *externs, "--crate-version", package["version"],
+           lib["name"].replace("-", "_"), os.path.relpath(lib["src_path"], root), "-o", str(out),
+           "-L", f"dependency={deps_dir}", *externs, "--crate-version", package["version"],
            "--check-cfg", "cfg(docsrs,test)", "--check-cfg", "cfg(feature, values())"]
     # the [lints] of Cargo.toml that rustdoc reads (cargo passes them as cargo doc does)
     for tool, table in manifest.get("lints", {}).items():
