@@ -183,7 +183,9 @@ fmu-test-release: fmu
 # Python tests run side by side (their output apart: the Rust tests' is printed after the Python
 # tests', from $(CHECK_DIR)/rust-test.log), so that neither's tail (a last long test, a
 # subprocess's start, a wait on a Dask worker) leaves a core idle: `make test` is CPU-bound on two
-# cores, and its wall time about its CPU time over two. A fresh clone's CPU (user + sys, measured
+# cores, and its wall time about its CPU time over two. The Rust tests niced: the Python tests are
+# the longer part (3:10 alone on the quiet machine against 1:44) and the more serial (a file to a
+# worker, subprocesses waited on), the integration binary's many tests fill what they leave. A fresh clone's CPU (user + sys, measured
 # 2026-12-08, docs/performance.md "The test loop"): the linted build 478 s, rustdoc 5 s (cargo doc
 # checked the dependencies: 122 s), the Rust tests about 120 s, the Python tests about 271 s, about
 # 910 s in all against the 960 s of 8 minutes of two cores (9 min 52 s quiet at dc5f965, the build
@@ -197,7 +199,7 @@ test: fmt
 	@mkdir -p $(CHECK_DIR); \
 	nice -n 10 $(MAKE) --no-print-directory venv & venv=$$!; \
 	{ $(MAKE) --no-print-directory test-build && $(MAKE) --no-print-directory doc; } || { wait $$venv; exit 1; }; \
-	$(MAKE) --no-print-directory rust-test > $(CHECK_DIR)/rust-test.log 2>&1 & rust=$$!; \
+	nice -n 5 $(MAKE) --no-print-directory rust-test > $(CHECK_DIR)/rust-test.log 2>&1 & rust=$$!; \
 	wait $$venv && $(MAKE) --no-print-directory fmu-test; py=$$?; \
 	wait $$rust; rust=$$?; \
 	echo "---- the Rust tests (cargo test, beside the Python tests; $(CHECK_DIR)/rust-test.log)"; \
