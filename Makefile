@@ -134,13 +134,14 @@ test-build:
 rust-test:
 	$(TEST_CARGO) test --profile $(TEST_PROFILE)
 
-# rustdoc needs the dependencies checked (their metadata from a check, not
-# from a build): in the tests' profile and target directory it reuses the
-# build's proc macros and build scripts and checks only the libraries (with
-# the wrapper's variables, or cargo would build riser's build script again).
-# The pages: target/doc/riser/index.html.
+# The API pages (target/doc/riser/index.html) by rustdoc on the tests' build, with its rlibs as the
+# dependencies (python/riser_tools/src/riser_tools/rustdoc.py, the standard library only): `cargo
+# doc` would check every dependency again for their metadata (cargo cannot document against a
+# build's), 122 s of CPU on a fresh clone against 5 s. It asks cargo for the build's artifacts with
+# `make test-build`'s target selection and variables (fresh after it; from a clean target it is that
+# build). `-D warnings`: a broken intra-doc link fails it, as RUSTDOCFLAGS="-D warnings" did.
 doc:
-	RUSTDOCFLAGS="-D warnings" $(TEST_CARGO) doc --no-deps --profile $(TEST_PROFILE)
+	$(LINTED) CARGO=$(CARGO) python3 python/riser_tools/src/riser_tools/rustdoc.py --profile $(TEST_PROFILE) -- -D warnings
 
 # fmu/riser.fmu: modelDescription.xml (from modelDescription/variables.csv via
 # build.rs), binaries/linux64/riser.so, resources/ (scenes), documentation/.
@@ -176,25 +177,34 @@ check-long: venv check-fmu
 fmu-test-release: fmu
 	$(PY) -m pytest -q -m "not long" tests/python
 
-# Every test: formatting, lints, docs, the Rust tests (profile fasttest), then
-# the FMU packaged from the same build through fmpy and libcosim. The venv's
-# install (pip, mostly files) runs niced in the background from the start;
-# rustdoc runs niced beside the Rust tests' run (cargo holds the target
-# directory's lock while it builds, not while the tests run), in the cores
-# their tail leaves idle; the Python tests wait for all three, and `make test`
-# fails if any part does. Not incremental: a fresh build writes the
-# incremental cache for nothing (about 10 s of a fresh clone); cargo's
-# fingerprint is the same, so `make check`'s incremental rebuilds after it
-# start from its artifacts.
+# Every test: formatting, lints, docs, the Rust tests (profile fasttest), and the FMU packaged from
+# the same build through fmpy and libcosim. The venv's install (pip, mostly files) runs niced in the
+# background from the start; after the linted build and rustdoc (seconds), the Rust tests and the
+# Python tests run side by side (their output apart: the Rust tests' is printed after the Python
+# tests', from $(CHECK_DIR)/rust-test.log), so that neither's tail (a last long test, a
+# subprocess's start, a wait on a Dask worker) leaves a core idle: `make test` is CPU-bound on two
+# cores, and its wall time about its CPU time over two. The Rust tests niced: the Python tests are
+# the longer part (3:10 alone on the quiet machine against 1:44) and the more serial (a file to a
+# worker, subprocesses waited on), the integration binary's many tests fill what they leave. A fresh clone's CPU (user + sys, measured
+# 2026-12-08, docs/performance.md "The test loop"): the linted build 478 s, rustdoc 5 s (cargo doc
+# checked the dependencies: 122 s), the Rust tests about 120 s, the Python tests about 271 s, about
+# 910 s in all against the 960 s of 8 minutes of two cores (9 min 52 s quiet at dc5f965, the build
+# 3:56, the Rust tests 1:44 with rustdoc ending 58 s after them, the Python tests 3:10, one after
+# the other). `make test` fails if any part does. Not
+# incremental: a fresh build writes the incremental cache for nothing (about 10 s of a fresh
+# clone); cargo's fingerprint is the same, so `make check`'s incremental rebuilds after it start
+# from its artifacts.
 test: export CARGO_INCREMENTAL := 0
 test: fmt
-	@nice -n 10 $(MAKE) --no-print-directory venv & venv=$$!; \
-	$(MAKE) --no-print-directory test-build || { wait $$venv; exit 1; }; \
-	$(MAKE) --no-print-directory rust-test & rust=$$!; \
-	nice -n 10 $(MAKE) --no-print-directory doc; doc=$$?; \
-	wait $$rust; rust=$$?; wait $$venv; venv=$$?; \
-	test $$doc -eq 0 -a $$rust -eq 0 -a $$venv -eq 0
-	$(MAKE) --no-print-directory fmu-test
+	@mkdir -p $(CHECK_DIR); \
+	nice -n 10 $(MAKE) --no-print-directory venv & venv=$$!; \
+	{ $(MAKE) --no-print-directory test-build && $(MAKE) --no-print-directory doc; } || { wait $$venv; exit 1; }; \
+	nice -n 5 $(MAKE) --no-print-directory rust-test > $(CHECK_DIR)/rust-test.log 2>&1 & rust=$$!; \
+	wait $$venv && $(MAKE) --no-print-directory fmu-test; py=$$?; \
+	wait $$rust; rust=$$?; \
+	echo "---- the Rust tests (cargo test, beside the Python tests; $(CHECK_DIR)/rust-test.log)"; \
+	cat $(CHECK_DIR)/rust-test.log; \
+	test $$py -eq 0 -a $$rust -eq 0
 
 # Before each commit (a minute or two once built): formatting, lints, the Rust
 # tests, and the FMU's Python tests but the long fuzz and Dask ones, against an

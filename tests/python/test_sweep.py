@@ -396,7 +396,7 @@ def test_a_worker_killed_mid_sweep_loses_no_case_and_doubles_none(fmu_path, tmp_
         c.stop()
 
 
-def test_an_interrupted_client_keeps_its_rows_and_the_rerun_runs_only_the_rest(fmu_path, tmp_path):
+def test_an_interrupted_client_keeps_its_rows_and_the_rerun_runs_only_the_rest(fmu_path, cluster, tmp_path):
     periods = [8.0, 9.0, 10.0, 11.0, 12.0, 13.0]
     spec = write_spec(tmp_path / "slow.toml", SLOW, fmu=fmu_path, periods=periods)
     out = tmp_path / "out"
@@ -421,7 +421,8 @@ def test_an_interrupted_client_keeps_its_rows_and_the_rerun_runs_only_the_rest(f
     before = data_lines(out)
     k = len(before)
     assert 2 <= k < len(periods), err
-    p = sweep(spec, "--out", out, "--workers", 1)
+    # the rerun on the module's scheduler (a local cluster's start is 2.3 s of CPU; the rows the same)
+    p = sweep(spec, "--out", out, "--scheduler", cluster.address)
     assert p.returncode == 0, p.stderr
     assert f"{len(periods)} cases: {k} done, {len(periods) - k} to run" in p.stderr
     assert p.stderr.count(": ok (") == len(periods) - k  # a line per case run
@@ -482,7 +483,7 @@ timeseries = true
 """
 
 
-def test_a_line_held_still_has_a_finite_small_energy_balance_and_a_moving_one_its_own(fmu_path, tmp_path):
+def test_a_line_held_still_has_a_finite_small_energy_balance_and_a_moving_one_its_own(fmu_path, cluster, tmp_path):
     """Issue 52. Held still, the catenary exchanges ~1e-27 J while E - E0 carries the round-off of E's
     sum, ~2e-9 J of |U| + |V| + K = 6.1e6 J (3e-16): residual / exchanged was 3e18; against 1e-8 of the
     line's energy it is ~3e-8. The bound, 1e-6, is the project's threshold of a closed balance (riser run,
@@ -490,7 +491,7 @@ def test_a_line_held_still_has_a_finite_small_energy_balance_and_a_moving_one_it
     elements and the machine's summation order, not by that), a leak of 1e-7 J would not. Heaved, the
     exchange sets the scale and the value is the one it was: residual / exchanged, bit for bit."""
     spec = write_spec(tmp_path / "still.toml", STILL, fmu=fmu_path)
-    p = sweep(spec, "--out", tmp_path / "out", "--workers", 1)
+    p = sweep(spec, "--out", tmp_path / "out", "--scheduler", cluster.address)
     assert p.returncode == 0, p.stderr
     rows = {float(r["heave_amplitude"]): r for r in rows_of(tmp_path / "out")}
     assert sorted(rows) == [0.0, 2.0] and all(r["status"] == "ok" for r in rows.values()), rows
