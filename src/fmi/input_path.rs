@@ -141,7 +141,7 @@ const MIDDLE_DESIGN: usize = 1;
 
 /// The end state of the middle steps (0.075 ≤ h < 0.21 s) once sixteen
 /// uniform points are known (docs/theory.md (7.3b)): (Q, h Q', h² Q'') =
-/// Σ_k MIDDLE[·][k] u_k, k = 0 the current sample. All three rows at once,
+/// `Σ_k MIDDLE[·][k] u_k`, k = 0 the current sample. All three rows at once,
 /// under the constraints of (7.1) and (7.3a): the value exact one step ahead
 /// for quartics, the slope and curvature those of the end values' sequence
 /// for polynomials of degree ≤ 7, the alternations (−1)^k and ξ_k (−1)^k

@@ -527,7 +527,7 @@ fn in_span(base: (usize, f64), n: usize, dt: f64) -> (bool, bool) {
 /// An observed order below this, where the scheme is second order in both
 /// the step (generalized-α) and the mesh, is not taken as the asymptotic
 /// range: the triplet's extrapolation to the candidate is checked by a
-/// fourth level where it matters ([`ambiguous`]).
+/// fourth level where it matters (`ambiguous`).
 pub const SLOW_ORDER: f64 = 1.0;
 
 /// Whether an axis' error at a round's candidate (a quarter of the base)
