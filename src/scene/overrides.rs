@@ -1,14 +1,14 @@
 //! Overrides by the FMU's parameter names (docs/interface.md) (`--set name=value` on the
 //! command line, parameters of the FMU).
 
-use super::waves::{START_GAMMA, START_PERIOD, StretchingSpec, WaveKind, WavesSpec, read_table};
+use super::waves::{START_GAMMA, START_PERIOD, SpacingSpec, StretchingSpec, WaveKind, WavesSpec, read_table};
 use super::{
     Buoyancy, DESIGN_MOTION_AMPLITUDE, DESIGN_MOTION_PERIOD, Model, NO_SEABED_Z, ProfileKind, Scene, SceneError,
     SeabedSpec, ranges,
 };
 
 /// Every parameter name that can be set, with its unit.
-pub const PARAMETER_NAMES: [(&str, &str); 70] = [
+pub const PARAMETER_NAMES: [(&str, &str); 71] = [
     ("model", "rod | cable"),
     ("hang_off_end", "pinned | clamped | flex_joint"),
     ("flex_joint_stiffness", "N m/rad"),
@@ -57,6 +57,7 @@ pub const PARAMETER_NAMES: [(&str, &str); 70] = [
     ("wave_seed", "-"),
     ("wave_file", "path"),
     ("wave_stretching", "wheeler | vertical | none"),
+    ("wave_spacing", "frequency | energy"),
     ("wave_ramp", "s"),
     ("water_depth", "m"),
     ("hang_off_x", "m"),
@@ -510,6 +511,10 @@ fn set_wave(s: &mut Scene, name: &str, value: &str) -> Option<Result<(), SceneEr
                 Some(k) => waves(s).stretching = Some(k),
                 None => return bad(format!("'{value}' is not a stretching: wheeler, vertical or none")),
             },
+            "wave_spacing" => match SpacingSpec::parse(value) {
+                Some(k) => waves(s).spacing = Some(k),
+                None => return bad(format!("'{value}' is not a spacing: frequency or energy")),
+            },
             "wave_ramp" => waves(s).ramp = Some(num()?),
             "water_depth" => {
                 let d = num()?;
@@ -546,6 +551,7 @@ fn get_wave(s: &Scene, name: &str) -> Option<String> {
         "wave_seed" => Some(w.seed.unwrap_or(0).to_string()),
         "wave_file" => Some(w.file.clone().unwrap_or_default()),
         "wave_stretching" => Some(w.stretching.unwrap_or_default().name().to_string()),
+        "wave_spacing" => Some(w.spacing.unwrap_or_default().name().to_string()),
         "wave_ramp" => num(w.ramp.unwrap_or(match w.kind {
             WaveKind::Airy => w.period.unwrap_or(START_PERIOD),
             WaveKind::Jonswap | WaveKind::PiersonMoskowitz => w.tp.unwrap_or(START_PERIOD),

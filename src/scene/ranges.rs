@@ -74,6 +74,7 @@ mod tests {
                 "wave_kind",
                 "wave_file",
                 "wave_stretching",
+                "wave_spacing",
                 "rotation_order",
                 "accuracy_quantity",
                 "safety_class",

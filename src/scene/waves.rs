@@ -72,6 +72,31 @@ impl StretchingSpec {
     }
 }
 
+/// How a spectrum's band is cut into components (docs/theory.md §13.3):
+/// equal bins in frequency (13.11), or bins of equal shares of energy and
+/// width with a random frequency in each (13.11a-b), a record that does not
+/// repeat itself.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpacingSpec {
+    #[default]
+    Frequency,
+    Energy,
+}
+
+impl SpacingSpec {
+    pub fn name(self) -> &'static str {
+        match self {
+            SpacingSpec::Frequency => "frequency",
+            SpacingSpec::Energy => "energy",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<Self> {
+        [SpacingSpec::Frequency, SpacingSpec::Energy].into_iter().find(|k| k.name() == text)
+    }
+}
+
 /// A scene's `[waves]` block; absent keys take the defaults below.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -113,6 +138,9 @@ pub struct WavesSpec {
     /// Rayleigh-distributed amplitudes (default false: deterministic).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub random_amplitudes: Option<bool>,
+    /// How the band is cut into components (default `frequency`: equal bins).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spacing: Option<SpacingSpec>,
     /// The components' CSV (table): header `frequency,amplitude,phase,direction`
     /// (Hz, m, deg, deg). A relative path in a scene file is taken from the
     /// file's folder.
@@ -179,6 +207,7 @@ impl WavesSpec {
             f_max: None,
             seed: None,
             random_amplitudes: None,
+            spacing: None,
             file: None,
             stretching: None,
             ramp: None,
@@ -207,7 +236,7 @@ impl WavesSpec {
 
     /// The keys given, by their scene names.
     fn given(&self) -> Vec<&'static str> {
-        let keys: [(&str, bool); 17] = [
+        let keys: [(&str, bool); 18] = [
             ("height", self.height.is_some()),
             ("period", self.period.is_some()),
             ("direction", self.direction.is_some()),
@@ -220,6 +249,7 @@ impl WavesSpec {
             ("f_max", self.f_max.is_some()),
             ("seed", self.seed.is_some()),
             ("random_amplitudes", self.random_amplitudes.is_some()),
+            ("spacing", self.spacing.is_some()),
             ("file", self.file.is_some()),
             ("stretching", self.stretching.is_some()),
             ("ramp", self.ramp.is_some()),
@@ -236,12 +266,24 @@ impl WavesSpec {
             WaveKind::None => (&[], &[]),
             WaveKind::Airy => (&["height", "period", "direction", "phase"], &["height", "period"]),
             WaveKind::Jonswap => (
-                &["hs", "tp", "gamma", "components", "f_min", "f_max", "seed", "random_amplitudes", "direction"],
+                &[
+                    "hs",
+                    "tp",
+                    "gamma",
+                    "components",
+                    "f_min",
+                    "f_max",
+                    "seed",
+                    "random_amplitudes",
+                    "spacing",
+                    "direction",
+                ],
                 &["hs", "tp"],
             ),
-            WaveKind::PiersonMoskowitz => {
-                (&["hs", "tp", "components", "f_min", "f_max", "seed", "random_amplitudes", "direction"], &["hs", "tp"])
-            }
+            WaveKind::PiersonMoskowitz => (
+                &["hs", "tp", "components", "f_min", "f_max", "seed", "random_amplitudes", "spacing", "direction"],
+                &["hs", "tp"],
+            ),
             WaveKind::Table => (&["file"], &["file"]),
         }
     }

@@ -590,3 +590,46 @@ fn a_sea_that_repeats_within_the_run_is_warned_of() {
     };
     assert_eq!((run("20"), run("30")), (0, 1));
 }
+
+/// `spacing = "energy"` (docs/theory.md (13.11a-c)): a JONSWAP sea of 200
+/// components has no repeat period and is not warned of; the envelope of its
+/// autocorrelation (13.11c) over a 3-hour record stays far from 1 (200
+/// random frequencies: its lags' sums are of ~200 unit phasors of random
+/// angles, |mean| ~ 1/√200 ≈ 0.07 and its largest over the record's ~3,000
+/// independent lags about 0.2; measured 0.22), where equal bins return to 1 at
+/// 1/Δf (checked by `autocorrelation_peak` itself, against the repeat period);
+/// the realised m₀ the band's. The envelope bounds the record's own
+/// autocorrelation: |ρ(τ)| computed from a sampled record of the same
+/// components never exceeds it (the test's independent sum, 20 lags).
+#[test]
+fn energy_bins_make_a_three_hour_sea_that_does_not_repeat() {
+    use riser::loads::waves::{autocorrelation_peak, repeat_period, repeat_warning};
+    let keys = "kind = \"jonswap\"\nhs = 4.0\ntp = 10.0\ncomponents = 200";
+    let energy = sea("catenary", &format!("{keys}\nspacing = \"energy\""));
+    let equal = sea("catenary", keys);
+    let (c, e) = (energy.components(), equal.components());
+    assert!(repeat_period(c).is_none() && repeat_warning(c, 10_800.0).is_none());
+    let period = repeat_period(e).unwrap();
+    let (at_period, _) = autocorrelation_peak(e, period, period + 1e-9).unwrap();
+    assert!(at_period > 1.0 - 1e-9, "{at_period} at the period {period} s");
+    // the search's samples are 1/(8 (f_max − f_min)) apart: found within one
+    let (found, lag) = autocorrelation_peak(e, 60.0, 1.5 * period).unwrap();
+    let dt = 1.0 / (8.0 * (e[e.len() - 1].frequency - e[0].frequency));
+    assert!(found > 0.95 && (lag - period).abs() <= dt, "{found} at {lag} s (period {period} s)");
+    let (peak, lag) = autocorrelation_peak(c, 60.0, 10_800.0).unwrap();
+    println!(
+        "energy bins, 200 components: envelope beyond 60 s at most {peak:.3} (lag {lag:.1} s); equal bins 1 at {period:.1} s"
+    );
+    assert!(peak < 0.3, "{peak} at {lag} s");
+    // m₀ of the band: the trapezoid of (13.11a) against the midpoint rule of (13.11)
+    assert!((energy.m0() / equal.m0() - 1.0).abs() < 1e-4, "{} {}", energy.m0(), equal.m0());
+    // |ρ(τ)| of the components (Σ a²cos(2π f τ)/Σ a²) within the envelope
+    let total: f64 = c.iter().map(|c| c.amplitude * c.amplitude).sum();
+    for k in 0..20 {
+        let tau = 60.0 + 537.3 * k as f64;
+        let rho: f64 =
+            c.iter().map(|c| c.amplitude * c.amplitude * (2.0 * PI * c.frequency * tau).cos()).sum::<f64>() / total;
+        let (bound, _) = autocorrelation_peak(c, tau, tau + 1e-9).unwrap();
+        assert!(rho.abs() <= bound + 1e-12, "{tau}: {rho} > {bound}");
+    }
+}

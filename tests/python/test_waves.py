@@ -60,6 +60,7 @@ CASES = [
     ([("wave_kind", "stokes")], "set", ["wave_kind", "not a kind of waves"]),
     ([("wave_stretching", "linear")], "set", ["wave_stretching", "wheeler, vertical or none"]),
     ([("wave_components", 0)], "set", ["wave_components", "is outside [1, 10000]"]),
+    ([("wave_spacing", "uniform")], "set", ["wave_spacing", "frequency or energy"]),
     ([("wave_kind", "jonswap"), ("wave_hs", 12.0), ("wave_tp", 5.0)], "exit", ["waves.tp", "1/15"]),
     ([("wave_kind", "airy"), ("wave_height", 4.0)], "exit", ["waves.period", "missing"]),
     ([("wave_kind", "table"), ("wave_file", "/no/such/components.csv")], "exit", ["waves.file", "cannot read"]),
@@ -89,6 +90,7 @@ def test_still_water_reads_back_the_wave_parameters_and_a_zero_elevation(fmu_pat
         or s.getString([vr["wave_kind"], vr["wave_stretching"], vr["wave_file"]]) == ["none", "wheeler", ""]
     assert s.getReal([vr["wave_period"], vr["wave_tp"], vr["wave_gamma"], vr["water_depth"]]) == [10.0, 10.0, 3.3, 0.0]
     assert s.getInteger([vr["wave_components"], vr["wave_seed"]]) == [100, 0]
+    assert s.getString([vr["wave_spacing"]]) in ([b"frequency"], ["frequency"])
     t = 0.0
     for _ in range(3):
         s.doStep(t, 0.1)
@@ -132,3 +134,30 @@ def test_a_run_in_waves_reports_the_elevation_at_the_phase_origin_at_every_commu
     moved = max(abs(a[2] - b[2]) for a, b in zip(by_step[0.6], still))
     print(f"the waves move the top tension by up to {moved:.0f} N")
     assert moved > 200.0, moved
+
+
+def test_energy_bins_set_in_the_fmu_give_the_sea_riser_waves_prints(fmu_path, unzipped, riser_bin):
+    # `wave_spacing = energy` (theory (13.11a-b)): the FMU's wave_elevation at the phase origin is
+    # the sum of the components `riser waves --json` prints for the same parameters, Σ a cos(φ − 2π f t)
+    # at full height (wave_ramp 0), within round-off; the components are not equally spaced
+    sets = {"wave_kind": "jonswap", "wave_spacing": "energy"}
+    reals = {"wave_hs": 3.0, "wave_tp": 9.0, "wave_ramp": 0.0}
+    args = [riser_bin, "waves", "catenary", "--json"]
+    for k, v in {**sets, **reals, "wave_components": 60, "wave_seed": 5}.items():
+        args += ["--set", f"{k}={v}"]
+    comps = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)["components"]
+    f = sorted(c["frequency"] for c in comps)
+    gaps = [b - a for a, b in zip(f, f[1:])]
+    assert max(gaps) > 1.5 * min(gaps), (min(gaps), max(gaps))
+    s, vr = started_slave(fmu_path, unzipped, "energy", strings=sets, reals=reals,
+                          integers={"wave_components": 60, "wave_seed": 5})
+    t = 0.0
+    for _ in range(20):
+        s.doStep(t, 0.1)
+        t += 0.1
+        eta = sum(c["amplitude"] * math.cos(math.radians(c["phase"]) - 2 * math.pi * c["frequency"] * t)
+                  for c in comps)
+        got = s.getReal([vr["wave_elevation"]])[0]
+        assert abs(got - eta) < 1e-9, (t, got, eta)
+    s.terminate()
+    s.freeInstance()

@@ -5,10 +5,10 @@
 //! `kind = "table"`) reads.
 
 use crate::svg::Frame;
-use riser::loads::waves::spectra::Spectrum;
+use riser::loads::waves::spectra::{self, Discretisation, Spacing, Spectrum};
 use riser::loads::waves::{Sea, sea_of};
 use riser::scene::Scene;
-use riser::scene::waves::{WaveKind, WavesSpec};
+use riser::scene::waves::{SpacingSpec, WaveKind, WavesSpec};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -64,6 +64,21 @@ fn bins(w: &WavesSpec, sea: &Sea) -> Vec<(f64, f64)> {
     let c = sea.components();
     if matches!(w.kind, WaveKind::Jonswap | WaveKind::PiersonMoskowitz) {
         let (f_min, f_max) = w.frequency_range();
+        if w.spacing == Some(SpacingSpec::Energy)
+            && let Some(spectrum) = target_spectrum(w)
+        {
+            // the bins of (13.11a), as the realisation cut them
+            let d = Discretisation {
+                f_min,
+                f_max,
+                components: c.len(),
+                seed: 0,
+                random_amplitudes: false,
+                spacing: Spacing::Energy,
+            };
+            let (edges, _) = spectra::bins(&spectrum, &d);
+            return edges.windows(2).map(|e| (e[0], e[1])).collect();
+        }
         let df = (f_max - f_min) / c.len() as f64;
         return (0..c.len()).map(|i| (f_min + i as f64 * df, f_min + (i + 1) as f64 * df)).collect();
     }
@@ -205,9 +220,9 @@ pub fn waves(args: WavesArgs) -> Result<(), String> {
         None => Vec::new(),
     };
     if json {
-        outln!("{}", to_json(&scene, &w, &sea, &warnings, &written));
+        outln!("{}", to_json(&scene, &w, &sea, &warnings, &written, duration));
     } else {
-        print_text(&scene, &w, &sea, &written);
+        print_text(&scene, &w, &sea, &written, duration);
     }
     Ok(())
 }
@@ -227,7 +242,7 @@ fn repeat_period(w: &WavesSpec, sea: &Sea) -> Option<f64> {
         .flatten()
 }
 
-fn print_text(scene: &Scene, w: &WavesSpec, sea: &Sea, written: &[PathBuf]) {
+fn print_text(scene: &Scene, w: &WavesSpec, sea: &Sea, written: &[PathBuf], duration: f64) {
     let s = sea.settings();
     let what = match w.kind {
         WaveKind::Airy => format!("regular wave H {} m, T {} s", w.height.unwrap_or(0.0), w.period.unwrap_or(0.0)),
@@ -299,12 +314,28 @@ fn print_text(scene: &Scene, w: &WavesSpec, sea: &Sea, written: &[PathBuf]) {
     if let Some(t) = repeat_period(w, sea) {
         outln!("  equal bins: the record repeats itself after {t:.1} s (components / (f_max - f_min))");
     }
+    if w.spacing == Some(SpacingSpec::Energy)
+        && let Some((peak, lag)) = riser::loads::waves::autocorrelation_peak(sea.components(), 60.0, duration)
+    {
+        outln!(
+            "  energy bins: no repeat period; the elevation's autocorrelation envelope from 60 s to {duration} s at \
+             most {peak:.3} (lag {lag:.1} s)"
+        );
+    }
     for p in written {
         outln!("  wrote {}", p.display());
     }
 }
 
-fn to_json(scene: &Scene, w: &WavesSpec, sea: &Sea, warnings: &[String], written: &[PathBuf]) -> serde_json::Value {
+fn to_json(
+    scene: &Scene,
+    w: &WavesSpec,
+    sea: &Sea,
+    warnings: &[String],
+    written: &[PathBuf],
+    duration: f64,
+) -> serde_json::Value {
+    let peak = riser::loads::waves::autocorrelation_peak(sea.components(), 60.0, duration);
     let s = sea.settings();
     let k = sea.wave_numbers();
     let comps: Vec<serde_json::Value> = sea
@@ -333,6 +364,8 @@ fn to_json(scene: &Scene, w: &WavesSpec, sea: &Sea, warnings: &[String], written
         "tz": sea.zero_crossing_period(),
         "m0": sea.m0(),
         "repeat_period": repeat_period(w, sea),
+        "spacing": w.spacing.unwrap_or_default().name(),
+        "autocorrelation_peak": peak.map(|(value, lag)| serde_json::json!({"value": value, "lag": lag, "from": 60.0, "to": duration})),
         "warnings": warnings,
         "files": written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
     })

@@ -372,6 +372,10 @@ pub fn components_of(w: &WavesSpec) -> Result<Vec<Component>, SeaError> {
                 components: w.components_or_default(),
                 seed: w.seed.unwrap_or(0),
                 random_amplitudes: w.random_amplitudes.unwrap_or(false),
+                spacing: match w.spacing.unwrap_or_default() {
+                    spec::SpacingSpec::Frequency => spectra::Spacing::Frequency,
+                    spec::SpacingSpec::Energy => spectra::Spacing::Energy,
+                },
             };
             spectra::realise(&spectrum, &d, deg(w.direction))
         }
@@ -462,6 +466,41 @@ pub fn repeat_period(components: &[Component]) -> Option<f64> {
     let df = (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64;
     let uniform = f.windows(2).all(|w| ((w[1] - w[0]) - df).abs() <= 1e-6 * df);
     (uniform && df > 0.0).then_some(1.0 / df)
+}
+
+/// The largest envelope of the elevation's autocorrelation at lags in
+/// [`from`, `to`] s (13.11c): |Σ aᵢ² e^{2πi fᵢ τ}| / Σ aᵢ², an upper bound of
+/// |ρ(τ)| at a fixed point, whatever the directions; sampled every
+/// 1/(8 (f_max − f_min)) of the components' range (the envelope varies on
+/// the scale of 1/(f_max − f_min)). 1 at a repeat period; None for fewer
+/// than two frequencies or an empty range. Returns (value, lag s).
+pub fn autocorrelation_peak(components: &[Component], from: f64, to: f64) -> Option<(f64, f64)> {
+    let (lo, hi) = components
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c.frequency), hi.max(c.frequency)));
+    if !(hi > lo && to > from && from >= 0.0) {
+        return None;
+    }
+    let dt = 1.0 / (8.0 * (hi - lo));
+    let centre = 0.5 * (lo + hi);
+    let weights: Vec<f64> = components.iter().map(|c| c.amplitude * c.amplitude).collect();
+    let total: f64 = weights.iter().sum();
+    let samples = ((to - from) / dt).ceil() as usize;
+    let mut best = (0.0, from);
+    for k in 0..=samples {
+        let tau = (from + k as f64 * dt).min(to);
+        let (mut re, mut im) = (0.0, 0.0);
+        for (c, w) in components.iter().zip(&weights) {
+            let (s, co) = (2.0 * PI * (c.frequency - centre) * tau).sin_cos();
+            re += w * co;
+            im += w * s;
+        }
+        let v = re.hypot(im) / total;
+        if v > best.0 {
+            best = (v, tau);
+        }
+    }
+    Some(best)
 }
 
 /// A warning when a run of `duration` s is longer than its sea's repeat

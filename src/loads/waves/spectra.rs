@@ -124,6 +124,25 @@ impl SplitMix64 {
     }
 }
 
+/// How a spectrum's band is cut into bins (docs/theory.md §13.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Spacing {
+    /// Equal bins, one component at each centre (13.11): the record
+    /// repeats itself after 1/Δf.
+    #[default]
+    Frequency,
+    /// Bins of equal shares of (13.11a), [`FREQUENCY_SHARE`] of the measure
+    /// the band's width and the rest its energy, one component at a random
+    /// frequency inside each (13.11b): no two components keep a common
+    /// period, the record does not repeat itself.
+    Energy,
+}
+
+/// The share of the band's width in the measure that `Spacing::Energy`
+/// cuts into equal bins (13.11a): no bin is wider than 1/`FREQUENCY_SHARE`
+/// times the equal bins' width, so the spectrum's tails keep components.
+pub const FREQUENCY_SHARE: f64 = 0.25;
+
 /// How a spectrum is cut into components.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Discretisation {
@@ -137,6 +156,61 @@ pub struct Discretisation {
     /// Rayleigh-distributed amplitudes aᵢ √(−ln Uᵢ) instead of the
     /// deterministic aᵢ (same mean square).
     pub random_amplitudes: bool,
+    /// How the band is cut into bins.
+    pub spacing: Spacing,
+}
+
+/// The edges of the `d.components` bins over [f_min, f_max], Hz, and each
+/// bin's energy ∫ S df, m² (`Spacing::Frequency`: S at the bin's centre
+/// times its width, the midpoint rule of (13.11)).
+pub fn bins(spectrum: &Spectrum, d: &Discretisation) -> (Vec<f64>, Vec<f64>) {
+    let n = d.components.max(1);
+    match d.spacing {
+        Spacing::Frequency => {
+            let df = (d.f_max - d.f_min) / n as f64;
+            let edges: Vec<f64> = (0..=n).map(|i| d.f_min + i as f64 * df).collect();
+            let f: Vec<f64> = (0..n).map(|i| d.f_min + (i as f64 + 0.5) * df).collect();
+            (edges, spectrum.densities(&f).into_iter().map(|s| s * df).collect())
+        }
+        Spacing::Energy => energy_bins(spectrum, d.f_min, d.f_max, n),
+    }
+}
+
+/// (13.11a): the band's cumulative energy E(f) by the trapezoidal rule on
+/// max(256 n, 20000) equal cells (within 1e-7 of m₀ for JONSWAP's peak at
+/// γ ≤ 7), the measure G(f) = (1 − w) E(f)/E(f_max) + w (f − f_min)/(f_max −
+/// f_min) with w = [`FREQUENCY_SHARE`], strictly increasing; edge j where
+/// G = j/n and its energy, both linear in the cell: the bins' energies sum
+/// to E(f_max) to round-off.
+fn energy_bins(spectrum: &Spectrum, f_min: f64, f_max: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let cells = (256 * n).max(20_000);
+    let width = f_max - f_min;
+    let f: Vec<f64> = (0..=cells).map(|k| f_min + width * k as f64 / cells as f64).collect();
+    let s = spectrum.densities(&f);
+    let mut e = vec![0.0; cells + 1];
+    for k in 0..cells {
+        e[k + 1] = e[k] + 0.5 * (s[k] + s[k + 1]) * (f[k + 1] - f[k]);
+    }
+    let total = e[cells];
+    let w = FREQUENCY_SHARE;
+    let g = |k: usize| (1.0 - w) * e[k] / total + w * k as f64 / cells as f64;
+    let mut edges = vec![f_min];
+    let mut energy_at = vec![0.0];
+    let mut k = 0;
+    for j in 1..n {
+        let target = j as f64 / n as f64;
+        while k + 1 < cells && g(k + 1) <= target {
+            k += 1;
+        }
+        let (g0, g1) = (g(k), g(k + 1));
+        let r = ((target - g0) / (g1 - g0)).clamp(0.0, 1.0);
+        edges.push(f[k] + r * (f[k + 1] - f[k]));
+        energy_at.push(e[k] + r * (e[k + 1] - e[k]));
+    }
+    edges.push(f_max);
+    energy_at.push(total);
+    let energies = energy_at.windows(2).map(|p| p[1] - p[0]).collect();
+    (edges, energies)
 }
 
 /// The components of `spectrum` travelling towards `direction` (rad):
@@ -144,20 +218,45 @@ pub struct Discretisation {
 /// √(2 S(fᵢ) Δf), phase 2π Uᵢ with Uᵢ the i-th draw of SplitMix64(seed);
 /// with random amplitudes the next `components` draws Vᵢ scale them by
 /// √(−ln Vᵢ) (so the phases do not depend on that choice).
+///
+/// `Spacing::Energy` (13.11b): the bins of (13.11a), aᵢ = √(2 Eᵢ) from each
+/// bin's energy Eᵢ, and fᵢ = f_lo + Wᵢ (f_hi − f_lo) with Wᵢ the draws after
+/// the phases' (and the amplitudes'): the same phases as equal bins.
 pub fn realise(spectrum: &Spectrum, d: &Discretisation, direction: f64) -> Vec<Component> {
     let n = d.components.max(1);
-    let df = (d.f_max - d.f_min) / n as f64;
-    let f: Vec<f64> = (0..n).map(|i| d.f_min + (i as f64 + 0.5) * df).collect();
-    let s = spectrum.densities(&f);
     let mut rng = SplitMix64::new(d.seed);
     let phases: Vec<f64> = (0..n).map(|_| 2.0 * PI * rng.next_f64()).collect();
+    let (f, twice_energies) = match d.spacing {
+        Spacing::Frequency => {
+            let df = (d.f_max - d.f_min) / n as f64;
+            let f: Vec<f64> = (0..n).map(|i| d.f_min + (i as f64 + 0.5) * df).collect();
+            let s = spectrum.densities(&f);
+            // 2 S(fᵢ) Δf (13.11), in this order
+            (f, s.iter().map(|s| 2.0 * s * df).collect::<Vec<f64>>())
+        }
+        Spacing::Energy => {
+            let (edges, energies) = energy_bins(spectrum, d.f_min, d.f_max, n);
+            (edges[..n].to_vec(), energies.iter().map(|e| 2.0 * e).collect())
+        }
+    };
+    let scales: Vec<f64> =
+        (0..n).map(|_| if d.random_amplitudes { (-rng.next_open().ln()).sqrt() } else { 1.0 }).collect();
+    let frequencies: Vec<f64> = match d.spacing {
+        Spacing::Frequency => f,
+        // (13.11b): f holds the bins' lower edges
+        Spacing::Energy => {
+            let mut hi = f[1..].to_vec();
+            hi.push(d.f_max);
+            f.iter().zip(&hi).map(|(lo, hi)| lo + rng.next_f64() * (hi - lo)).collect()
+        }
+    };
     (0..n)
         .map(|i| {
-            let mut amplitude = (2.0 * s[i] * df).sqrt();
+            let mut amplitude = twice_energies[i].sqrt();
             if d.random_amplitudes {
-                amplitude *= (-rng.next_open().ln()).sqrt();
+                amplitude *= scales[i];
             }
-            Component { frequency: f[i], amplitude, phase: phases[i], direction }
+            Component { frequency: frequencies[i], amplitude, phase: phases[i], direction }
         })
         .collect()
 }
@@ -180,6 +279,69 @@ mod tests {
             let v = r.next_open();
             assert!(v > 0.0 && v <= 1.0);
         }
+    }
+
+    #[test]
+    fn energy_bins_hold_equal_shares_the_band_s_energy_and_the_same_phases() {
+        let spectrum = Spectrum::Jonswap { hs: 4.0, tp: 10.0, gamma: 3.3 };
+        let (f_min, f_max) = (0.05, 0.4);
+        // the band's energy by Simpson on either side of the peak (not the
+        // trapezoid of (13.11a))
+        let simpson_of = |a: f64, b: f64| {
+            let n = 20_000;
+            let f: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+            let s = spectrum.densities(&f);
+            let w = |i: usize| if i == 0 || i == n { 1.0 } else { [2.0, 4.0][i % 2] };
+            (0..=n).map(|i| w(i) * s[i]).sum::<f64>() * (b - a) / n as f64 / 3.0
+        };
+        let band = simpson_of(f_min, 0.1) + simpson_of(0.1, f_max);
+        for n in [7, 100, 800] {
+            let d = Discretisation {
+                f_min,
+                f_max,
+                components: n,
+                seed: 3,
+                random_amplitudes: false,
+                spacing: Spacing::Energy,
+            };
+            let (edges, energy) = bins(&spectrum, &d);
+            assert_eq!((edges.len(), energy.len()), (n + 1, n));
+            let total: f64 = energy.iter().sum();
+            assert!((total / band - 1.0).abs() < 1e-7, "{n}: {total} against {band}");
+            // (13.11a): every bin one n-th of the measure, none wider than
+            // 1/w equal bins
+            let w = FREQUENCY_SHARE;
+            for j in 0..n {
+                let width = edges[j + 1] - edges[j];
+                let share = (1.0 - w) * energy[j] / total + w * width / (f_max - f_min);
+                assert!((share * n as f64 - 1.0).abs() < 1e-6, "{n}, bin {j}: share {share}");
+                assert!(width > 0.0 && width <= (f_max - f_min) / (w * n as f64) * (1.0 + 1e-9));
+            }
+            // (13.11b): one component in each bin, a = √(2E), the phases of
+            // equal bins of the same seed
+            let c = realise(&spectrum, &d, 0.3);
+            let equal = realise(&spectrum, &Discretisation { spacing: Spacing::Frequency, ..d }, 0.3);
+            for j in 0..n {
+                assert!(c[j].frequency >= edges[j] && c[j].frequency < edges[j + 1]);
+                assert_eq!(c[j].amplitude, (2.0 * energy[j]).sqrt());
+                assert_eq!((c[j].phase, c[j].direction), (equal[j].phase, 0.3));
+            }
+            // Rayleigh amplitudes: the same phases and frequencies
+            let r = realise(&spectrum, &Discretisation { random_amplitudes: true, ..d }, 0.3);
+            assert!(r.iter().zip(&c).all(|(r, c)| r.phase == c.phase && r.frequency != 0.0));
+        }
+        // the peak's bins are the narrowest: more components where the energy is
+        let d = Discretisation {
+            f_min,
+            f_max,
+            components: 200,
+            seed: 0,
+            random_amplitudes: false,
+            spacing: Spacing::Energy,
+        };
+        let (edges, _) = bins(&spectrum, &d);
+        let at_peak = edges.windows(2).filter(|e| e[1] > 0.085 && e[0] < 0.115).count();
+        assert!(at_peak > 3 * 200 * 30 / 350, "{at_peak} bins within 15 % of the peak");
     }
 
     #[test]
