@@ -1062,6 +1062,8 @@ impl Instance {
             && self.free.is_none()
             && self.history.mass.iter().chain(&self.history.inertia).any(|&m| m > 0.0);
         let from = if implicit { self.held_base.unwrap_or(sim.state.hang_off) } else { sim.state.hang_off };
+        // (7.10a) where the vessel's answer is taken between the points only (a system of lines)
+        self.history.end_value_rates = !implicit;
         // planned from a line hung from the vessel (a system's first line may hang from a free point,
         // its hang-off the point's, §17.8)
         let on = self.free.as_ref().and_then(|f| (0..f.ends.len()).find(|&i| f.ends[i].on_vessel())).unwrap_or(0);
