@@ -55,7 +55,7 @@ use crate::scene::{AccuracyQuantity, Scene};
 /// 0.65–1.64 of the measured error on the cases of tests/it/error_estimate.rs.
 pub const SAFETY: f64 = 1.5;
 /// Rounds of pilots at most (the first at the scene's numerics).
-pub const MAX_ROUNDS: usize = 3;
+pub const MAX_ROUNDS: usize = 4;
 /// The most elements a choice takes (the scene's range).
 pub const MAX_ELEMENTS: usize = 2000;
 /// The shortest step a choice takes, s (the scene's range).
