@@ -10,7 +10,9 @@
 //!
 //! e_h = q(n₀, Δt₀/4) − q*_h and e_t = q(n₀, Δt₀) − q*_t the base level's
 //! errors of each axis (16.16), p_h, p_t the observed orders (16.13); the
-//! bound of the two (they may cancel; the bound does not count on it). The
+//! bound of the two (they may cancel; the bound does not count on it), and
+//! where their signs differ the larger of them (16.23, docs/theory.md
+//! §16.16: their sum is no larger). The
 //! choice is the cheapest (n, Δt) by the cost n/Δt (the work of a run: an
 //! element-step is the unit, Newton's iterations a step about alike) with
 //!
