@@ -10,7 +10,9 @@
 //!
 //! e_h = q(n₀, Δt₀/4) − q*_h and e_t = q(n₀, Δt₀) − q*_t the base level's
 //! errors of each axis (16.16), p_h, p_t the observed orders (16.13); the
-//! bound of the two (they may cancel; the bound does not count on it). The
+//! bound of the two (they may cancel; the bound does not count on it), and
+//! where their signs differ the larger of them (16.23, docs/theory.md
+//! §16.16: their sum is no larger). The
 //! choice is the cheapest (n, Δt) by the cost n/Δt (the work of a run: an
 //! element-step is the unit, Newton's iterations a step about alike) with
 //!
@@ -54,8 +56,12 @@ use crate::scene::{AccuracyQuantity, Scene};
 /// The safety factor S of (16.18): the estimate of the pilots is within
 /// 0.65–1.64 of the measured error on the cases of tests/it/error_estimate.rs.
 pub const SAFETY: f64 = 1.5;
-/// Rounds of pilots at most (the first at the scene's numerics).
-pub const MAX_ROUNDS: usize = 3;
+/// Rounds of pilots at most (the first about a candidate a quarter of the
+/// scene's numerics): four since docs/theory.md §16.16, so that a tight
+/// target climbs from the coarser first candidate as far as three rounds
+/// reached from the finer one (the two chains at 1e-3: level 8, 16, 32,
+/// 64 at 0.2 to 0.025 s).
+pub const MAX_ROUNDS: usize = 4;
 /// The most elements a choice takes (the scene's range).
 pub const MAX_ELEMENTS: usize = 2000;
 /// The shortest step a choice takes, s (the scene's range).
@@ -68,9 +74,11 @@ pub const MIN_STEP: f64 = 1e-4;
 /// `--estimate-error`'s).
 pub const MAX_ROUND_WORK: f64 = 2.5e7;
 /// The first round's candidate is this much coarser than the scene's
-/// numerics on each axis (half the elements, twice the step): the scene's
-/// defaults are finer than most targets need (docs/theory.md §16.13).
-pub const FIRST_CANDIDATE_COARSENING: usize = 2;
+/// numerics on each axis (a quarter of the elements, four times the step;
+/// twice until docs/theory.md §16.16): the scene's defaults are finer than
+/// most targets need, and the rounds after it go finer where it does not
+/// meet the target (docs/theory.md §16.13, §16.16).
+pub const FIRST_CANDIDATE_COARSENING: usize = 4;
 /// The fewest elements a round's base takes (fewer where the candidate has
 /// fewer than four times as many).
 pub const MIN_BASE_ELEMENTS: usize = 2;
@@ -179,7 +187,7 @@ pub const FLOOR_FRACTION: f64 = 0.1;
 pub enum Axis {
     /// |E(x)| = e₀ (x/x₀)^p, x the element length (n₀/n) or the step
     /// (Δt/Δt₀), p observed (a monotone triplet).
-    Power { e0: f64, order: f64 },
+    Power { e0: f64, order: f64, sign: f64 },
     /// The three pilots agree within [`FLOOR_FRACTION`] of the allowed
     /// error, whatever their pattern: the error at the base level and finer
     /// is their spread, max |qᵢ − qⱼ|. A coarser level is proposed as
@@ -206,7 +214,9 @@ impl Axis {
         let [q1, q2, q3] = t.values;
         let spread = (q1 - q2).abs().max((q1 - q3).abs()).max((q2 - q3).abs());
         match t.class {
-            Convergence::Monotone => Axis::Power { e0: t.error.abs(), order: t.order.unwrap_or(f64::NAN) },
+            Convergence::Monotone => {
+                Axis::Power { e0: t.error.abs(), order: t.order.unwrap_or(f64::NAN), sign: t.error.signum() }
+            }
             _ if spread <= FLOOR_FRACTION * allowed => Axis::Floor { spread },
             Convergence::Converged => Axis::Unconverged { error: 0.0, from: 0.5 },
             _ => Axis::Unconverged { error: (q2 - q3).abs(), from: 0.25 },
@@ -218,7 +228,7 @@ impl Axis {
     pub fn error_at(&self, ratio: f64) -> Option<f64> {
         const EPS: f64 = 1e-9;
         match *self {
-            Axis::Power { e0, order } => Some(e0 * ratio.powf(order)),
+            Axis::Power { e0, order, .. } => Some(e0 * ratio.powf(order)),
             Axis::Floor { spread } if ratio <= 1.0 + EPS => Some(spread),
             Axis::Floor { spread } => (ratio <= 2.0 + EPS).then_some(spread * ratio * ratio),
             Axis::Unconverged { error, from } => (ratio <= from + EPS).then_some(error),
@@ -230,6 +240,16 @@ impl Axis {
     /// fourth level's change not smaller than the change before it.
     pub fn unconverged(&self) -> bool {
         matches!(self, Axis::Unconverged { .. } | Axis::Fourth { converges: false, .. })
+    }
+
+    /// The sign of the axis' error q − q* at the levels it models: ±1,
+    /// or 0 where it is not known (at the floor; not converged).
+    pub fn sign(&self) -> f64 {
+        match *self {
+            Axis::Power { sign, .. } => sign,
+            Axis::Fourth { converges: true, values, .. } if values[2] != values[3] => (values[2] - values[3]).signum(),
+            _ => 0.0,
+        }
     }
 
     /// The observed order (None: not monotone, or at the floor).
@@ -296,9 +316,18 @@ pub struct QuantityModel {
 }
 
 impl QuantityModel {
-    /// E(n, Δt) of (16.17) about the round's base (n₀, Δt₀).
+    /// E(n, Δt) of (16.17) about the round's base (n₀, Δt₀); where the two
+    /// axes' errors have opposite signs, the larger of them (16.23): their
+    /// sum is no larger, and a bound that adds them counts the cancellation
+    /// as error (the steel catenary's minimum, +18.6 and −12.4 N estimated,
+    /// 31 N added against an error of 1.9 N).
     pub fn error(&self, base: (usize, f64), n: usize, dt: f64) -> Option<f64> {
-        Some(self.mesh.error_at(base.0 as f64 / n as f64)? + self.step.error_at(dt / base.1)?)
+        let (h, t) = (self.mesh.error_at(base.0 as f64 / n as f64)?, self.step.error_at(dt / base.1)?);
+        // errors of opposite signs (16.23): their sum is no larger than the larger of them
+        if self.mesh.sign() * self.step.sign() < 0.0 {
+            return Some(h.max(t));
+        }
+        Some(h + t)
     }
 }
 
@@ -530,16 +559,27 @@ fn in_span(base: (usize, f64), n: usize, dt: f64) -> (bool, bool) {
 /// fourth level where it matters (`ambiguous`).
 pub const SLOW_ORDER: f64 = 1.0;
 
+/// A step triplet's observed order above this, where generalized-α is
+/// second order, is not taken as the asymptotic range either: its coarse
+/// level's error is of what the finer steps have resolved (the catenary at
+/// 16 elements, 0.8, 0.4, 0.2 s: order 3.9, Richardson's error at 0.2 s
+/// 2 N where it is 15 N; docs/theory.md §16.16). A fourth level checks it.
+pub const FAST_STEP_ORDER: f64 = 3.0;
+
 /// Whether an axis' error at a round's candidate (a quarter of the base)
 /// is ambiguous, so that a fourth level beyond the candidate decides it
 /// (16.22): not monotone above the floor ([`Axis::Unconverged`] with a
-/// change), or monotone with an observed order below [`SLOW_ORDER`] and an
+/// change), or monotone with an observed order below [`SLOW_ORDER`] (on
+/// the step axis, `step`, or above [`FAST_STEP_ORDER`]) and an
 /// extrapolated error at the candidate above the floor ([`FLOOR_FRACTION`]
 /// of `allowed`).
-fn ambiguous(axis: &Axis, allowed: f64) -> bool {
+fn ambiguous(axis: &Axis, allowed: f64, step: bool) -> bool {
     match *axis {
         Axis::Unconverged { error, .. } => error > 0.0,
-        Axis::Power { e0, order } => order < SLOW_ORDER && e0 * 0.25f64.powf(order) > FLOOR_FRACTION * allowed,
+        Axis::Power { e0, order, .. } => {
+            (order < SLOW_ORDER || (step && order > FAST_STEP_ORDER))
+                && e0 * 0.25f64.powf(order) > FLOOR_FRACTION * allowed
+        }
         _ => false,
     }
 }
@@ -549,7 +589,13 @@ fn ambiguous(axis: &Axis, allowed: f64) -> bool {
 /// converge monotonically above the floor ([`Axis::Unconverged`]): the
 /// mesh (2n_c, Δt_c), the step (n_c, Δt_c/2), run (or taken from `known`)
 /// and added to the round's pilots; those axes' models become
-/// [`Axis::Fourth`] (16.22). Returns what it could not run.
+/// [`Axis::Fourth`] (16.22). A fourth level run for one quantity checks
+/// every other's monotone triplet on its axis: where it contradicts it
+/// (the change out of the candidate not smaller than the change into it,
+/// or of the other sign) that axis is [`Axis::Fourth`] too (the cable's
+/// minimum tension at 0.2, 0.1, 0.05 s was monotone of order 2.2 and
+/// 0.025 s moved it four times the last change: docs/theory.md §16.16).
+/// Returns what it could not run.
 fn fourth_levels(
     problem: &Problem,
     round: &mut ErrorEstimate,
@@ -559,13 +605,14 @@ fn fourth_levels(
     threads: usize,
     known: &[Pilot],
 ) -> Vec<String> {
-    let needs =
-        |axis: fn(&QuantityModel) -> Axis| models.iter().any(|m| ambiguous(&axis(m), target * m.scale / SAFETY));
+    let needs = |axis: fn(&QuantityModel) -> Axis, step: bool| {
+        models.iter().any(|m| ambiguous(&axis(m), target * m.scale / SAFETY, step))
+    };
     let mut levels = Vec::new();
-    if needs(|m| m.mesh) && 2 * n <= MAX_ELEMENTS && (problem.fits)(2 * n) {
+    if needs(|m| m.mesh, false) && 2 * n <= MAX_ELEMENTS && (problem.fits)(2 * n) {
         levels.push((2 * n, dt));
     }
-    if needs(|m| m.step) && dt / 2.0 >= MIN_STEP {
+    if needs(|m| m.step, true) && dt / 2.0 >= MIN_STEP {
         levels.push((n, dt / 2.0));
     }
     if levels.is_empty() {
@@ -606,7 +653,9 @@ fn fourth_levels(
         let mesh = ne != n;
         for m in models.iter_mut() {
             let axis = if mesh { &mut m.mesh } else { &mut m.step };
-            if !ambiguous(axis, target * m.scale / SAFETY) {
+            let is_ambiguous = ambiguous(axis, target * m.scale / SAFETY, !mesh);
+            let checked = matches!(axis, Axis::Power { .. });
+            if !is_ambiguous && !checked {
                 continue;
             }
             let (Some(slot), Some(e)) = (round.quantities.iter().position(|q| *q == m.quantity), round.of(m.quantity))
@@ -615,8 +664,18 @@ fn fourth_levels(
             };
             let [qa, qb, qc] = if mesh { e.mesh.values } else { e.step.values };
             let qd = pilot.values[slot];
-            if qd.is_finite() {
-                *axis = fourth_level([qa, qb, qc, qd]);
+            if !qd.is_finite() {
+                continue;
+            }
+            let fourth = fourth_level([qa, qb, qc, qd]);
+            // a monotone triplet the fourth level (run for another quantity) contradicts: the
+            // change out of the candidate not smaller than the change into it, or of the other sign
+            let contradicts = match fourth {
+                Axis::Fourth { converges, ratio, .. } => !converges || ratio.is_some_and(|r| r < 0.0),
+                _ => false,
+            };
+            if is_ambiguous || contradicts {
+                *axis = fourth;
             }
         }
         round.pilots.push(pilot);

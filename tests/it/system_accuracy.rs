@@ -178,6 +178,7 @@ fn long_accuracy_on_a_system_at_1e_3() {
     let target = 1e-3;
     assert!(change < target / 10.0, "the reference moves {change:.3e} ({worst})");
     let Case { choice: c, measured, worst } = case(&toml, target, reference, &r);
+    eprintln!("{}; notes: {:?}", c.describe(), c.notes);
     assert!(measured <= target, "measured {measured:.3e} on {worst}");
     assert!(c.met() && c.warning().is_none(), "{}", c.describe());
     eprintln!("the pilots' work: {:.2} % of a 3-hour run", 100.0 * pilots_share_of_3_hours(&system(&toml, 0.0), &c));

@@ -341,6 +341,11 @@ def pilots_reference(binary, path, rows, case, choices, run_new=True):
     n, dt = finest_pilot(choices)
     if ref is not None and finer_than(ref, min(2 * n, MAX_ELEMENTS), dt / 2):
         return ref
+    # a reference stored before that is fine enough (an earlier choice's pilots went finer): the finest
+    stored = [r for r in rows if r["case"] == case and r["kind"] in ("reference", "reference_pilots")
+              and r["completed"] == "True" and finer_than(r, min(2 * n, MAX_ELEMENTS), dt / 2)]
+    if stored:
+        return max(stored, key=lambda r: int(r["n_elements"]) / float(r["time_step"]))
     n_ref, dt_ref = min(2 * n, MAX_ELEMENTS), dt / 2
     if ref is not None:
         n_ref, dt_ref = max(n_ref, int(ref["n_elements"])), min(float(ref["time_step"]), dt_ref)
