@@ -181,6 +181,72 @@ impl Engine {
         with_integrator!(self, i => i.fixed_unknowns())
     }
 
+    /// Where the two end nodes' positions [hang-off x, y, z, anchor x, y, z]
+    /// are among the step's prescribed unknowns (sorted: the order of
+    /// [`Integrator::condensed_fixed_tangent`]'s rows); None if an end's
+    /// position is not prescribed.
+    pub fn end_position_unknowns(&self) -> Option<[usize; 6]> {
+        let (h, a) = match self {
+            Engine::Rod(i) => (crate::model::rod::Rod::x_dof(0), crate::model::rod::Rod::x_dof(i.model.rod.n_el)),
+            Engine::Cable(i) => (0, crate::model::cable::NODE_DOF * i.model.cable.n_el),
+        };
+        let fixed = with_integrator!(self, i => &i.lin.fixed);
+        let mut at = [0; 6];
+        for (k, dof) in (h..h + 3).chain(a..a + 3).enumerate() {
+            at[k] = fixed.iter().position(|&f| f == dof)?;
+        }
+        Some(at)
+    }
+
+    /// The frames the step's tangent takes the end nodes' positions in at
+    /// `cfg` (the rod's corotated tangent: its end nodes' director frames,
+    /// §5.7), None where spatial (the cable's).
+    pub fn end_frames(&self, cfg: &crate::model::RodConfig) -> [Option<crate::math::M3>; 2] {
+        match self {
+            Engine::Rod(i) if i.options.corotated_tangent => {
+                [Some(cfg.d[0]), Some(cfg.d[2 * i.model.rod.n_el])]
+            }
+            _ => [None, None],
+        }
+    }
+
+    /// The step's tangent condensed on its two ends' positions (17.15), 6×6
+    /// row-major [hang-off; anchor] into `s6`, global (N/m): the tangent
+    /// condensed on all its prescribed unknowns into `scratch`
+    /// ([`Integrator::condensed_fixed_tangent_into`], its size the fixed
+    /// unknowns' number squared), its rows and columns `at`
+    /// ([`Engine::end_position_unknowns`]) taken, and the rod's turned from
+    /// its end nodes' director frames, S = D_a S_loc D_bᵀ a block (§5.7).
+    /// Allocates nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn condensed_end_tangent_into(
+        &mut self,
+        prev: &State,
+        cfg: &crate::model::RodConfig,
+        h: f64,
+        target: HangOff,
+        at: &[usize; 6],
+        scratch: &mut [f64],
+        s6: &mut [f64; 36],
+    ) -> Result<(), crate::math::band::LinearSolveError> {
+        self.condensed_fixed_tangent_into(prev, cfg, h, target, scratch)?;
+        let m = self.fixed_unknowns();
+        let frames = self.end_frames(cfg);
+        for (ea, fa) in frames.iter().enumerate() {
+            for (eb, fb) in frames.iter().enumerate() {
+                let local = crate::math::M3::from_fn(|r, c| scratch[at[3 * ea + r] * m + at[3 * eb + c]]);
+                let block = match (fa, fb) {
+                    (Some(fa), Some(fb)) => fa * local * fb.transpose(),
+                    _ => local,
+                };
+                for (r, c) in (0..3).flat_map(|r| (0..3).map(move |c| (r, c))) {
+                    s6[(3 * ea + r) * 6 + 3 * eb + c] = block[(r, c)];
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// See [`Integrator::condensed_fixed_tangent_into`].
     pub fn condensed_fixed_tangent_into(
         &mut self,
@@ -193,15 +259,12 @@ impl Engine {
         with_integrator!(self, i => i.condensed_fixed_tangent_into(prev, cfg, h, target, s))
     }
 
-    /// Moves the cable's anchor end to `m` over the next step (None: held);
-    /// false for the rod, whose anchor cannot move.
-    pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) -> bool {
+    /// Moves the line's anchor end to `m` over the next step (None: held),
+    /// pinned (a rod's twist held there as at a fixed anchor: §17.7).
+    pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) {
         match self {
-            Engine::Cable(i) => {
-                i.model.anchor_motion = m;
-                true
-            }
-            Engine::Rod(_) => false,
+            Engine::Cable(i) => i.model.anchor_motion = m,
+            Engine::Rod(i) => i.model.anchor_motion = m,
         }
     }
 

@@ -86,12 +86,18 @@ pub type VesselPath<'a> = dyn Fn(&Vessel, f64) -> HangOff + Sync + 'a;
 /// once: the line's state at the step's start and at its end, the
 /// reactions of its supports on it at its hang-off and its anchor (the end
 /// rows of its midpoint equations, N, in the end state), and its step
-/// tangent condensed on its two ends (6×6 row-major: [hang-off; anchor], N/m).
+/// tangent condensed on its two ends' positions (6×6 row-major: [hang-off;
+/// anchor], N/m, global), from its step tangent condensed on all its
+/// prescribed unknowns (`fixed`, a rod's anchor twist among them, in the
+/// basis its tangent is assembled in), whose rows and columns `at` are its
+/// ends' positions.
 pub struct TrialSlot {
     ends: LineEnds,
     start: State,
     state: State,
     condensed: [f64; 36],
+    fixed: Vec<f64>,
+    at: [usize; 6],
     result: Result<(), RiserError>,
 }
 
@@ -123,16 +129,14 @@ impl TrialSlot {
             EndAt::Free(k) => Some(AnchorMotion { position: x1[k] - origin, velocity: v1[k] }),
             _ => None,
         };
-        if !sim.integrator.set_anchor_motion(anchor) && anchor.is_some() {
-            return Err(RiserError::Unsupported("a rod's anchor at a free point".to_string()));
-        }
+        sim.integrator.set_anchor_motion(anchor);
         let free_hang_off = matches!(self.ends.hang_off_at, EndAt::Free(_));
         let target = |s: f64| if free_hang_off { hang_off } else { vessel_path(&vessel, s) };
         self.state.clone_from(prev);
         sim.integrator.step(&mut self.state, h, &target)?;
         self.state.time = t;
         sim.integrator
-            .condensed_fixed_tangent_into(prev, &self.state.config, h, hang_off, &mut self.condensed)
+            .condensed_end_tangent_into(prev, &self.state.config, h, hang_off, &self.at, &mut self.fixed, &mut self.condensed)
             .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
         Ok(())
     }
@@ -568,31 +572,6 @@ pub struct FreePoints {
     pub trial_iterations: u64,
 }
 
-/// Why a system cannot be run in this version, or None: a rod line at a
-/// free point (its anchor end cannot move).
-pub fn unsupported(sys: &SystemScene) -> Option<String> {
-    let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
-    if free.is_empty() {
-        return None;
-    }
-    let rods: Vec<&str> = sys
-        .lines
-        .iter()
-        .filter(|l| {
-            let at_free = [&l.from, &l.to].iter().any(|p| sys.point(p).is_some_and(|p| p.kind == PointKind::Free));
-            at_free && sys.line_type(&l.line_type).is_some_and(|t| t.model == Model::Rod)
-        })
-        .map(|l| l.name.as_str())
-        .collect();
-    (!rods.is_empty()).then(|| {
-        format!(
-            "line(s) {} at a free point are rods: a rod's end at a free point is not yet in the dynamics (give \
-             its line type model = \"cable\"; docs/guide/systems.md)",
-            rods.join(", ")
-        )
-    })
-}
-
 /// Each line of `sys` set up for a dynamic run ([`SystemRun::new`]): its
 /// single-line run from its statics at the neutral pose (the lines' statics
 /// as `riser statics SYSTEM` solves them, §17.1); with free points, the
@@ -610,9 +589,6 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
 /// the vessel: its state from the pose's statics translated into that
 /// frame, its hang-off then where the vessel's start puts it).
 pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, FreePoints), String> {
-    if let Some(m) = unsupported(sys) {
-        return Err(m);
-    }
     let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
     let statics = if free.is_empty() { None } else { Some(solve_system(sys, pose, false)?) };
     let at = |p: &PointSpec| match p.kind {
@@ -690,8 +666,8 @@ pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, Fre
         points.push(point);
     }
     let ends = lines.iter().map(|l| l.ends).collect();
-    let states: Vec<&State> = lines.iter().map(|l| &l.sim.state).collect();
-    let free = FreePoints::new(points, ends, &states);
+    let sims: Vec<&Simulation> = lines.iter().map(|l| &l.sim).collect();
+    let free = FreePoints::new(points, ends, &sims);
     Ok((lines, free))
 }
 
@@ -916,20 +892,25 @@ impl FreePoints {
     }
 
     /// The points `points` of a system whose lines' ends are `ends` and
-    /// states `states` (in its order): each line with a free end a trial
-    /// slot sized on its state.
-    pub fn new(points: Vec<FreePointRun>, ends: Vec<LineEnds>, states: &[&State]) -> Self {
+    /// runs `sims` (in its order): each line with a free end a trial slot
+    /// sized on its state and its prescribed unknowns.
+    pub fn new(points: Vec<FreePointRun>, ends: Vec<LineEnds>, sims: &[&Simulation]) -> Self {
         let np = points.len();
         let slots = ends
             .iter()
-            .zip(states)
-            .map(|(e, s)| {
-                e.coupled().then(|| TrialSlot {
-                    ends: *e,
-                    start: (*s).clone(),
-                    state: (*s).clone(),
-                    condensed: [0.0; 36],
-                    result: Ok(()),
+            .zip(sims)
+            .map(|(e, sim)| {
+                e.coupled().then(|| {
+                    let m = sim.integrator.fixed_unknowns();
+                    TrialSlot {
+                        ends: *e,
+                        start: sim.state.clone(),
+                        state: sim.state.clone(),
+                        condensed: [0.0; 36],
+                        fixed: vec![0.0; m * m],
+                        at: sim.integrator.end_position_unknowns().expect("a line's ends are prescribed in a system"),
+                        result: Ok(()),
+                    }
                 })
             })
             .collect();
@@ -1173,7 +1154,7 @@ impl FreePoints {
         }
         // the lines' own states were never touched
         for i in 0..self.ends.len() {
-            let _ = lines.sim(i).integrator.set_anchor_motion(None);
+            lines.sim(i).integrator.set_anchor_motion(None);
         }
         Err(StepFailed::Points { time: t0, residual: worst.0, point: worst.1 })
     }
