@@ -3196,13 +3196,14 @@ mod system_tests {
     }
 
     const BRIDLE: &str = include_str!("../../docs/cases/bridle_mooring.toml");
+    const HYBRID: &str = include_str!("../../docs/cases/hybrid_riser_tower.toml");
 
     /// The systems with free points the directional derivative is checked
     /// on: the clump weight (one vessel line, the first line hung from the
     /// clump), the bridle (two vessel lines coupled through the joint) and
     /// the clump weight with a plain chain from a second fairlead (the
     /// lines at a point condensed, a line on its own summed), coarsened.
-    fn free_point_systems() -> [(&'static str, String); 3] {
+    fn free_point_systems() -> [(&'static str, String); 4] {
         let clump = CLUMP.replace("n_elements = 60", "n_elements = 20").replace("n_elements = 52", "n_elements = 18");
         let mixed = clump.clone()
             + "\n[[point]]\nname = \"anchor2\"\nkind = \"fixed\"\nposition = [530.0, 0.0, -150.0]\n\
@@ -3211,7 +3212,9 @@ mod system_tests {
                length = 560.0\nn_elements = 40\n";
         let bridle =
             BRIDLE.replace("n_elements = 300", "n_elements = 60").replace("n_elements = 20", "n_elements = 10");
-        [("clump", clump), ("bridle", bridle), ("mixed", mixed)]
+        // rods at a free point (§17.7, (17.19)): the tower hung from the can, the jumper's anchor end on it
+        let tower = HYBRID.to_string();
+        [("clump", clump), ("bridle", bridle), ("mixed", mixed), ("tower", tower)]
     }
 
     /// The 6×6 of the FMU's directional derivative: ∂(top_force_*, top_moment_*)/∂(surge, …, yaw), a seed a column.
