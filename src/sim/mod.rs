@@ -203,9 +203,7 @@ impl Engine {
     /// §5.7), None where spatial (the cable's).
     pub fn end_frames(&self, cfg: &crate::model::RodConfig) -> [Option<crate::math::M3>; 2] {
         match self {
-            Engine::Rod(i) if i.options.corotated_tangent => {
-                [Some(cfg.d[0]), Some(cfg.d[2 * i.model.rod.n_el])]
-            }
+            Engine::Rod(i) if i.options.corotated_tangent => [Some(cfg.d[0]), Some(cfg.d[2 * i.model.rod.n_el])],
             _ => [None, None],
         }
     }
@@ -533,6 +531,115 @@ impl Simulation {
             Engine::Cable(i) => end_stiffness6(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg),
         };
         Ok(s?)
+    }
+
+    /// [`Simulation::end_stiffness6`] in the storage `w` (sized on this
+    /// line at its first call: a system FMU's directional derivative,
+    /// docs/theory.md (17.19)), allocating nothing after it: the same
+    /// numbers, the same bits.
+    pub fn end_stiffness6_into(&self, w: &mut EndStiffnessScratch) -> Result<M6, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Rod(p)) => RodLinearized::from_parts(&i.model, &self.static_loads, p),
+                    _ => RodLinearized::new(&i.model, &self.static_loads),
+                };
+                let s = w.end_stiffness6(&line, cfg);
+                w.parts = Some(LinearizedParts::Rod(line.into_parts()));
+                s
+            }
+            Engine::Cable(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Cable(p)) => CableLinearized::from_parts(&i.model, p),
+                    _ => CableLinearized::new(&i.model, self.static_loads.drag.is_some()),
+                };
+                let s = w.end_stiffness6(&line, cfg);
+                w.parts = Some(LinearizedParts::Cable(line.into_parts()));
+                s
+            }
+        };
+        Ok(s?)
+    }
+}
+
+/// What [`Simulation::end_stiffness6_into`] keeps between calls on one
+/// line: its linearised model's owned parts, its static tangent's matrix
+/// and residual, its fixed unknowns and the Schur complement.
+#[derive(Default)]
+pub struct EndStiffnessScratch {
+    parts: Option<LinearizedParts>,
+    sys: Option<crate::math::band::BandedSystem>,
+    r: Vec<f64>,
+    fixed: Vec<usize>,
+    s: Vec<f64>,
+}
+
+enum LinearizedParts {
+    Rod(crate::model::rod::statics::StaticParts),
+    Cable(crate::model::cable::statics::CableStaticParts),
+}
+
+impl EndStiffnessScratch {
+    /// The storage sized on `sim`'s line (at a system's set-up, so that
+    /// its first [`Simulation::end_stiffness6_into`] allocates nothing
+    /// either); empty, to be sized at the first call, if its band matrix
+    /// cannot be had.
+    pub fn for_line(sim: &Simulation) -> Self {
+        fn sized<L: crate::model::linearized::Linearized>(line: &L) -> Option<EndStiffnessScratch> {
+            Some(EndStiffnessScratch {
+                parts: None,
+                sys: Some(line.new_system().ok()?),
+                r: vec![0.0; line.n_dof()],
+                fixed: line.fixed_dofs(),
+                s: vec![0.0; 36],
+            })
+        }
+        match &sim.integrator {
+            Engine::Rod(i) => {
+                let line = RodLinearized::new(&i.model, &sim.static_loads);
+                let w = sized(&line);
+                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Rod(line.into_parts())), ..w })
+            }
+            Engine::Cable(i) => {
+                let line = CableLinearized::new(&i.model, sim.static_loads.drag.is_some());
+                let w = sized(&line);
+                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Cable(line.into_parts())), ..w })
+            }
+        }
+        .unwrap_or_default()
+    }
+
+    /// [`end_stiffness6`] of `line` at `cfg` in this storage (sized at the
+    /// first call): the static tangent, its Schur complement on the two
+    /// ends' positions (17.6), the other held unknowns held.
+    fn end_stiffness6<L: crate::model::linearized::Linearized>(
+        &mut self,
+        line: &L,
+        cfg: &crate::model::RodConfig,
+    ) -> Result<M6, crate::solve::eigen::EigenError> {
+        use crate::math::band::LinearSolveError;
+        use crate::solve::eigen::EigenError;
+        if self.sys.is_none() {
+            self.sys = Some(line.new_system().map_err(EigenError::Linear)?);
+            self.r = vec![0.0; line.n_dof()];
+            self.fixed = line.fixed_dofs();
+            self.s = vec![0.0; 36];
+        }
+        let mut driven = [0; 6];
+        driven[..3].copy_from_slice(&line.hang_off_rows());
+        driven[3..].copy_from_slice(&line.anchor_rows());
+        if driven.iter().any(|i| self.fixed.binary_search(i).is_err()) {
+            return Err(EigenError::HangOffFree);
+        }
+        let sys = self.sys.as_mut().expect("sized above");
+        line.static_tangent(cfg, &mut self.r, sys);
+        sys.schur_complement_into(&driven, &self.fixed, &mut self.s).map_err(|e| match e {
+            LinearSolveError::NonFinite => EigenError::NotFinite,
+            e => EigenError::Linear(e),
+        })?;
+        let s = M6::from_row_slice(&self.s);
+        if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
     }
 }
 

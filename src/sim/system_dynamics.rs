@@ -17,9 +17,10 @@
 //! with its end there and giving its end reaction and its step tangent
 //! condensed on its ends ([`SystemRun::advance_to`]).
 
+use super::EndStiffnessScratch;
 use super::Simulation;
 use super::error::RiserError;
-use super::system::{POINT_CONTACT_AREA, add_block, add_line_ends, condense, solve_system};
+use super::system::{POINT_CONTACT_AREA, condense_in_place, condensed_stiffness6_of, solve_system};
 use super::vessel::{Vessel, VesselLoads, VesselMotion};
 use crate::loads::current::Current;
 use crate::loads::waves::{Ramp, Sea, WaterPoint};
@@ -28,7 +29,6 @@ use crate::model::cable::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{Floater, PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
-use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 /// Where a line's end is held in a dynamic run.
@@ -136,7 +136,15 @@ impl TrialSlot {
         sim.integrator.step(&mut self.state, h, &target)?;
         self.state.time = t;
         sim.integrator
-            .condensed_end_tangent_into(prev, &self.state.config, h, hang_off, &self.at, &mut self.fixed, &mut self.condensed)
+            .condensed_end_tangent_into(
+                prev,
+                &self.state.config,
+                h,
+                hang_off,
+                &self.at,
+                &mut self.fixed,
+                &mut self.condensed,
+            )
             .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
         Ok(())
     }
@@ -564,6 +572,8 @@ pub struct FreePoints {
     rhs: Vec<f64>,
     /// The points' states at a checkpoint ([`FreePoints::checkpoint`]).
     saved: Vec<[f64; POINT_VALUES]>,
+    /// The storage of [`FreePoints::condensed_stiffness6`].
+    stiffness: CondensedScratch,
     /// The points' time, s.
     pub time: f64,
     /// Newton iterations on the free points' positions since the start.
@@ -844,51 +854,99 @@ impl std::fmt::Display for StiffnessError {
     }
 }
 
-/// The lines at free points' stiffness on the vessel at a state, the free
-/// points re-balanced ([`FreePoints::condensed_stiffness`]).
-#[derive(Debug, Clone)]
-pub struct Condensed {
+/// What [`FreePoints::condensed_stiffness6`] keeps between calls, sized
+/// when the points are set up: each line's static tangent's storage, the
+/// system's stiffness over the vessel ends and the points (17.7),
+/// condensed in place (17.8).
+pub struct CondensedScratch {
     /// The lines (the system's indices) hung from the vessel with an end at
-    /// a free point, whose hang-offs K_c couples.
+    /// a free point, whose hang-offs K_c couples (3 unknowns each, first).
     pub lines: Vec<usize>,
-    /// K_c (17.8): −∂(their forces on the vessel)/∂(their hang-offs'
-    /// positions), 3 rows and columns a line in `lines`' order, N/m.
-    pub k: DMatrix<f64>,
+    ends: Vec<EndStiffnessScratch>,
+    /// K over the vessel ends and the points, row-major, n × n.
+    k: Vec<f64>,
+}
+
+impl CondensedScratch {
+    /// Sized on the system's lines `sims` (in its order) whose ends are `ends`, with `points` free points.
+    fn new(ends: &[LineEnds], points: usize, sims: &[&Simulation]) -> Self {
+        let lines: Vec<usize> = (0..ends.len()).filter(|&i| ends[i].coupled() && ends[i].on_vessel()).collect();
+        let n = 3 * (lines.len() + points);
+        let each = ends
+            .iter()
+            .zip(sims)
+            .map(
+                |(e, sim)| {
+                    if e.coupled() { EndStiffnessScratch::for_line(sim) } else { EndStiffnessScratch::default() }
+                },
+            )
+            .collect();
+        CondensedScratch { lines, ends: each, k: vec![0.0; n * n] }
+    }
 }
 
 impl FreePoints {
-    /// The translation stiffness of the lines at free points on their
-    /// vessel ends at the current state, the free points re-balanced: each
-    /// such line's two-end static stiffness at its current configuration
-    /// ([`Simulation::end_stiffness6`], 17.6) and each point's own load's
-    /// at its current position assembled over the vessel ends and the
-    /// points (17.7), the points condensed out (17.8). `sims` every line
-    /// of the system, named, in its order. At the statics this is
-    /// `riser statics`' K_c; during a run, the quasi-static tangent about
-    /// the state: no inertia, the points balanced statically about where
-    /// they are.
-    pub fn condensed_stiffness(&self, sims: &[(&str, &Simulation)]) -> Result<Condensed, StiffnessError> {
-        let lines: Vec<usize> =
-            (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
-        let (nv, np) = (3 * lines.len(), 3 * self.points.len());
-        let mut k = DMatrix::<f64>::zeros(nv + np, nv + np);
+    /// The 6×6 stiffness on the vessel's reference point of the lines at
+    /// free points at the current state, the free points re-balanced
+    /// (17.19): each such line's two-end static stiffness at its current
+    /// configuration ([`Simulation::end_stiffness6_into`], 17.6) and each
+    /// point's own load's at its current position assembled over the
+    /// vessel ends and the points (17.7), the points condensed out in place
+    /// (17.8), then (17.9) with the lines' arms `rotation` ρ_i and their
+    /// current forces on the vessel. `line(i)` is line i of the system,
+    /// named. At the statics this is `riser statics`' stiffness; during a
+    /// run, the quasi-static tangent about the state: no inertia, the
+    /// points balanced statically about where they are. Allocates nothing
+    /// after its first call on each line (its storage).
+    pub fn condensed_stiffness6<'s>(
+        &mut self,
+        line: &dyn Fn(usize) -> (&'s str, &'s Simulation),
+        rotation: &M3,
+    ) -> Result<crate::math::M6, StiffnessError> {
+        let FreePoints { stiffness: w, ends, points, .. } = self;
+        let nv = 3 * w.lines.len();
+        let n = nv + 3 * points.len();
+        w.k.iter_mut().for_each(|x| *x = 0.0);
+        let lines = &w.lines;
         let dof = |i: usize, at: EndAt| match at {
             EndAt::Vessel => lines.iter().position(|&j| j == i).map(|p| 3 * p),
             EndAt::Fixed => None,
             EndAt::Free(p) => Some(nv + 3 * p),
         };
-        for (i, e) in self.ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
-            let (name, sim) = sims[i];
+        for (i, e) in ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
+            let (name, sim) = line(i);
             let s6 = sim
-                .end_stiffness6()
+                .end_stiffness6_into(&mut w.ends[i])
                 .map_err(|error| StiffnessError::Line(LineError { line: name.to_string(), error }))?;
-            add_line_ends(&mut k, &s6, [dof(i, e.hang_off_at), dof(i, e.anchor_at)]);
+            // (add_line_ends' sums, in its order)
+            let at = [dof(i, e.hang_off_at), dof(i, e.anchor_at)];
+            for (bi, ri) in at.iter().enumerate() {
+                for (bj, cj) in at.iter().enumerate() {
+                    if let (Some(r), Some(c)) = (ri, cj) {
+                        for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                            w.k[(r + a) * n + c + b] += s6[(3 * bi + a, 3 * bj + b)];
+                        }
+                    }
+                }
+            }
         }
-        for (p, point) in self.points.iter().enumerate() {
-            add_block(&mut k, nv + 3 * p, nv + 3 * p, &point.load_stiffness());
+        for (p, point) in points.iter().enumerate() {
+            let kp = point.load_stiffness();
+            let r = nv + 3 * p;
+            for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                w.k[(r + a) * n + r + b] += kp[(a, b)];
+            }
         }
-        let k = condense(&k, nv).ok_or(StiffnessError::Singular)?;
-        Ok(Condensed { lines, k })
+        if !condense_in_place(&mut w.k, n, nv) {
+            return Err(StiffnessError::Singular);
+        }
+        let (k, lines) = (&w.k, &w.lines);
+        let arm = |i: usize| rotation * line(lines[i]).1.vessel.offset;
+        let force = |i: usize| {
+            let sim = line(lines[i]).1;
+            sim.integrator.top_force(&sim.state)
+        };
+        Ok(condensed_stiffness6_of(&|r, c| k[r * n + c], lines.len(), &arm, &force))
     }
 
     /// The points `points` of a system whose lines' ends are `ends` and
@@ -914,6 +972,7 @@ impl FreePoints {
                 })
             })
             .collect();
+        let stiffness = CondensedScratch::new(&ends, np, sims);
         FreePoints {
             points,
             ends,
@@ -927,6 +986,7 @@ impl FreePoints {
             jac: vec![0.0; 9 * np * np],
             rhs: vec![0.0; 3 * np],
             saved: vec![[0.0; POINT_VALUES]; np],
+            stiffness,
             time: 0.0,
             point_iterations: 0,
             trial_iterations: 0,

@@ -242,7 +242,8 @@ pub fn joined_modes(sys: &SystemScene, count: usize) -> Result<JoinedModes, Stri
                 let mut mv = vec![0.0; v.len()];
                 p.m.mul_add(&v, &mut mv);
                 energies.push(v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>());
-                directions.push(p.model.linearized(false, |line| line.motion(&p.cfg, &v, &p.normal).direction().name()));
+                directions
+                    .push(p.model.linearized(false, |line| line.motion(&p.cfg, &v, &p.normal).direction().name()));
                 largest = largest.max(v.iter().fold(0.0, |s: f64, x| s.max(x.abs())));
                 line_vectors.push(v);
             }

@@ -334,6 +334,8 @@ fn a_rod_s_condensed_end_tangent_is_the_derivative_of_its_end_reactions() {
             worst = worst.max((fd - k[6 * i + j]).abs() / largest);
         }
     }
-    eprintln!("the rod's condensed tangent against central differences: {worst:.3e} of its largest entry {largest:.3e} N/m");
+    eprintln!(
+        "the rod's condensed tangent against central differences: {worst:.3e} of its largest entry {largest:.3e} N/m"
+    );
     assert!(worst < 1e-6, "{worst}");
 }
