@@ -115,8 +115,8 @@ struct Piece {
 /// at a point pinned, its twist held at its anchor end as the statics',
 /// §17.4, §17.9).
 enum PieceModel {
-    Cable(CableModel, bool),
-    Rod(RodModel, StaticLoads),
+    Cable(Box<CableModel>, bool),
+    Rod(Box<(RodModel, StaticLoads)>),
 }
 
 impl PieceModel {
@@ -126,7 +126,7 @@ impl PieceModel {
     fn linearized<R>(&self, drag: bool, f: impl FnOnce(&dyn Linearized) -> R) -> R {
         match self {
             PieceModel::Cable(m, with_current) => f(&CableLinearized::new(m, drag && *with_current)),
-            PieceModel::Rod(m, loads) => f(&RodLinearized::new(m, loads)),
+            PieceModel::Rod(rod) => f(&RodLinearized::new(&rod.0, &rod.1)),
         }
     }
 }
@@ -167,8 +167,8 @@ pub fn joined_modes(sys: &SystemScene, count: usize) -> Result<JoinedModes, Stri
         let scene = &ls.scene;
         let loads = scene_static_loads(scene);
         let model = match scene.analysis.model {
-            Model::Cable => PieceModel::Cable(CableModel::from_scene(scene), loads.drag.is_some()),
-            Model::Rod => PieceModel::Rod(RodModel::from_scene(scene), loads),
+            Model::Cable => PieceModel::Cable(Box::new(CableModel::from_scene(scene)), loads.drag.is_some()),
+            Model::Rod => PieceModel::Rod(Box::new((RodModel::from_scene(scene), loads))),
         };
         let cfg = ls.report.solution.config.clone();
         let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
