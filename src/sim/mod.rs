@@ -259,7 +259,7 @@ impl Engine {
 
     /// Moves the line's anchor end to `m` over the next step (None: held),
     /// pinned (a rod's twist held there as at a fixed anchor: §17.7).
-    pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) {
+    pub fn set_anchor_motion(&mut self, m: Option<crate::model::AnchorMotion>) {
         match self {
             Engine::Cable(i) => i.model.anchor_motion = m,
             Engine::Rod(i) => i.model.anchor_motion = m,

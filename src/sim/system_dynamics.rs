@@ -25,7 +25,7 @@ use super::vessel::{Vessel, VesselLoads, VesselMotion};
 use crate::loads::current::Current;
 use crate::loads::waves::{Ramp, Sea, WaterPoint};
 use crate::math::{M3, V3};
-use crate::model::cable::AnchorMotion;
+use crate::model::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{Floater, PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};

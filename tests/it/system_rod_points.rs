@@ -291,8 +291,8 @@ fn a_hybrid_riser_tower_keeps_the_energy_balance_under_the_vessel_s_motion() {
 /// the message.
 #[test]
 fn a_rod_s_condensed_end_tangent_is_the_derivative_of_its_end_reactions() {
+    use riser::model::AnchorMotion;
     use riser::model::HangOff;
-    use riser::model::cable::AnchorMotion;
     use riser::sim::Simulation;
     let sys = hybrid_riser_tower();
     let statics = riser::sim::system::solve_system(&sys, &[0.0; 6], false).unwrap();

@@ -36,7 +36,7 @@ pub struct RodModel {
     /// velocity there (None: held where it is, at rest). A system's free
     /// point moves it, the end pinned, its twist held as at a fixed anchor
     /// (docs/theory.md §17.7); its work is `work_anchor`.
-    pub anchor_motion: Option<crate::model::cable::AnchorMotion>,
+    pub anchor_motion: Option<crate::model::AnchorMotion>,
 }
 
 impl RodModel {
