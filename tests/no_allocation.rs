@@ -133,22 +133,29 @@ fn a_systems_do_step_with_free_points_does_not_allocate() {
 }
 
 /// fmi2GetDirectionalDerivative of a system with free points (the
-/// clump-weight mooring and the hybrid riser tower, docs/cases, every line
-/// at a free point: its chains and its rods) allocates nothing after
-/// initialisation, from its first call in initialisation mode on and
-/// between fmi2DoSteps: each line's static tangent in storage sized when
-/// the points are set up, the points condensed out in place
-/// (docs/theory.md (17.19)).
+/// clump-weight mooring, the same with a plain chain to a second fairlead,
+/// and the hybrid riser tower, docs/cases: chains and rods at the points)
+/// allocates nothing after initialisation, from its second call in
+/// initialisation mode on (the first makes the static state) and between
+/// fmi2DoSteps: each line's static tangent in storage sized when the points
+/// are set up (a plain line's at its first call), the points condensed out
+/// in place (docs/theory.md (17.19)).
 fn a_systems_directional_derivative_with_free_points_does_not_allocate() {
     use riser::fmi::instance::{Instance, Status, Value};
     use riser::fmi::vars::{GUID, vr_of};
     let clump = include_str!("../docs/cases/clump_weight_mooring.toml")
         .replace("n_elements = 60", "n_elements = 20")
         .replace("n_elements = 52", "n_elements = 18");
+    // the clump with a plain chain from a second fairlead: its hang-off stiffness too
+    let mixed = clump.clone()
+        + "\n[[point]]\nname = \"anchor2\"\nkind = \"fixed\"\nposition = [530.0, 0.0, -150.0]\n\
+           \n[[point]]\nname = \"fairlead2\"\nkind = \"vessel\"\nposition = [5.0, 0.0, -10.0]\n\
+           \n[[line]]\nname = \"plain\"\ntype = \"chain\"\nfrom = \"anchor2\"\nto = \"fairlead2\"\n\
+           length = 560.0\nn_elements = 40\n";
     let tower = include_str!("../docs/cases/hybrid_riser_tower.toml").to_string();
     let dir = std::env::temp_dir().join(format!("riser-no-allocation-dd-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (name, text) in [("clump", clump), ("tower", tower)] {
+    for (name, text) in [("clump", clump), ("mixed", mixed), ("tower", tower)] {
         let path = dir.join(format!("{name}.toml"));
         std::fs::write(&path, text).unwrap();
         let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();

@@ -1641,7 +1641,7 @@ impl Instance {
             if i == 0 { (first_name, sim) } else { (others[i - 1].name.as_str(), &others[i - 1].sim) }
         };
         let n_lines = 1 + others.len();
-        let free = self.free.as_mut();
+        let mut free = self.free.as_mut();
         let on_vessel = |free: &Option<&mut FreePoints>, i: usize| free.as_ref().is_none_or(|f| f.ends[i].on_vessel());
         let coupled = |free: &Option<&mut FreePoints>, i: usize| free.as_ref().is_some_and(|f| f.ends[i].coupled());
         // the vessel's rotation at the state: that of a line's hang-off on it
@@ -1666,9 +1666,13 @@ impl Instance {
         // system's summed, §17.6); the lines at free points' condensed with
         // the points re-balanced (17.8, §17.8)
         let (mut df, mut dm) = (V3::zeros(), V3::zeros());
-        for i in (0..n_lines).filter(|&i| on_vessel(&free, i) && !coupled(&free, i)) {
+        for i in 0..n_lines {
+            if !on_vessel(&free, i) || coupled(&free, i) {
+                continue;
+            }
             let (name, l) = line(i);
-            let s = match l.hang_off_stiffness6() {
+            // (a system with free points keeps each line's storage: nothing allocated)
+            let s = match free.as_mut().map_or_else(|| l.hang_off_stiffness6(), |f| f.hang_off_stiffness6(i, l)) {
                 Ok(s) => s,
                 Err(e) if i == 0 && others.is_empty() => return self.fail(&format!("{F}: {e}")),
                 Err(e) => return self.fail(&format!("{F}: line '{name}': {e}")),

@@ -533,6 +533,37 @@ impl Simulation {
         Ok(s?)
     }
 
+    /// [`Simulation::hang_off_stiffness6`] in the storage `w` (sized on
+    /// this line at its first call), allocating nothing after it, the same
+    /// bits; a rod with a flex joint (its joint's frame turned with the
+    /// vessel on a copy of its model) allocates as
+    /// [`Simulation::hang_off_stiffness6`] does.
+    pub fn hang_off_stiffness6_into(&self, w: &mut HangOffScratch) -> Result<M6, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) if i.model.rod.flex_joint.is_some() => return self.hang_off_stiffness6(),
+            Engine::Rod(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Rod(p)) => RodLinearized::from_parts(&i.model, &self.static_loads, p),
+                    _ => RodLinearized::new(&i.model, &self.static_loads),
+                };
+                let s = crate::solve::eigen::hang_off_stiffness6_in(&line, cfg, &mut w.storage);
+                w.parts = Some(LinearizedParts::Rod(line.into_parts()));
+                s
+            }
+            Engine::Cable(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Cable(p)) => CableLinearized::from_parts(&i.model, p),
+                    _ => CableLinearized::new(&i.model, self.static_loads.drag.is_some()),
+                };
+                let s = crate::solve::eigen::hang_off_stiffness6_in(&line, cfg, &mut w.storage);
+                w.parts = Some(LinearizedParts::Cable(line.into_parts()));
+                s
+            }
+        };
+        Ok(s?)
+    }
+
     /// [`Simulation::end_stiffness6`] in the storage `w` (sized on this
     /// line at its first call: a system FMU's directional derivative,
     /// docs/theory.md (17.19)), allocating nothing after it: the same
@@ -573,6 +604,15 @@ pub struct EndStiffnessScratch {
     r: Vec<f64>,
     fixed: Vec<usize>,
     s: Vec<f64>,
+}
+
+/// What [`Simulation::hang_off_stiffness6_into`] keeps between calls on
+/// one line: its linearised model's owned parts and the storage of
+/// [`crate::solve::eigen::hang_off_stiffness6_in`].
+#[derive(Default)]
+pub struct HangOffScratch {
+    parts: Option<LinearizedParts>,
+    storage: crate::solve::eigen::HangOffStorage,
 }
 
 enum LinearizedParts {

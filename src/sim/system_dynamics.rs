@@ -17,11 +17,11 @@
 //! with its end there and giving its end reaction and its step tangent
 //! condensed on its ends ([`SystemRun::advance_to`]).
 
-use super::EndStiffnessScratch;
 use super::Simulation;
 use super::error::RiserError;
 use super::system::{POINT_CONTACT_AREA, condense_in_place, condensed_stiffness6_of, solve_system};
 use super::vessel::{Vessel, VesselLoads, VesselMotion};
+use super::{EndStiffnessScratch, HangOffScratch};
 use crate::loads::current::Current;
 use crate::loads::waves::{Ramp, Sea, WaterPoint};
 use crate::math::{M3, V3};
@@ -863,6 +863,9 @@ pub struct CondensedScratch {
     /// a free point, whose hang-offs K_c couples (3 unknowns each, first).
     pub lines: Vec<usize>,
     ends: Vec<EndStiffnessScratch>,
+    /// The hang-off stiffness's storage of each line without a free end
+    /// ([`FreePoints::hang_off_stiffness6`]).
+    hang_offs: Vec<HangOffScratch>,
     /// K over the vessel ends and the points, row-major, n × n.
     k: Vec<f64>,
 }
@@ -881,11 +884,20 @@ impl CondensedScratch {
                 },
             )
             .collect();
-        CondensedScratch { lines, ends: each, k: vec![0.0; n * n] }
+        let hang_offs = ends.iter().map(|_| HangOffScratch::default()).collect();
+        CondensedScratch { lines, ends: each, hang_offs, k: vec![0.0; n * n] }
     }
 }
 
 impl FreePoints {
+    /// Line `i`'s (without a free end) 6×6 tangent stiffness at its
+    /// hang-off, `sim` its run ([`Simulation::hang_off_stiffness6_into`],
+    /// in this system's storage): allocating nothing after its first call
+    /// (but for a rod with a flex joint).
+    pub fn hang_off_stiffness6(&mut self, i: usize, sim: &Simulation) -> Result<crate::math::M6, RiserError> {
+        sim.hang_off_stiffness6_into(&mut self.stiffness.hang_offs[i])
+    }
+
     /// The 6×6 stiffness on the vessel's reference point of the lines at
     /// free points at the current state, the free points re-balanced
     /// (17.19): each such line's two-end static stiffness at its current
