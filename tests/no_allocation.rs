@@ -36,6 +36,7 @@ static GLOBAL: Counting = Counting;
 fn nothing_allocates_in_a_step() {
     time_steps_do_not_allocate();
     a_systems_do_step_with_free_points_does_not_allocate();
+    a_systems_directional_derivative_with_free_points_does_not_allocate();
     a_do_step_with_the_vessel_s_answer_inside_does_not_allocate();
 }
 
@@ -128,6 +129,71 @@ fn a_systems_do_step_with_free_points_does_not_allocate() {
     let during = allocations_after_warm_up(&mut i, step);
     eprintln!("the clump-weight system's fmi2DoStep: allocations in 100 steps: {during}");
     assert_eq!(during, 0);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// fmi2GetDirectionalDerivative of a system with free points (the
+/// clump-weight mooring, the same with a plain chain to a second fairlead,
+/// and the hybrid riser tower, docs/cases: chains and rods at the points)
+/// allocates nothing after initialisation, from its second call in
+/// initialisation mode on (the first makes the static state) and between
+/// fmi2DoSteps: each line's static tangent in storage sized when the points
+/// are set up (a plain line's at its first call), the points condensed out
+/// in place (docs/theory.md (17.19)).
+fn a_systems_directional_derivative_with_free_points_does_not_allocate() {
+    use riser::fmi::instance::{Instance, Status, Value};
+    use riser::fmi::vars::{GUID, vr_of};
+    let clump = include_str!("../docs/cases/clump_weight_mooring.toml")
+        .replace("n_elements = 60", "n_elements = 20")
+        .replace("n_elements = 52", "n_elements = 18");
+    // the clump with a plain chain from a second fairlead: its hang-off stiffness too
+    let mixed = clump.clone()
+        + "\n[[point]]\nname = \"anchor2\"\nkind = \"fixed\"\nposition = [530.0, 0.0, -150.0]\n\
+           \n[[point]]\nname = \"fairlead2\"\nkind = \"vessel\"\nposition = [5.0, 0.0, -10.0]\n\
+           \n[[line]]\nname = \"plain\"\ntype = \"chain\"\nfrom = \"anchor2\"\nto = \"fairlead2\"\n\
+           length = 560.0\nn_elements = 40\n";
+    let tower = include_str!("../docs/cases/hybrid_riser_tower.toml").to_string();
+    let dir = std::env::temp_dir().join(format!("riser-no-allocation-dd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in [("clump", clump), ("mixed", mixed), ("tower", tower)] {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let mut i = Instance::new("t", GUID, None, std::sync::Arc::new(|_, _, _: &str| {}), false).unwrap();
+        let scene = Value::String(path.to_string_lossy().into_owned());
+        assert_eq!(i.set_param(vr_of("scene").unwrap(), scene), Status::Ok);
+        i.enter_initialization_mode();
+        let unknowns: Vec<u32> = ["top_force_x", "top_force_z", "top_moment_y", "vessel_force_x", "vessel_moment_z"]
+            .iter()
+            .map(|n| vr_of(n).unwrap())
+            .collect();
+        let knowns: Vec<u32> = ["surge", "heave", "pitch", "yaw"].iter().map(|n| vr_of(n).unwrap()).collect();
+        let seed = [1.0, -0.5, 0.01, 0.02];
+        let mut d = [0.0; 5];
+        // the static state (the outputs' first call) made before counting
+        assert_eq!(i.directional_derivative(&unknowns, &knowns, &seed, &mut d), Status::Ok);
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        assert_eq!(i.directional_derivative(&unknowns, &knowns, &seed, &mut d), Status::Ok);
+        let in_initialisation = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        let (surge, heave) = (vr_of("surge").unwrap(), vr_of("heave").unwrap());
+        let h = 0.1;
+        let step = |i: &mut Instance, k: u64| {
+            let t = k as f64 * h;
+            assert_eq!(i.set_real(surge, 2.0 * (0.3 * t).sin()), Status::Ok);
+            assert_eq!(i.set_real(heave, 0.5 * (0.8 * t).sin()), Status::Ok);
+            assert_eq!(i.do_step(t, h), Status::Ok, "{name}: t = {t} s");
+            let mut d = [0.0; 5];
+            assert_eq!(i.directional_derivative(&unknowns, &knowns, &seed, &mut d), Status::Ok, "{name}");
+            assert!(d.iter().all(|x| x.is_finite() && *x != 0.0), "{name}: {d:?}");
+        };
+        let during = allocations_after_warm_up(&mut i, step);
+        eprintln!(
+            "the {name} system's fmi2GetDirectionalDerivative: allocations in initialisation {in_initialisation}, in \
+             100 steps with a derivative each {during}"
+        );
+        assert_eq!(in_initialisation, 0, "{name}");
+        assert_eq!(during, 0, "{name}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -14,7 +14,7 @@ use crate::sim::Simulation;
 use crate::sim::design::GrowthWatch;
 use crate::sim::error::RiserError;
 use crate::sim::monolithic::{HeldBody, HeldScratch};
-use crate::sim::system_dynamics::{POINT_VALUES, SystemStepError};
+use crate::sim::system_dynamics::{FreePoints, POINT_VALUES, SystemStepError};
 use std::path::PathBuf;
 
 /// fmi2Status.
@@ -1579,7 +1579,7 @@ impl Instance {
     /// Rᵀ(δF − δθ × F), Rᵀ(δM − δθ × M). A system sums its lines' (§17.6);
     /// with free points, the lines at them enter through the free points'
     /// condensed stiffness on their vessel ends at the state (17.8, 17.9;
-    /// [`crate::sim::system_dynamics::FreePoints::condensed_stiffness`]: the
+    /// [`crate::sim::system_dynamics::FreePoints::condensed_stiffness6`]: the
     /// points re-balanced quasi-statically about where they are, as the
     /// line's own tangent is its static one about its state). Any other
     /// variable is an error naming it.
@@ -1608,28 +1608,24 @@ impl Instance {
             "vessel_moment_z",
         ];
         const KNOWNS: [&str; 6] = ["surge", "sway", "heave", "roll", "pitch", "yaw"];
-        /// The positions in `names` of the variables `vrs`, or the message
-        /// naming the first that is not among them (`role`: "an unknown",
-        /// "a known").
-        fn positions_in(vrs: &[u32], names: &[&str], role: &str) -> Result<Vec<usize>, String> {
-            vrs.iter()
-                .map(|&vr| match variable(vr) {
-                    Some(v) => names
-                        .iter()
-                        .position(|n| *n == v.name)
-                        .ok_or_else(|| format!("{F}: '{}' is not {role} of it: {WHAT}", v.name)),
-                    None => Err(format!("{F}: unknown value reference {vr}")),
-                })
-                .collect()
+        /// The position in `names` of the variable `vr`, or the message
+        /// naming it if it is not among them (`role`: "an unknown", "a known").
+        fn position_in(vr: u32, names: &[&str], role: &str) -> Result<usize, String> {
+            match variable(vr) {
+                Some(v) => names
+                    .iter()
+                    .position(|n| *n == v.name)
+                    .ok_or_else(|| format!("{F}: '{}' is not {role} of it: {WHAT}", v.name)),
+                None => Err(format!("{F}: unknown value reference {vr}")),
+            }
         }
-        let rows = match positions_in(unknowns, &UNKNOWNS, "an unknown") {
-            Ok(rows) => rows,
-            Err(m) => return self.fail(&m),
-        };
-        let cols = match positions_in(knowns, &KNOWNS, "a known") {
-            Ok(cols) => cols,
-            Err(m) => return self.fail(&m),
-        };
+        // (checked here, looked up again below: nothing allocated on the way)
+        for (vrs, names, role) in [(unknowns, &UNKNOWNS[..], "an unknown"), (knowns, &KNOWNS[..], "a known")] {
+            if let Some(Err(m)) = vrs.iter().map(|&vr| position_in(vr, names, role)).find(|p| p.is_err()) {
+                return self.fail(&m);
+            }
+        }
+        let at = |vr: u32, names: &[&str]| position_in(vr, names, "").unwrap_or(0);
         if let Some(v) = dv_known.iter().find(|v| !v.is_finite()) {
             return self.fail(&format!("{F}: seed value {v} is not finite"));
         }
@@ -1641,42 +1637,25 @@ impl Instance {
             }
         }
         let Some(sim) = &self.sim else { return self.fail(&format!("{F}: no state yet")) };
-        let free = self.free.as_ref();
         let first_name = self.scene.as_ref().map_or("", |s| s.name.as_str());
-        let all: Vec<(&str, &Simulation)> =
-            std::iter::once((first_name, sim)).chain(self.others.iter().map(|o| (o.name.as_str(), &o.sim))).collect();
-        let on_vessel = |i: usize| free.is_none_or(|f| f.ends[i].on_vessel());
-        let coupled = |i: usize| free.is_some_and(|f| f.ends[i].coupled());
-        // the vessel's rotation at the state: that of a line's hang-off on it
-        let on = (0..all.len()).find(|&i| on_vessel(i)).unwrap_or(0);
-        let (rotation, order) = (all[on].1.state.hang_off.rotation, sim.vessel.order);
-        let (force, moment) = self.outputs.as_ref().map_or((V3::zeros(), V3::zeros()), |o| (o.top_force, o.top_moment));
-        // each line's stiffness at its vessel point, its arm and its force (a
-        // system's summed, §17.6); the lines at free points' condensed with
-        // the points re-balanced (17.8, §17.8)
-        let mut lines = Vec::with_capacity(all.len());
-        for (i, &(name, line)) in all.iter().enumerate().filter(|&(i, _)| on_vessel(i) && !coupled(i)) {
-            match line.hang_off_stiffness6() {
-                Ok(s) => lines.push((s, line.vessel.offset, line.integrator.top_force(&line.state))),
-                Err(e) if i == 0 && self.others.is_empty() => return self.fail(&format!("{F}: {e}")),
-                Err(e) => return self.fail(&format!("{F}: line '{name}': {e}")),
-            }
-        }
-        let condensed = match free.map(|f| f.condensed_stiffness(&all)) {
-            Some(Ok(c)) => {
-                let arms: Vec<(V3, V3)> =
-                    c.lines.iter().map(|&i| (V3::zeros(), rotation * all[i].1.vessel.offset)).collect();
-                let forces: Vec<V3> = c.lines.iter().map(|&i| all[i].1.integrator.top_force(&all[i].1.state)).collect();
-                Some(crate::sim::system::condensed_stiffness6(&c.k, &arms, &forces))
-            }
-            Some(Err(e)) => return self.fail(&format!("{F}: {e}")),
-            None => None,
+        let others = &self.others;
+        let line = |i: usize| -> (&str, &Simulation) {
+            if i == 0 { (first_name, sim) } else { (others[i - 1].name.as_str(), &others[i - 1].sim) }
         };
+        let n_lines = 1 + others.len();
+        let mut free = self.free.as_mut();
+        let on_vessel = |free: &Option<&mut FreePoints>, i: usize| free.as_ref().is_none_or(|f| f.ends[i].on_vessel());
+        let coupled = |free: &Option<&mut FreePoints>, i: usize| free.as_ref().is_some_and(|f| f.ends[i].coupled());
+        // the vessel's rotation at the state: that of a line's hang-off on it
+        let on = (0..n_lines).find(|&i| on_vessel(&free, i)).unwrap_or(0);
+        let (rotation, order) = (line(on).1.state.hang_off.rotation, sim.vessel.order);
+        let (force, moment) = self.outputs.as_ref().map_or((V3::zeros(), V3::zeros()), |o| (o.top_force, o.top_moment));
         // the pose change of the seed: δu and the global rotation δθ (14.2)
         let angles = [self.inputs[6], self.inputs[7], self.inputs[8]];
         let r_in = order.rotation(angles);
         let (mut du, mut dtheta) = (V3::zeros(), V3::zeros());
-        for (&b, &dv) in cols.iter().zip(dv_known) {
+        for (&vr, &dv) in knowns.iter().zip(dv_known) {
+            let b = at(vr, &KNOWNS);
             if b < 3 {
                 du[b] += dv;
             } else {
@@ -1685,8 +1664,22 @@ impl Instance {
                 dtheta += r_in * order.body_rates(angles, rates) * dv;
             }
         }
+        // each line's stiffness at its vessel point, its arm and its force (a
+        // system's summed, §17.6); the lines at free points' condensed with
+        // the points re-balanced (17.8, §17.8)
         let (mut df, mut dm) = (V3::zeros(), V3::zeros());
-        for (s, offset, f_line) in &lines {
+        for i in 0..n_lines {
+            if !on_vessel(&free, i) || coupled(&free, i) {
+                continue;
+            }
+            let (name, l) = line(i);
+            // (a system with free points keeps each line's storage: nothing allocated)
+            let s = match free.as_mut().map_or_else(|| l.hang_off_stiffness6(), |f| f.hang_off_stiffness6(i, l)) {
+                Ok(s) => s,
+                Err(e) if i == 0 && others.is_empty() => return self.fail(&format!("{F}: {e}")),
+                Err(e) => return self.fail(&format!("{F}: line '{name}': {e}")),
+            };
+            let (offset, f_line) = (l.vessel.offset, l.integrator.top_force(&l.state));
             let arm = rotation * offset;
             let dx = du + dtheta.cross(&arm);
             // the support's force and end moment on the line change by S₆ [δx; δθ] (8.7); the vessel's by minus that
@@ -1694,9 +1687,13 @@ impl Instance {
             let df_line = -V3::new(ds[0], ds[1], ds[2]);
             let d_end = -V3::new(ds[3], ds[4], ds[5]);
             df += df_line;
-            dm += dtheta.cross(&arm).cross(f_line) + arm.cross(&df_line) + d_end;
+            dm += dtheta.cross(&arm).cross(&f_line) + arm.cross(&df_line) + d_end;
         }
-        if let Some(k6) = condensed {
+        if let Some(f) = free {
+            let k6 = match f.condensed_stiffness6(&line, &rotation) {
+                Ok(k6) => k6,
+                Err(e) => return self.fail(&format!("{F}: {e}")),
+            };
             // the lines at free points: [δF; δM] = −K [δu; δθ] (17.9)
             let d = -(k6 * nalgebra::Vector6::new(du.x, du.y, du.z, dtheta.x, dtheta.y, dtheta.z));
             df += V3::new(d[0], d[1], d[2]);
@@ -1704,13 +1701,16 @@ impl Instance {
         }
         let rt = rotation.transpose();
         let (dvf, dvm) = (rt * (df - dtheta.cross(&force)), rt * (dm - dtheta.cross(&moment)));
-        let value = |a: usize| [df, dm, dvf, dvm][a / 3][a % 3];
+        let value = |vr: u32| {
+            let a = at(vr, &UNKNOWNS);
+            [df, dm, dvf, dvm][a / 3][a % 3]
+        };
         // never a non-finite number with fmi2OK: a seed of 1e308 overflows
-        if let Some(x) = rows.iter().map(|&a| value(a)).find(|x| !x.is_finite()) {
+        if let Some(x) = unknowns.iter().map(|&vr| value(vr)).find(|x| !x.is_finite()) {
             return self.fail(&format!("{F}: the derivative times the seed is {x} (the seed is too large)"));
         }
-        for (out, &a) in dv_unknown.iter_mut().zip(&rows) {
-            *out = value(a);
+        for (out, &vr) in dv_unknown.iter_mut().zip(unknowns) {
+            *out = value(vr);
         }
         Status::Ok
     }
@@ -3198,13 +3198,14 @@ mod system_tests {
     }
 
     const BRIDLE: &str = include_str!("../../docs/cases/bridle_mooring.toml");
+    const HYBRID: &str = include_str!("../../docs/cases/hybrid_riser_tower.toml");
 
     /// The systems with free points the directional derivative is checked
     /// on: the clump weight (one vessel line, the first line hung from the
     /// clump), the bridle (two vessel lines coupled through the joint) and
     /// the clump weight with a plain chain from a second fairlead (the
     /// lines at a point condensed, a line on its own summed), coarsened.
-    fn free_point_systems() -> [(&'static str, String); 3] {
+    fn free_point_systems() -> [(&'static str, String); 4] {
         let clump = CLUMP.replace("n_elements = 60", "n_elements = 20").replace("n_elements = 52", "n_elements = 18");
         let mixed = clump.clone()
             + "\n[[point]]\nname = \"anchor2\"\nkind = \"fixed\"\nposition = [530.0, 0.0, -150.0]\n\
@@ -3213,7 +3214,9 @@ mod system_tests {
                length = 560.0\nn_elements = 40\n";
         let bridle =
             BRIDLE.replace("n_elements = 300", "n_elements = 60").replace("n_elements = 20", "n_elements = 10");
-        [("clump", clump), ("bridle", bridle), ("mixed", mixed)]
+        // rods at a free point (§17.7, (17.19)): the tower hung from the can, the jumper's anchor end on it
+        let tower = HYBRID.to_string();
+        [("clump", clump), ("bridle", bridle), ("mixed", mixed), ("tower", tower)]
     }
 
     /// The 6×6 of the FMU's directional derivative: ∂(top_force_*, top_moment_*)/∂(surge, …, yaw), a seed a column.

@@ -58,9 +58,6 @@ fn same_value(v: &Variable, text: &str, reading: Option<&str>) -> bool {
 /// (its lines' scenes then come from its statics, §17.4: those here, at
 /// the points' initial positions, read its parameters back).
 pub fn line_scenes(sys: &SystemScene, sets: &[(&'static Variable, String)]) -> Result<LineScenes, String> {
-    if let Some(m) = crate::sim::system_dynamics::unsupported(sys) {
-        return Err(m);
-    }
     let wide: Vec<String> =
         sets.iter().filter(|(v, _)| SYSTEM_WIDE.contains(&v.name)).map(|(v, t)| format!("{}={t}", v.name)).collect();
     let mut scenes = Vec::with_capacity(sys.lines.len());

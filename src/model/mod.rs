@@ -452,3 +452,12 @@ pub fn extrapolation(order: u32) -> [f64; 3] {
         _ => [1.0, 0.0, 0.0],
     }
 }
+
+/// A prescribed position (m, the line's frame) and velocity (m/s) of a
+/// line's anchor end (S = L) at the end of a step: a system's free point
+/// moving a cable's or a rod's end (docs/theory.md §17.7, §17.11).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnchorMotion {
+    pub position: V3,
+    pub velocity: V3,
+}

@@ -181,6 +181,70 @@ impl Engine {
         with_integrator!(self, i => i.fixed_unknowns())
     }
 
+    /// Where the two end nodes' positions [hang-off x, y, z, anchor x, y, z]
+    /// are among the step's prescribed unknowns (sorted: the order of
+    /// [`Integrator::condensed_fixed_tangent`]'s rows); None if an end's
+    /// position is not prescribed.
+    pub fn end_position_unknowns(&self) -> Option<[usize; 6]> {
+        let (h, a) = match self {
+            Engine::Rod(i) => (crate::model::rod::Rod::x_dof(0), crate::model::rod::Rod::x_dof(i.model.rod.n_el)),
+            Engine::Cable(i) => (0, crate::model::cable::NODE_DOF * i.model.cable.n_el),
+        };
+        let fixed = with_integrator!(self, i => &i.lin.fixed);
+        let mut at = [0; 6];
+        for (k, dof) in (h..h + 3).chain(a..a + 3).enumerate() {
+            at[k] = fixed.iter().position(|&f| f == dof)?;
+        }
+        Some(at)
+    }
+
+    /// The frames the step's tangent takes the end nodes' positions in at
+    /// `cfg` (the rod's corotated tangent: its end nodes' director frames,
+    /// §5.7), None where spatial (the cable's).
+    pub fn end_frames(&self, cfg: &crate::model::RodConfig) -> [Option<crate::math::M3>; 2] {
+        match self {
+            Engine::Rod(i) if i.options.corotated_tangent => [Some(cfg.d[0]), Some(cfg.d[2 * i.model.rod.n_el])],
+            _ => [None, None],
+        }
+    }
+
+    /// The step's tangent condensed on its two ends' positions (17.15), 6×6
+    /// row-major [hang-off; anchor] into `s6`, global (N/m): the tangent
+    /// condensed on all its prescribed unknowns into `scratch`
+    /// ([`Integrator::condensed_fixed_tangent_into`], its size the fixed
+    /// unknowns' number squared), its rows and columns `at`
+    /// ([`Engine::end_position_unknowns`]) taken, and the rod's turned from
+    /// its end nodes' director frames, S = D_a S_loc D_bᵀ a block (§5.7).
+    /// Allocates nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn condensed_end_tangent_into(
+        &mut self,
+        prev: &State,
+        cfg: &crate::model::RodConfig,
+        h: f64,
+        target: HangOff,
+        at: &[usize; 6],
+        scratch: &mut [f64],
+        s6: &mut [f64; 36],
+    ) -> Result<(), crate::math::band::LinearSolveError> {
+        self.condensed_fixed_tangent_into(prev, cfg, h, target, scratch)?;
+        let m = self.fixed_unknowns();
+        let frames = self.end_frames(cfg);
+        for (ea, fa) in frames.iter().enumerate() {
+            for (eb, fb) in frames.iter().enumerate() {
+                let local = crate::math::M3::from_fn(|r, c| scratch[at[3 * ea + r] * m + at[3 * eb + c]]);
+                let block = match (fa, fb) {
+                    (Some(fa), Some(fb)) => fa * local * fb.transpose(),
+                    _ => local,
+                };
+                for (r, c) in (0..3).flat_map(|r| (0..3).map(move |c| (r, c))) {
+                    s6[(3 * ea + r) * 6 + 3 * eb + c] = block[(r, c)];
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// See [`Integrator::condensed_fixed_tangent_into`].
     pub fn condensed_fixed_tangent_into(
         &mut self,
@@ -193,15 +257,12 @@ impl Engine {
         with_integrator!(self, i => i.condensed_fixed_tangent_into(prev, cfg, h, target, s))
     }
 
-    /// Moves the cable's anchor end to `m` over the next step (None: held);
-    /// false for the rod, whose anchor cannot move.
-    pub fn set_anchor_motion(&mut self, m: Option<crate::model::cable::AnchorMotion>) -> bool {
+    /// Moves the line's anchor end to `m` over the next step (None: held),
+    /// pinned (a rod's twist held there as at a fixed anchor: §17.7).
+    pub fn set_anchor_motion(&mut self, m: Option<crate::model::AnchorMotion>) {
         match self {
-            Engine::Cable(i) => {
-                i.model.anchor_motion = m;
-                true
-            }
-            Engine::Rod(_) => false,
+            Engine::Cable(i) => i.model.anchor_motion = m,
+            Engine::Rod(i) => i.model.anchor_motion = m,
         }
     }
 
@@ -470,6 +531,155 @@ impl Simulation {
             Engine::Cable(i) => end_stiffness6(&CableLinearized::new(&i.model, self.static_loads.drag.is_some()), cfg),
         };
         Ok(s?)
+    }
+
+    /// [`Simulation::hang_off_stiffness6`] in the storage `w` (sized on
+    /// this line at its first call), allocating nothing after it, the same
+    /// bits; a rod with a flex joint (its joint's frame turned with the
+    /// vessel on a copy of its model) allocates as
+    /// [`Simulation::hang_off_stiffness6`] does.
+    pub fn hang_off_stiffness6_into(&self, w: &mut HangOffScratch) -> Result<M6, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) if i.model.rod.flex_joint.is_some() => return self.hang_off_stiffness6(),
+            Engine::Rod(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Rod(p)) => RodLinearized::from_parts(&i.model, &self.static_loads, p),
+                    _ => RodLinearized::new(&i.model, &self.static_loads),
+                };
+                let s = crate::solve::eigen::hang_off_stiffness6_in(&line, cfg, &mut w.storage);
+                w.parts = Some(LinearizedParts::Rod(line.into_parts()));
+                s
+            }
+            Engine::Cable(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Cable(p)) => CableLinearized::from_parts(&i.model, p),
+                    _ => CableLinearized::new(&i.model, self.static_loads.drag.is_some()),
+                };
+                let s = crate::solve::eigen::hang_off_stiffness6_in(&line, cfg, &mut w.storage);
+                w.parts = Some(LinearizedParts::Cable(line.into_parts()));
+                s
+            }
+        };
+        Ok(s?)
+    }
+
+    /// [`Simulation::end_stiffness6`] in the storage `w` (sized on this
+    /// line at its first call: a system FMU's directional derivative,
+    /// docs/theory.md (17.19)), allocating nothing after it: the same
+    /// numbers, the same bits.
+    pub fn end_stiffness6_into(&self, w: &mut EndStiffnessScratch) -> Result<M6, RiserError> {
+        let cfg = &self.state.config;
+        let s = match &self.integrator {
+            Engine::Rod(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Rod(p)) => RodLinearized::from_parts(&i.model, &self.static_loads, p),
+                    _ => RodLinearized::new(&i.model, &self.static_loads),
+                };
+                let s = w.end_stiffness6(&line, cfg);
+                w.parts = Some(LinearizedParts::Rod(line.into_parts()));
+                s
+            }
+            Engine::Cable(i) => {
+                let line = match w.parts.take() {
+                    Some(LinearizedParts::Cable(p)) => CableLinearized::from_parts(&i.model, p),
+                    _ => CableLinearized::new(&i.model, self.static_loads.drag.is_some()),
+                };
+                let s = w.end_stiffness6(&line, cfg);
+                w.parts = Some(LinearizedParts::Cable(line.into_parts()));
+                s
+            }
+        };
+        Ok(s?)
+    }
+}
+
+/// What [`Simulation::end_stiffness6_into`] keeps between calls on one
+/// line: its linearised model's owned parts, its static tangent's matrix
+/// and residual, its fixed unknowns and the Schur complement.
+#[derive(Default)]
+pub struct EndStiffnessScratch {
+    parts: Option<LinearizedParts>,
+    sys: Option<crate::math::band::BandedSystem>,
+    r: Vec<f64>,
+    fixed: Vec<usize>,
+    s: Vec<f64>,
+}
+
+/// What [`Simulation::hang_off_stiffness6_into`] keeps between calls on
+/// one line: its linearised model's owned parts and the storage of
+/// [`crate::solve::eigen::hang_off_stiffness6_in`].
+#[derive(Default)]
+pub struct HangOffScratch {
+    parts: Option<LinearizedParts>,
+    storage: crate::solve::eigen::HangOffStorage,
+}
+
+enum LinearizedParts {
+    Rod(crate::model::rod::statics::StaticParts),
+    Cable(crate::model::cable::statics::CableStaticParts),
+}
+
+impl EndStiffnessScratch {
+    /// The storage sized on `sim`'s line (at a system's set-up, so that
+    /// its first [`Simulation::end_stiffness6_into`] allocates nothing
+    /// either); empty, to be sized at the first call, if its band matrix
+    /// cannot be had.
+    pub fn for_line(sim: &Simulation) -> Self {
+        fn sized<L: crate::model::linearized::Linearized>(line: &L) -> Option<EndStiffnessScratch> {
+            Some(EndStiffnessScratch {
+                parts: None,
+                sys: Some(line.new_system().ok()?),
+                r: vec![0.0; line.n_dof()],
+                fixed: line.fixed_dofs(),
+                s: vec![0.0; 36],
+            })
+        }
+        match &sim.integrator {
+            Engine::Rod(i) => {
+                let line = RodLinearized::new(&i.model, &sim.static_loads);
+                let w = sized(&line);
+                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Rod(line.into_parts())), ..w })
+            }
+            Engine::Cable(i) => {
+                let line = CableLinearized::new(&i.model, sim.static_loads.drag.is_some());
+                let w = sized(&line);
+                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Cable(line.into_parts())), ..w })
+            }
+        }
+        .unwrap_or_default()
+    }
+
+    /// [`end_stiffness6`] of `line` at `cfg` in this storage (sized at the
+    /// first call): the static tangent, its Schur complement on the two
+    /// ends' positions (17.6), the other held unknowns held.
+    fn end_stiffness6<L: crate::model::linearized::Linearized>(
+        &mut self,
+        line: &L,
+        cfg: &crate::model::RodConfig,
+    ) -> Result<M6, crate::solve::eigen::EigenError> {
+        use crate::math::band::LinearSolveError;
+        use crate::solve::eigen::EigenError;
+        if self.sys.is_none() {
+            self.sys = Some(line.new_system().map_err(EigenError::Linear)?);
+            self.r = vec![0.0; line.n_dof()];
+            self.fixed = line.fixed_dofs();
+            self.s = vec![0.0; 36];
+        }
+        let mut driven = [0; 6];
+        driven[..3].copy_from_slice(&line.hang_off_rows());
+        driven[3..].copy_from_slice(&line.anchor_rows());
+        if driven.iter().any(|i| self.fixed.binary_search(i).is_err()) {
+            return Err(EigenError::HangOffFree);
+        }
+        let sys = self.sys.as_mut().expect("sized above");
+        line.static_tangent(cfg, &mut self.r, sys);
+        sys.schur_complement_into(&driven, &self.fixed, &mut self.s).map_err(|e| match e {
+            LinearSolveError::NonFinite => EigenError::NotFinite,
+            e => EigenError::Linear(e),
+        })?;
+        let s = M6::from_row_slice(&self.s);
+        if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
     }
 }
 

@@ -1004,12 +1004,25 @@ pub fn condense(k: &DMatrix<f64>, nv: usize) -> Option<DMatrix<f64>> {
 /// a_i and the lines' force on it f_i (17.9): `Σ_ij [I; [a_i]×] K_ij [I, −[a_j]×]`
 /// plus each point's geometric term `−[f_i]×[a_i]×` in the moment block.
 pub fn condensed_stiffness6(kc: &DMatrix<f64>, vessel: &[(V3, V3)], forces: &[V3]) -> M6 {
+    condensed_stiffness6_of(&|r, c| kc[(r, c)], vessel.len(), &|i| vessel[i].1, &|i| forces[i])
+}
+
+/// [`condensed_stiffness6`] of `n` vessel points, K_c's entries `kc(row,
+/// column)`, point i's arm `arm(i)` and the lines' force on it `force(i)`:
+/// allocating nothing.
+pub fn condensed_stiffness6_of(
+    kc: &dyn Fn(usize, usize) -> f64,
+    n: usize,
+    arm: &dyn Fn(usize) -> V3,
+    force: &dyn Fn(usize) -> V3,
+) -> M6 {
     let mut k6 = M6::zeros();
-    for (i, (_, ai)) in vessel.iter().enumerate() {
-        let axi = skew(ai);
-        for (j, (_, aj)) in vessel.iter().enumerate() {
-            let axj = skew(aj);
-            let s: M3 = kc.fixed_view::<3, 3>(3 * i, 3 * j).into_owned();
+    for i in 0..n {
+        let ai = arm(i);
+        let axi = skew(&ai);
+        for j in 0..n {
+            let axj = skew(&arm(j));
+            let s = M3::from_fn(|r, c| kc(3 * i + r, 3 * j + c));
             let mut b = M6::zeros();
             b.fixed_view_mut::<3, 3>(0, 0).copy_from(&s);
             b.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-s * axj));
@@ -1018,9 +1031,39 @@ pub fn condensed_stiffness6(kc: &DMatrix<f64>, vessel: &[(V3, V3)], forces: &[V3
             k6 += b;
         }
         let mut geo = k6.fixed_view_mut::<3, 3>(3, 3);
-        geo -= skew(&forces[i]) * axi;
+        geo -= skew(&force(i)) * axi;
     }
     k6
+}
+
+/// [`condense`] in place, allocating nothing: `k` (n × n row-major, the
+/// vessel points' `nv` unknowns first) becomes, in its first `nv` rows'
+/// first `nv` columns (read with row stride n), K_c = K_vv − K_vp K_pp⁻¹
+/// K_pv (17.8), by Gaussian elimination of the points' columns with
+/// partial pivoting among the points' rows; the rest is scratch. False if
+/// K_pp is singular or K_c not finite.
+pub fn condense_in_place(k: &mut [f64], n: usize, nv: usize) -> bool {
+    for c in nv..n {
+        let p = (c..n).max_by(|&i, &j| k[i * n + c].abs().total_cmp(&k[j * n + c].abs())).unwrap_or(c);
+        if k[p * n + c] == 0.0 || !k[p * n + c].is_finite() {
+            return false;
+        }
+        if p != c {
+            for j in 0..n {
+                k.swap(c * n + j, p * n + j);
+            }
+        }
+        // eliminate column c from every row but the pivot's: the points' below it, and the vessel's
+        for i in (0..nv).chain(c + 1..n) {
+            let f = k[i * n + c] / k[c * n + c];
+            if f != 0.0 {
+                for j in 0..n {
+                    k[i * n + j] -= f * k[c * n + j];
+                }
+            }
+        }
+    }
+    (0..nv).all(|i| (0..nv).all(|j| k[i * n + j].is_finite()))
 }
 
 /// The pose turned by the small global rotation vector `dtheta` (rad) and

@@ -19,16 +19,16 @@
 
 use super::Simulation;
 use super::error::RiserError;
-use super::system::{POINT_CONTACT_AREA, add_block, add_line_ends, condense, solve_system};
+use super::system::{POINT_CONTACT_AREA, condense_in_place, condensed_stiffness6_of, solve_system};
 use super::vessel::{Vessel, VesselLoads, VesselMotion};
+use super::{EndStiffnessScratch, HangOffScratch};
 use crate::loads::current::Current;
 use crate::loads::waves::{Ramp, Sea, WaterPoint};
 use crate::math::{M3, V3};
-use crate::model::cable::AnchorMotion;
+use crate::model::AnchorMotion;
 use crate::model::{HangOff, Outputs, State};
 use crate::scene::system::{Floater, PointKind, PointSpec, SystemScene, VesselEnd};
 use crate::scene::{Model, Scene};
-use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 /// Where a line's end is held in a dynamic run.
@@ -86,12 +86,18 @@ pub type VesselPath<'a> = dyn Fn(&Vessel, f64) -> HangOff + Sync + 'a;
 /// once: the line's state at the step's start and at its end, the
 /// reactions of its supports on it at its hang-off and its anchor (the end
 /// rows of its midpoint equations, N, in the end state), and its step
-/// tangent condensed on its two ends (6×6 row-major: [hang-off; anchor], N/m).
+/// tangent condensed on its two ends' positions (6×6 row-major: [hang-off;
+/// anchor], N/m, global), from its step tangent condensed on all its
+/// prescribed unknowns (`fixed`, a rod's anchor twist among them, in the
+/// basis its tangent is assembled in), whose rows and columns `at` are its
+/// ends' positions.
 pub struct TrialSlot {
     ends: LineEnds,
     start: State,
     state: State,
     condensed: [f64; 36],
+    fixed: Vec<f64>,
+    at: [usize; 6],
     result: Result<(), RiserError>,
 }
 
@@ -123,16 +129,22 @@ impl TrialSlot {
             EndAt::Free(k) => Some(AnchorMotion { position: x1[k] - origin, velocity: v1[k] }),
             _ => None,
         };
-        if !sim.integrator.set_anchor_motion(anchor) && anchor.is_some() {
-            return Err(RiserError::Unsupported("a rod's anchor at a free point".to_string()));
-        }
+        sim.integrator.set_anchor_motion(anchor);
         let free_hang_off = matches!(self.ends.hang_off_at, EndAt::Free(_));
         let target = |s: f64| if free_hang_off { hang_off } else { vessel_path(&vessel, s) };
         self.state.clone_from(prev);
         sim.integrator.step(&mut self.state, h, &target)?;
         self.state.time = t;
         sim.integrator
-            .condensed_fixed_tangent_into(prev, &self.state.config, h, hang_off, &mut self.condensed)
+            .condensed_end_tangent_into(
+                prev,
+                &self.state.config,
+                h,
+                hang_off,
+                &self.at,
+                &mut self.fixed,
+                &mut self.condensed,
+            )
             .map_err(|error| crate::model::DynamicsError::Linear { time: prev.time, step: h, error })?;
         Ok(())
     }
@@ -560,37 +572,14 @@ pub struct FreePoints {
     rhs: Vec<f64>,
     /// The points' states at a checkpoint ([`FreePoints::checkpoint`]).
     saved: Vec<[f64; POINT_VALUES]>,
+    /// The storage of [`FreePoints::condensed_stiffness6`].
+    stiffness: CondensedScratch,
     /// The points' time, s.
     pub time: f64,
     /// Newton iterations on the free points' positions since the start.
     pub point_iterations: u64,
     /// The lines' Newton iterations in the free points' trials, every trial's.
     pub trial_iterations: u64,
-}
-
-/// Why a system cannot be run in this version, or None: a rod line at a
-/// free point (its anchor end cannot move).
-pub fn unsupported(sys: &SystemScene) -> Option<String> {
-    let free: Vec<&str> = sys.points.iter().filter(|p| p.kind == PointKind::Free).map(|p| p.name.as_str()).collect();
-    if free.is_empty() {
-        return None;
-    }
-    let rods: Vec<&str> = sys
-        .lines
-        .iter()
-        .filter(|l| {
-            let at_free = [&l.from, &l.to].iter().any(|p| sys.point(p).is_some_and(|p| p.kind == PointKind::Free));
-            at_free && sys.line_type(&l.line_type).is_some_and(|t| t.model == Model::Rod)
-        })
-        .map(|l| l.name.as_str())
-        .collect();
-    (!rods.is_empty()).then(|| {
-        format!(
-            "line(s) {} at a free point are rods: a rod's end at a free point is not yet in the dynamics (give \
-             its line type model = \"cable\"; docs/guide/systems.md)",
-            rods.join(", ")
-        )
-    })
 }
 
 /// Each line of `sys` set up for a dynamic run ([`SystemRun::new`]): its
@@ -610,9 +599,6 @@ pub fn build(sys: &SystemScene) -> Result<(Vec<LineRun>, FreePoints), String> {
 /// the vessel: its state from the pose's statics translated into that
 /// frame, its hang-off then where the vessel's start puts it).
 pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, FreePoints), String> {
-    if let Some(m) = unsupported(sys) {
-        return Err(m);
-    }
     let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
     let statics = if free.is_empty() { None } else { Some(solve_system(sys, pose, false)?) };
     let at = |p: &PointSpec| match p.kind {
@@ -690,8 +676,8 @@ pub fn build_at(sys: &SystemScene, pose: &[f64; 6]) -> Result<(Vec<LineRun>, Fre
         points.push(point);
     }
     let ends = lines.iter().map(|l| l.ends).collect();
-    let states: Vec<&State> = lines.iter().map(|l| &l.sim.state).collect();
-    let free = FreePoints::new(points, ends, &states);
+    let sims: Vec<&Simulation> = lines.iter().map(|l| &l.sim).collect();
+    let free = FreePoints::new(points, ends, &sims);
     Ok((lines, free))
 }
 
@@ -868,71 +854,137 @@ impl std::fmt::Display for StiffnessError {
     }
 }
 
-/// The lines at free points' stiffness on the vessel at a state, the free
-/// points re-balanced ([`FreePoints::condensed_stiffness`]).
-#[derive(Debug, Clone)]
-pub struct Condensed {
+/// What [`FreePoints::condensed_stiffness6`] keeps between calls, sized
+/// when the points are set up: each line's static tangent's storage, the
+/// system's stiffness over the vessel ends and the points (17.7),
+/// condensed in place (17.8).
+pub struct CondensedScratch {
     /// The lines (the system's indices) hung from the vessel with an end at
-    /// a free point, whose hang-offs K_c couples.
+    /// a free point, whose hang-offs K_c couples (3 unknowns each, first).
     pub lines: Vec<usize>,
-    /// K_c (17.8): −∂(their forces on the vessel)/∂(their hang-offs'
-    /// positions), 3 rows and columns a line in `lines`' order, N/m.
-    pub k: DMatrix<f64>,
+    ends: Vec<EndStiffnessScratch>,
+    /// The hang-off stiffness's storage of each line without a free end
+    /// ([`FreePoints::hang_off_stiffness6`]).
+    hang_offs: Vec<HangOffScratch>,
+    /// K over the vessel ends and the points, row-major, n × n.
+    k: Vec<f64>,
+}
+
+impl CondensedScratch {
+    /// Sized on the system's lines `sims` (in its order) whose ends are `ends`, with `points` free points.
+    fn new(ends: &[LineEnds], points: usize, sims: &[&Simulation]) -> Self {
+        let lines: Vec<usize> = (0..ends.len()).filter(|&i| ends[i].coupled() && ends[i].on_vessel()).collect();
+        let n = 3 * (lines.len() + points);
+        let each = ends
+            .iter()
+            .zip(sims)
+            .map(
+                |(e, sim)| {
+                    if e.coupled() { EndStiffnessScratch::for_line(sim) } else { EndStiffnessScratch::default() }
+                },
+            )
+            .collect();
+        let hang_offs = ends.iter().map(|_| HangOffScratch::default()).collect();
+        CondensedScratch { lines, ends: each, hang_offs, k: vec![0.0; n * n] }
+    }
 }
 
 impl FreePoints {
-    /// The translation stiffness of the lines at free points on their
-    /// vessel ends at the current state, the free points re-balanced: each
-    /// such line's two-end static stiffness at its current configuration
-    /// ([`Simulation::end_stiffness6`], 17.6) and each point's own load's
-    /// at its current position assembled over the vessel ends and the
-    /// points (17.7), the points condensed out (17.8). `sims` every line
-    /// of the system, named, in its order. At the statics this is
-    /// `riser statics`' K_c; during a run, the quasi-static tangent about
-    /// the state: no inertia, the points balanced statically about where
-    /// they are.
-    pub fn condensed_stiffness(&self, sims: &[(&str, &Simulation)]) -> Result<Condensed, StiffnessError> {
-        let lines: Vec<usize> =
-            (0..self.ends.len()).filter(|&i| self.ends[i].coupled() && self.ends[i].on_vessel()).collect();
-        let (nv, np) = (3 * lines.len(), 3 * self.points.len());
-        let mut k = DMatrix::<f64>::zeros(nv + np, nv + np);
+    /// Line `i`'s (without a free end) 6×6 tangent stiffness at its
+    /// hang-off, `sim` its run ([`Simulation::hang_off_stiffness6_into`],
+    /// in this system's storage): allocating nothing after its first call
+    /// (but for a rod with a flex joint).
+    pub fn hang_off_stiffness6(&mut self, i: usize, sim: &Simulation) -> Result<crate::math::M6, RiserError> {
+        sim.hang_off_stiffness6_into(&mut self.stiffness.hang_offs[i])
+    }
+
+    /// The 6×6 stiffness on the vessel's reference point of the lines at
+    /// free points at the current state, the free points re-balanced
+    /// (17.19): each such line's two-end static stiffness at its current
+    /// configuration ([`Simulation::end_stiffness6_into`], 17.6) and each
+    /// point's own load's at its current position assembled over the
+    /// vessel ends and the points (17.7), the points condensed out in place
+    /// (17.8), then (17.9) with the lines' arms `rotation` ρ_i and their
+    /// current forces on the vessel. `line(i)` is line i of the system,
+    /// named. At the statics this is `riser statics`' stiffness; during a
+    /// run, the quasi-static tangent about the state: no inertia, the
+    /// points balanced statically about where they are. Allocates nothing
+    /// after its first call on each line (its storage).
+    pub fn condensed_stiffness6<'s>(
+        &mut self,
+        line: &dyn Fn(usize) -> (&'s str, &'s Simulation),
+        rotation: &M3,
+    ) -> Result<crate::math::M6, StiffnessError> {
+        let FreePoints { stiffness: w, ends, points, .. } = self;
+        let nv = 3 * w.lines.len();
+        let n = nv + 3 * points.len();
+        w.k.iter_mut().for_each(|x| *x = 0.0);
+        let lines = &w.lines;
         let dof = |i: usize, at: EndAt| match at {
             EndAt::Vessel => lines.iter().position(|&j| j == i).map(|p| 3 * p),
             EndAt::Fixed => None,
             EndAt::Free(p) => Some(nv + 3 * p),
         };
-        for (i, e) in self.ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
-            let (name, sim) = sims[i];
+        for (i, e) in ends.iter().enumerate().filter(|(_, e)| e.coupled()) {
+            let (name, sim) = line(i);
             let s6 = sim
-                .end_stiffness6()
+                .end_stiffness6_into(&mut w.ends[i])
                 .map_err(|error| StiffnessError::Line(LineError { line: name.to_string(), error }))?;
-            add_line_ends(&mut k, &s6, [dof(i, e.hang_off_at), dof(i, e.anchor_at)]);
+            // (add_line_ends' sums, in its order)
+            let at = [dof(i, e.hang_off_at), dof(i, e.anchor_at)];
+            for (bi, ri) in at.iter().enumerate() {
+                for (bj, cj) in at.iter().enumerate() {
+                    if let (Some(r), Some(c)) = (ri, cj) {
+                        for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                            w.k[(r + a) * n + c + b] += s6[(3 * bi + a, 3 * bj + b)];
+                        }
+                    }
+                }
+            }
         }
-        for (p, point) in self.points.iter().enumerate() {
-            add_block(&mut k, nv + 3 * p, nv + 3 * p, &point.load_stiffness());
+        for (p, point) in points.iter().enumerate() {
+            let kp = point.load_stiffness();
+            let r = nv + 3 * p;
+            for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                w.k[(r + a) * n + r + b] += kp[(a, b)];
+            }
         }
-        let k = condense(&k, nv).ok_or(StiffnessError::Singular)?;
-        Ok(Condensed { lines, k })
+        if !condense_in_place(&mut w.k, n, nv) {
+            return Err(StiffnessError::Singular);
+        }
+        let (k, lines) = (&w.k, &w.lines);
+        let arm = |i: usize| rotation * line(lines[i]).1.vessel.offset;
+        let force = |i: usize| {
+            let sim = line(lines[i]).1;
+            sim.integrator.top_force(&sim.state)
+        };
+        Ok(condensed_stiffness6_of(&|r, c| k[r * n + c], lines.len(), &arm, &force))
     }
 
     /// The points `points` of a system whose lines' ends are `ends` and
-    /// states `states` (in its order): each line with a free end a trial
-    /// slot sized on its state.
-    pub fn new(points: Vec<FreePointRun>, ends: Vec<LineEnds>, states: &[&State]) -> Self {
+    /// runs `sims` (in its order): each line with a free end a trial slot
+    /// sized on its state and its prescribed unknowns.
+    pub fn new(points: Vec<FreePointRun>, ends: Vec<LineEnds>, sims: &[&Simulation]) -> Self {
         let np = points.len();
         let slots = ends
             .iter()
-            .zip(states)
-            .map(|(e, s)| {
-                e.coupled().then(|| TrialSlot {
-                    ends: *e,
-                    start: (*s).clone(),
-                    state: (*s).clone(),
-                    condensed: [0.0; 36],
-                    result: Ok(()),
+            .zip(sims)
+            .map(|(e, sim)| {
+                e.coupled().then(|| {
+                    let m = sim.integrator.fixed_unknowns();
+                    TrialSlot {
+                        ends: *e,
+                        start: sim.state.clone(),
+                        state: sim.state.clone(),
+                        condensed: [0.0; 36],
+                        fixed: vec![0.0; m * m],
+                        at: sim.integrator.end_position_unknowns().expect("a line's ends are prescribed in a system"),
+                        result: Ok(()),
+                    }
                 })
             })
             .collect();
+        let stiffness = CondensedScratch::new(&ends, np, sims);
         FreePoints {
             points,
             ends,
@@ -946,6 +998,7 @@ impl FreePoints {
             jac: vec![0.0; 9 * np * np],
             rhs: vec![0.0; 3 * np],
             saved: vec![[0.0; POINT_VALUES]; np],
+            stiffness,
             time: 0.0,
             point_iterations: 0,
             trial_iterations: 0,
@@ -1173,7 +1226,7 @@ impl FreePoints {
         }
         // the lines' own states were never touched
         for i in 0..self.ends.len() {
-            let _ = lines.sim(i).integrator.set_anchor_motion(None);
+            lines.sim(i).integrator.set_anchor_motion(None);
         }
         Err(StepFailed::Points { time: t0, residual: worst.0, point: worst.1 })
     }

@@ -16,6 +16,9 @@ use crate::model::RodConfig;
 use crate::model::cable::CableModel;
 use crate::model::cable::linearized::CableLinearized;
 use crate::model::linearized::Linearized;
+use crate::model::rod::RodModel;
+use crate::model::rod::linearized::RodLinearized;
+use crate::model::rod::statics::StaticLoads;
 use crate::scene::Model;
 use crate::scene::system::{PointKind, PointSpec, SystemScene};
 use crate::solve::eigen::lowest_modes_dense;
@@ -103,9 +106,29 @@ struct Piece {
     m: BandedSystem,
     /// Each of its unknowns' place in the joined problem (None: held).
     place: Vec<Option<usize>>,
-    model: CableModel,
+    model: PieceModel,
     cfg: RodConfig,
     normal: V3,
+}
+
+/// A joined line's model: a cable, or a rod with its static loads (its end
+/// at a point pinned, its twist held at its anchor end as the statics',
+/// §17.4, §17.9).
+enum PieceModel {
+    Cable(Box<CableModel>, bool),
+    Rod(Box<(RodModel, StaticLoads)>),
+}
+
+impl PieceModel {
+    /// `f` on the model linearised with its static loads (`drag`: with the
+    /// current's drag in the cable's static tangent; the rod's loads are its
+    /// statics' and only its tangent reads them).
+    fn linearized<R>(&self, drag: bool, f: impl FnOnce(&dyn Linearized) -> R) -> R {
+        match self {
+            PieceModel::Cable(m, with_current) => f(&CableLinearized::new(m, drag && *with_current)),
+            PieceModel::Rod(rod) => f(&RodLinearized::new(&rod.0, &rod.1)),
+        }
+    }
 }
 
 /// The free point's mass with its added mass at `x`, C_a ρ V (isotropic,
@@ -122,13 +145,9 @@ pub fn point_mass(sys: &SystemScene, p: &PointSpec, x: V3) -> f64 {
 
 /// The `count` lowest modes of the lines of `sys` joined at its free points,
 /// about the system's statics at the neutral pose, the vessel held
-/// (docs/theory.md §17.9). An error names what failed: the statics, a line
-/// (a rod at a free point is not in this version, as in the dynamics), or
-/// the eigen-solution.
+/// (docs/theory.md §17.9). An error names what failed: the statics, a line,
+/// or the eigen-solution.
 pub fn joined_modes(sys: &SystemScene, count: usize) -> Result<JoinedModes, String> {
-    if let Some(m) = super::system_dynamics::unsupported(sys) {
-        return Err(m);
-    }
     let free: Vec<&PointSpec> = sys.points.iter().filter(|p| p.kind == PointKind::Free).collect();
     if free.is_empty() {
         return Err("the system has no free point: its lines vibrate alone".to_string());
@@ -146,22 +165,23 @@ pub fn joined_modes(sys: &SystemScene, count: usize) -> Result<JoinedModes, Stri
         }
         let ls = &statics.lines[i];
         let scene = &ls.scene;
-        if scene.analysis.model != Model::Cable {
-            return Err(format!("line '{}': a rod at a free point is not in this version", l.name));
-        }
         let loads = scene_static_loads(scene);
-        let model = CableModel::from_scene(scene);
+        let model = match scene.analysis.model {
+            Model::Cable => PieceModel::Cable(Box::new(CableModel::from_scene(scene)), loads.drag.is_some()),
+            Model::Rod => PieceModel::Rod(Box::new((RodModel::from_scene(scene), loads))),
+        };
         let cfg = ls.report.solution.config.clone();
-        let line = CableLinearized::new(&model, loads.drag.is_some());
-        let n = line.n_dof();
         let named = |e: &dyn std::fmt::Display| format!("line '{}': {e}", l.name);
-        let mut k = line.new_system().map_err(|e| named(&e))?;
-        let mut m = line.new_system().map_err(|e| named(&e))?;
-        let mut r = vec![0.0; n];
-        line.static_tangent(&cfg, &mut r, &mut k);
-        line.mass_matrix(&cfg, &mut m);
-        let fixed = line.fixed_dofs();
-        let (hr, ar) = (line.hang_off_rows(), line.anchor_rows());
+        let (k, m, fixed, hr, ar) = model.linearized(true, |line| {
+            let n = line.n_dof();
+            let mut k = line.new_system().map_err(|e| named(&e))?;
+            let mut m = line.new_system().map_err(|e| named(&e))?;
+            let mut r = vec![0.0; n];
+            line.static_tangent(&cfg, &mut r, &mut k);
+            line.mass_matrix(&cfg, &mut m);
+            Ok::<_, String>((k, m, line.fixed_dofs(), line.hang_off_rows(), line.anchor_rows()))
+        })?;
+        let n = k.dim();
         let place = (0..n)
             .map(|d| {
                 for (end, rows) in [(h, hr), (a, ar)] {
@@ -222,8 +242,8 @@ pub fn joined_modes(sys: &SystemScene, count: usize) -> Result<JoinedModes, Stri
                 let mut mv = vec![0.0; v.len()];
                 p.m.mul_add(&v, &mut mv);
                 energies.push(v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>());
-                let line = CableLinearized::new(&p.model, false);
-                directions.push(line.motion(&p.cfg, &v, &p.normal).direction().name());
+                directions
+                    .push(p.model.linearized(false, |line| line.motion(&p.cfg, &v, &p.normal).direction().name()));
                 largest = largest.max(v.iter().fold(0.0, |s: f64, x| s.max(x.abs())));
                 line_vectors.push(v);
             }

@@ -10,7 +10,7 @@
 //! - the line's stiffness at both its ends' positions (6×6, the ends
 //!   pinned: a system's free points, docs/theory.md §17.4).
 
-use crate::math::band::LinearSolveError;
+use crate::math::band::{BandedSystem, LinearSolveError};
 use crate::math::{M3, M6, V3};
 use crate::model::RodConfig;
 use crate::model::linearized::{EndRotation, Linearized};
@@ -303,56 +303,100 @@ pub fn hang_off_stiffness<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M3
 /// - flex joint: the joint's moment m changes by k_end θ_end + k_vessel δθ,
 ///   in series with the line; the support's moment on the line is −m.
 pub fn hang_off_stiffness6<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M6, EigenError> {
+    hang_off_stiffness6_in(line, cfg, &mut HangOffStorage::default())
+}
+
+/// What [`hang_off_stiffness6_in`] works in on one line: its static
+/// tangent, residual and fixed unknowns, the driven rows on the interior
+/// and the right-hand sides (sized at the first call on the line).
+#[derive(Default)]
+pub struct HangOffStorage {
+    sys: Option<BandedSystem>,
+    r: Vec<f64>,
+    fixed: Vec<usize>,
+    rows: Vec<f64>,
+    cols: Vec<f64>,
+}
+
+/// [`hang_off_stiffness6`] in the storage `w` (the same numbers, the same
+/// bits), allocating nothing after its first call on the line.
+pub fn hang_off_stiffness6_in<L: Linearized>(
+    line: &L,
+    cfg: &RodConfig,
+    w: &mut HangOffStorage,
+) -> Result<M6, EigenError> {
     let n = line.n_dof();
-    let fixed = line.fixed_dofs();
+    if w.sys.is_none() {
+        w.sys = Some(line.new_system().map_err(EigenError::Linear)?);
+        w.r = vec![0.0; n];
+        w.fixed = line.fixed_dofs();
+        w.rows = vec![0.0; 6 * n];
+        w.cols = vec![0.0; 6 * n];
+    }
+    let fixed = &w.fixed;
     let b = line.hang_off_rows();
     if b.iter().any(|i| fixed.binary_search(i).is_err()) {
         return Err(EigenError::HangOffFree);
     }
     let end = line.hang_off_end(cfg);
     // the prescribed unknowns whose columns are driven: the position, and a clamp's rotation
-    let mut driven: Vec<usize> = b.to_vec();
+    let mut driven = [0; 6];
+    driven[..3].copy_from_slice(&b);
+    let mut nd = 3;
     if let EndRotation::Clamped { rows } = end {
         if rows.iter().any(|i| fixed.binary_search(i).is_err()) {
             return Err(EigenError::HangOffFree);
         }
-        driven.extend(rows);
+        driven[3..].copy_from_slice(&rows);
+        nd = 6;
     }
-    let mut sys = line.new_system().map_err(EigenError::Linear)?;
-    let mut r = vec![0.0; n];
-    line.static_tangent(cfg, &mut r, &mut sys);
+    let driven = &driven[..nd];
+    let sys = w.sys.as_mut().expect("sized above");
+    line.static_tangent(cfg, &mut w.r, sys);
     let is_fixed = |i: usize| fixed.binary_search(&i).is_ok();
     // the output rows that read the tangent: the force, and a clamp's moment
     let mut s = M6::zeros();
-    let rows: Vec<Vec<f64>> = driven.iter().map(|&bi| (0..n).map(|k| sys.get(bi, k)).collect()).collect();
+    for (i, &bi) in driven.iter().enumerate() {
+        for k in 0..n {
+            w.rows[i * n + k] = sys.get(bi, k);
+        }
+    }
+    let rows = &w.rows[..nd * n];
     for (i, &bi) in driven.iter().enumerate() {
         for (j, &bj) in driven.iter().enumerate() {
             s[(i, j)] = sys.get(bi, bj);
         }
     }
     // right-hand sides −K_ib e_j of the six columns (zero: the column is not driven)
-    let mut cols: Vec<Vec<f64>> =
-        driven.iter().map(|&bj| (0..n).map(|k| if is_fixed(k) { 0.0 } else { -sys.get(k, bj) }).collect()).collect();
+    for (j, &bj) in driven.iter().enumerate() {
+        for k in 0..n {
+            w.cols[j * n + k] = if is_fixed(k) { 0.0 } else { -sys.get(k, bj) };
+        }
+    }
+    let mut nc = nd;
     if let EndRotation::Joint { rows: jr, k_vessel, .. } = end {
         for j in 0..3 {
-            let mut c = vec![0.0; n];
+            let c = &mut w.cols[(nd + j) * n..(nd + j + 1) * n];
+            c.iter_mut().for_each(|v| *v = 0.0);
             for (a, &ia) in jr.iter().enumerate() {
                 c[ia] = -k_vessel[(a, j)];
             }
-            cols.push(c);
         }
+        nc = nd + 3;
     }
-    if !s.iter().chain(rows.iter().flatten()).all(|v| v.is_finite()) {
+    if !s.iter().chain(rows.iter()).all(|v| v.is_finite()) {
         return Err(EigenError::NotFinite);
     }
-    for &i in &fixed {
+    for &i in fixed {
         sys.constrain(i);
     }
     sys.factorize().map_err(EigenError::Linear)?;
-    for (j, mut dq) in cols.into_iter().enumerate() {
+    for j in 0..nc {
         // K_ii Δq = −K_ib e_j
-        sys.solve_in_place(&mut dq).map_err(EigenError::Linear)?;
-        for (i, row) in rows.iter().enumerate() {
+        let dq = &mut w.cols[j * n..(j + 1) * n];
+        sys.solve_in_place(dq).map_err(EigenError::Linear)?;
+        for i in 0..nd {
+            let row = &rows[i * n..(i + 1) * n];
             let mut v = 0.0;
             for k in 0..n {
                 if !is_fixed(k) {

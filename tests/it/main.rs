@@ -45,6 +45,7 @@ mod system_dynamics;
 mod system_free_dynamics;
 mod system_free_points;
 mod system_modes;
+mod system_rod_points;
 mod system_surface_buoy;
 mod wall_stresses;
 mod waves;

@@ -176,7 +176,6 @@ fn the_modes_and_the_fmu_take_free_points() {
     let bridle = path("bridle_mooring");
     let sys = case("bridle_mooring");
     // `riser run` and the FMU run them (tests/it/system_free_dynamics.rs, src/fmi/instance.rs)
-    assert!(riser::sim::system_dynamics::unsupported(&sys).is_none());
     // the FMU's path: the system with the master's numerics besides its lines' scenes
     let built = riser::fmi::system::line_scenes(&sys, &[]).unwrap();
     assert_eq!(built.scenes.len(), sys.lines.len());

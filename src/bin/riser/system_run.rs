@@ -491,10 +491,6 @@ pub fn model_description(path: &str) -> Result<(), String> {
         ));
     }
     let sys = SystemScene::load(path).map_err(|e| e.to_string())?;
-    // a rod at a free point: not in the FMU's dynamics either
-    if let Some(m) = riser::sim::system_dynamics::unsupported(&sys) {
-        return Err(m);
-    }
     let name = std::path::Path::new(path).file_name().and_then(|n| n.to_str()).unwrap_or(path);
     out!("{}", riser::fmi::system::model_description(&sys, name)?);
     Ok(())

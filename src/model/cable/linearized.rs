@@ -20,6 +20,16 @@ impl<'a> CableLinearized<'a> {
     pub fn new(model: &'a CableModel, with_current: bool) -> Self {
         CableLinearized { model, statics: CableStatics::new(model, with_current) }
     }
+
+    /// The cable linearised from its statics' parts ([`CableStatics::into_parts`]): nothing allocated.
+    pub fn from_parts(model: &'a CableModel, parts: super::statics::CableStaticParts) -> Self {
+        CableLinearized { model, statics: CableStatics::from_parts(model, parts) }
+    }
+
+    /// Its statics' parts, to build it again without allocating.
+    pub fn into_parts(self) -> super::statics::CableStaticParts {
+        self.statics.into_parts()
+    }
 }
 
 impl Linearized for CableLinearized<'_> {

@@ -230,13 +230,8 @@ pub struct CableModel {
     pub anchor_motion: Option<AnchorMotion>,
 }
 
-/// A prescribed position (m, the line's frame) and velocity (m/s) of the
-/// cable's anchor end at the end of a step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AnchorMotion {
-    pub position: V3,
-    pub velocity: V3,
-}
+/// The anchor end's motion over a step (shared with the rod: a system's free point moves either).
+pub use super::AnchorMotion;
 
 /// The segment mass matrix ρ̄ l/12 [[5, 1], [1, 5]] (6.4), kg.
 fn segment_mass(mass_per_length: f64, l: f64) -> [[f64; 2]; 2] {

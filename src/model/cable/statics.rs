@@ -119,6 +119,16 @@ pub fn touchdown_start(model: &CableModel, top: V3, anchor: V3) -> Option<Vec<V3
 
 /// The static problem of a cable: internal force, the vertical load and,
 /// if given, the drag of a steady current on the motionless line.
+/// What a [`CableStatics`] owns beyond its model (the water's static
+/// action, its force scale and its fixed unknowns), kept to build it again
+/// without allocating.
+#[derive(Debug, Clone)]
+pub struct CableStaticParts {
+    water: PerElement<Fluid>,
+    scale: f64,
+    fixed: Vec<usize>,
+}
+
 pub struct CableStatics<'a> {
     pub model: &'a CableModel,
     /// The water's static action on each segment (drag of the current; no added mass).
@@ -137,6 +147,19 @@ impl<'a> CableStatics<'a> {
         });
         let scale = crate::model::StepEquations::force_scale(model);
         CableStatics { model, water, scale, fixed: model.cable.fixed_dofs() }
+    }
+
+    /// The statics of `model` from the parts statics of it gave back
+    /// ([`CableStatics::into_parts`], with the same `with_current`):
+    /// nothing allocated.
+    pub fn from_parts(model: &'a CableModel, parts: CableStaticParts) -> Self {
+        let CableStaticParts { water, scale, fixed } = parts;
+        CableStatics { model, water, scale, fixed }
+    }
+
+    /// What the statics own, to build them again without allocating.
+    pub fn into_parts(self) -> CableStaticParts {
+        CableStaticParts { water: self.water, scale: self.scale, fixed: self.fixed }
     }
 
     /// R(x) into `r` and, if given, ∂R/∂x into `sys`.

@@ -32,6 +32,11 @@ pub struct RodModel {
     /// The current's growth from the run's start (duration 0: in full from
     /// the start, the paper's; docs/theory.md §5.11).
     pub current_ramp: Ramp,
+    /// Where the anchor end (S = L) is at the end of the next step and its
+    /// velocity there (None: held where it is, at rest). A system's free
+    /// point moves it, the end pinned, its twist held as at a fixed anchor
+    /// (docs/theory.md §17.7); its work is `work_anchor`.
+    pub anchor_motion: Option<crate::model::AnchorMotion>,
 }
 
 impl RodModel {
@@ -50,6 +55,7 @@ impl RodModel {
             f_grav,
             sea: None,
             current_ramp: Ramp::NONE,
+            anchor_motion: None,
         }
     }
 
@@ -82,7 +88,7 @@ impl RodModel {
         let fluid = sections::fluid(scene, &props);
         let seabed = sections::seabed(scene, &props);
         let current_ramp = loads::current_ramp(scene);
-        RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp }
+        RodModel { rod, mass, vertical, fluid, seabed, f_grav, sea: None, current_ramp, anchor_motion: None }
     }
 
     /// Sets the flex joint's static frame D_static (the line's end frame in

@@ -361,9 +361,12 @@ impl Rod {
     /// D: rows and columns become Dᵀ(·) and (·)D, and the change of the frame
     /// itself adds `Dᵀ [m]× D`, m the spatial residual moment (docs/theory.md §3.4).
     pub fn to_local_basis(&self, cfg: &RodConfig, r: &mut [f64], sys: Option<&mut BandedSystem>) {
-        let nodes = self.local_basis_nodes();
+        // (the nodes of `local_basis_nodes`, not collected: nothing allocated)
+        let nodes = [(0, 0), (1, 2 * self.n_el)]
+            .into_iter()
+            .filter(|&(end, _)| self.ends[end].rotation == RotationBc::TwistFixed);
         let mut sys = sys;
-        for j in nodes {
+        for (_, j) in nodes {
             let i0 = Self::theta_dof(j);
             let d = cfg.d[j];
             let m = V3::new(r[i0], r[i0 + 1], r[i0 + 2]);

@@ -22,6 +22,16 @@ impl<'a> RodLinearized<'a> {
         RodLinearized { model, statics: StaticProblem::new(&model.rod, loads) }
     }
 
+    /// The rod linearised from its static problem's parts ([`StaticProblem::into_parts`]): nothing allocated.
+    pub fn from_parts(model: &'a RodModel, loads: &'a StaticLoads, parts: super::statics::StaticParts) -> Self {
+        RodLinearized { model, statics: StaticProblem::from_parts(&model.rod, loads, parts) }
+    }
+
+    /// Its static problem's parts, to build it again without allocating.
+    pub fn into_parts(self) -> super::statics::StaticParts {
+        self.statics.into_parts()
+    }
+
     /// Spatial rotation of director node j from the unknowns (θ = D θ_loc at
     /// the nodes whose rotation is expressed in their own frame).
     fn rotation(&self, cfg: &RodConfig, phi: &[f64], j: usize, local: &[usize]) -> V3 {

@@ -199,6 +199,16 @@ pub fn add_static_surface(
     add_element_loads(rod, cfg, skip, element, r, sys);
 }
 
+/// What a [`StaticProblem`] owns beyond its rod and loads (its constant
+/// load vector, its fixed unknowns and its force scale), kept to build it
+/// again without allocating.
+#[derive(Debug, Clone)]
+pub struct StaticParts {
+    f_const: Vec<f64>,
+    fixed: Vec<usize>,
+    force_scale: f64,
+}
+
 /// The static problem assembled on a rod.
 pub struct StaticProblem<'a> {
     pub rod: &'a Rod,
@@ -222,6 +232,20 @@ impl<'a> StaticProblem<'a> {
         let force_scale =
             (0..=rod.n_el).map(|a| (0..3).map(|c| f_const[Rod::x_dof(a) + c].abs()).sum::<f64>()).sum::<f64>();
         StaticProblem { rod, loads, f_const, fixed, force_scale }
+    }
+
+    /// The problem on `rod` and `loads` from the parts a problem on them
+    /// gave back ([`StaticProblem::into_parts`]): the same problem,
+    /// nothing allocated.
+    pub fn from_parts(rod: &'a Rod, loads: &'a StaticLoads, parts: StaticParts) -> Self {
+        let StaticParts { f_const, fixed, force_scale } = parts;
+        StaticProblem { rod, loads, f_const, fixed, force_scale }
+    }
+
+    /// What the problem owns, to build it again on the same rod and loads
+    /// without allocating ([`StaticProblem::from_parts`]).
+    pub fn into_parts(self) -> StaticParts {
+        StaticParts { f_const: self.f_const, fixed: self.fixed, force_scale: self.force_scale }
     }
 
     /// Residual r = f_int − f_ext (reduced, local basis at twist-held ends), and

@@ -207,6 +207,9 @@ impl StepEquations for RodModel {
         if rod.ends[0].position_fixed {
             trial.config.x[0] = origin + target.displacement;
         }
+        if let (true, Some(m)) = (rod.ends[1].position_fixed, self.anchor_motion) {
+            trial.config.x[rod.n_el] = m.position;
+        }
         // directors: the smallest rotation that turns d3 onto the predicted
         // centreline tangent (the director rates of the scheme carry the
         // unresolved shear oscillation and predict badly at large steps)
@@ -295,7 +298,7 @@ impl StepEquations for RodModel {
             buf.vnew[0] = target.velocity;
         }
         if rod.ends[1].position_fixed {
-            buf.vnew[n_el] = V3::zeros();
+            buf.vnew[n_el] = model.anchor_motion.map_or(V3::zeros(), |m| m.velocity);
         }
         let k_inertia = 2.0 / (h * h);
         // (multiplications by 1/h in the element loop: a division costs several)
@@ -694,6 +697,13 @@ impl StepEquations for RodModel {
             for e in 0..rod.n_el {
                 trial.dissipated += rod.damping_dissipation(e, &ws.damp_n[e], &ws.damp_1[e], eta / h);
             }
+        }
+        if let (true, Some(_)) = (rod.ends[1].position_fixed, self.anchor_motion) {
+            // a moving anchor's work, as the hang-off's (§5.5, §17.7)
+            let n = rod.n_el;
+            let dxn = cfg1.x[n] - cfg0.x[n];
+            let vbar = 0.5 * (state.vel[n] + trial.vel[n]);
+            trial.work_anchor += dxn.dot(&ws.reaction[1]) + (vbar * h - dxn).dot(&ws.end_inertia[1]);
         }
         if rod.ends[1].rotation == RotationBc::TwistFixed {
             let j = 2 * rod.n_el;
