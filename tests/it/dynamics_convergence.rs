@@ -99,3 +99,48 @@ fn the_cubic_predictor_saves_iterations_and_keeps_the_answers() {
         }
     }
 }
+
+/// The predictor's judge (docs/theory.md §5.7, eq. 5.34): on the catenary at
+/// 0.2 s, where the cubic's residual exceeds a tenth of the weight but is far
+/// below the linear one's on a smooth history, the step keeps the cubic; its
+/// answers are those of the linear predictor to the Newton tolerance's effect,
+/// with fewer tangents.
+#[test]
+fn the_predictor_judge_keeps_a_resolved_cubic_and_the_answers() {
+    use std::sync::{Arc, Mutex};
+    let run = |order: u32| {
+        let sets = ["n_elements=10", "time_step=0.2", "newton_tolerance=1e-8"].map(String::from);
+        let scene = Scene::builtin("catenary").unwrap().with_overrides(&sets).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        sim.integrator.options_mut().predictor_order = order;
+        let kept = Arc::new(Mutex::new(0usize));
+        let k2 = kept.clone();
+        sim.integrator.set_solver_log(Some(Box::new(move |s: &str| {
+            if s.contains("cubic prediction kept") {
+                *k2.lock().unwrap() += 1;
+            }
+        })));
+        let heave = Heave { amplitude: 2.5, period: 10.0, until: None, ramp: 10.0 };
+        let motion = move |t: f64| heave.at(t);
+        sim.start(heave.at(0.0));
+        let tension: Vec<f64> = (1..=300)
+            .map(|k| {
+                sim.advance_to(k as f64 * 0.2, &motion).unwrap();
+                sim.outputs().top_tension
+            })
+            .collect();
+        let kept = *kept.lock().unwrap();
+        (tension, sim.integrator.factorizations(), kept)
+    };
+    let ((cubic, f3, kept), (linear, f1, none)) = (run(3), run(1));
+    let worst = cubic.iter().zip(&linear).map(|(a, b)| ((a - b) / b).abs()).fold(0.0, f64::max);
+    println!(
+        "catenary, 10 el., 0.2 s: the cubic kept in {kept} of 300 steps; tangents {f3} against {f1} (linear); top tension within {worst:.2e}"
+    );
+    assert_eq!(none, 0);
+    assert!(kept >= 30, "the judge kept the cubic in {kept} steps");
+    // the Newton tolerance 1e-8 of the weight, each step's answer within it
+    // (about 1e-8 of the tension), over 300 steps: 100 times it, as above
+    assert!(worst <= 1e-6, "{worst:e}");
+    assert!(f3 < f1, "{f3} tangents against {f1}");
+}
