@@ -15,13 +15,6 @@ use crate::model::{DynamicOptions, DynamicsError, HangOff, Linear, State, StepEq
 /// rate before it is renewed.
 const MAX_LINEAR_ITERATIONS: f64 = 15.0;
 
-/// A cubic prediction is kept over the linear one where its residual is
-/// below this fraction of the linear one's (and the history is smooth).
-const CUBIC_OVER_LINEAR: f64 = 0.1;
-
-/// The largest [`mean_velocity_roughness`] of a history the cubic is kept on.
-const MAX_ROUGHNESS: f64 = 0.5;
-
 /// A sink for solver messages.
 pub type SolverLog = Box<dyn FnMut(&str) + Send>;
 
@@ -146,7 +139,7 @@ impl<M: StepEquations> Integrator<M> {
             let hh = sub.min(t_end - state.time);
             let target = motion(state.time + hh);
             // the cubic predictor (which falls back to the linear one by
-            // itself when it may extrapolate an unresolved oscillation); halved
+            // itself when it extrapolates an unresolved oscillation); halved
             // sub-steps, whose history is of another step size, the linear one
             let order = if level == 0 { self.options.predictor_order } else { 1 };
             match self.try_step(state, hh, target, order) {
@@ -191,171 +184,128 @@ impl<M: StepEquations> Integrator<M> {
         // asked for round-off: iterate until the residual stops falling, so
         // that no systematic part of a linearly converging iteration is left
         let to_roundoff = asked < roundoff;
-        // a cubic prediction whose residual exceeds a tenth of the weight is
-        // judged against the linear one (theory §5.7, eq. 5.34): kept where the history
-        // is smooth and the linear residual is ten times larger; if Newton
-        // from such a cubic fails, the step runs once more from the linear one
-        let mut judged_cubic = false;
-        let mut retried = false;
+        let mut converged = false;
         let mut iterations = 0;
-        loop {
-            let mut converged = false;
-            let mut last = f64::INFINITY;
-            let mut first = f64::INFINITY;
-            let mut last_res = f64::INFINITY;
-            // the cubic prediction's residual once the linear one is tried
-            let mut cubic_res = f64::NAN;
-            // modified Newton: the factorised tangent is reused across iterations
-            // and steps; it is refreshed when it is older than max_tangent_age
-            // steps, when h changed, or when the residual contracts slowly
-            let same_h = (self.factor_h - h).abs() <= 1e-9 * h; // false for NaN
-            let mut refresh = !same_h || self.factor_age >= self.options.max_tangent_age;
-            // whether the last Newton correction used a tangent of its own iterate
-            let mut solved_fresh = false;
-            // set when a fresh tangent still contracts slowly: full Newton from there
-            let mut full = false;
-            // (the retry after a judged cubic starts from the linear prediction)
-            let mut tried_linear = retried;
-            let mut at_start = true;
-            let mut corrections = 0;
-            for it in 0..=self.options.max_iterations {
-                if refresh {
-                    // assembling overwrites the factorised matrix
-                    self.factor_h = f64::NAN;
-                }
-                model.assemble(&mut self.ws, &mut self.lin, state, &trial.config, h, target, eta, refresh);
-                let res = model.residual_norm(&self.lin);
-                if let Some(log) = self.solver_log.as_mut() {
-                    log(&format!(
-                        "t = {:.6} s, h = {h:.3e} s, Newton iteration {it}{}: residual {res:.3e} N (tolerance {tol:.3e} N)",
-                        state.time,
-                        if refresh { " (new tangent)" } else { "" }
-                    ));
-                }
-                last = res;
-                // converged; or stagnating at round-off after a full Newton correction
-                let at_tol = res <= tol && (!to_roundoff || res > 0.25 * last_res || res <= 0.1 * roundoff);
-                // (never the bare prediction: an extrapolation, not a solution of
-                // the step equations, whatever the tolerance; at the default one
-                // the prediction is never within it)
-                let corrected = corrections > 0;
-                if (at_tol && corrected) || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
-                    converged = true;
-                    break;
-                }
-                if at_start && res > 0.1 * self.force_scale && order >= 2 && !tried_linear {
-                    // the cubic predictor may have extrapolated an unresolved
-                    // oscillation: the linear one for comparison
-                    tried_linear = true;
-                    cubic_res = res;
-                    model.predict(&mut self.ws, state, trial, h, self.origin, target, 1);
-                    continue;
-                }
-                if at_start && cubic_res < CUBIC_OVER_LINEAR * res && mean_velocity_roughness(state) < MAX_ROUGHNESS {
-                    // a smooth history and a cubic ten times closer than the
-                    // linear one: a resolved motion, back to the cubic
-                    judged_cubic = true;
-                    if let Some(log) = self.solver_log.as_mut() {
-                        log(&format!(
-                            "t = {:.6} s, h = {h:.3e} s: the cubic prediction kept (residual {cubic_res:.3e} N, \
-                             the linear one's {res:.3e} N)",
-                            state.time
-                        ));
-                    }
-                    cubic_res = f64::NAN;
-                    model.predict(&mut self.ws, state, trial, h, self.origin, target, order);
-                    continue;
-                }
-                at_start = false;
-                if it == self.options.max_iterations || !res.is_finite() {
-                    break;
-                }
-                if it == 0 {
-                    first = res;
-                }
-                if res > 1e8 * first {
-                    break;
-                }
-                // slow: the residual contracts by less than half per correction, or
-                // at a rate that would need more than `MAX_LINEAR_ITERATIONS` more
-                // corrections to reach the tolerance (a new tangent costs about
-                // as much as ten residuals)
-                if self.work >= self.work_bound {
-                    self.factor_h = f64::NAN;
-                    return Err(DynamicsError::WorkBound { time: state.time, iterations: self.work });
-                }
-                self.work += 1;
-                let rate = res / last_res;
-                let slow = rate > 0.5 || (rate > 0.0 && (tol / res).ln() / rate.ln() > MAX_LINEAR_ITERATIONS);
-                last_res = res;
-                iterations += 1;
-                corrections += 1;
-                let lin = &mut self.lin;
-                for &i in &lin.fixed {
-                    lin.r[i] = 0.0;
-                }
-                if refresh {
-                    for &i in &lin.fixed {
-                        lin.sys.constrain(i);
-                    }
-                    if let Err(error) = lin.sys.factorize() {
-                        self.factor_h = f64::NAN;
-                        return Err(DynamicsError::Linear { time: state.time, step: h, error });
-                    }
-                    self.factor_h = h;
-                    self.factor_age = 0;
-                    self.factorizations += 1;
-                }
-                // the contraction just observed is that of the previous correction:
-                // slow after a stale tangent, renew it once; slow after a fresh
-                // one, the step is strongly nonlinear: full Newton from here
-                let prev_fresh = solved_fresh;
-                solved_fresh = refresh;
-                if slow && corrections > 1 && prev_fresh {
-                    full = true;
-                }
-                refresh = full || (slow && corrections > 1);
-                for (d, r) in lin.du.iter_mut().zip(&lin.r) {
-                    *d = -r;
-                }
-                model.to_tangent_basis(&self.ws, &trial.config, &mut lin.du);
-                if let Err(error) = lin.sys.solve_in_place(&mut lin.du) {
-                    self.factor_h = f64::NAN;
-                    return Err(DynamicsError::Linear { time: state.time, step: h, error });
-                }
-                model.to_spatial_basis(&self.ws, &trial.config, &mut lin.du);
-                // (a non-finite configuration shows as an infinite residual next)
-                model.apply_increment(&mut self.ws, lin, state, &mut trial.config);
-            }
-            // a spurious root of the step equations (theory §5.7) counts as a failure
-            let admissible = converged && model.step_is_admissible(state, &trial.config);
-            if !admissible {
-                // the next attempt starts from a new tangent
+        let mut last = f64::INFINITY;
+        let mut first = f64::INFINITY;
+        let mut last_res = f64::INFINITY;
+        // modified Newton: the factorised tangent is reused across iterations
+        // and steps; it is refreshed when it is older than max_tangent_age
+        // steps, when h changed, or when the residual contracts slowly
+        let same_h = (self.factor_h - h).abs() <= 1e-9 * h; // false for NaN
+        let mut refresh = !same_h || self.factor_age >= self.options.max_tangent_age;
+        // whether the last Newton correction used a tangent of its own iterate
+        let mut solved_fresh = false;
+        // set when a fresh tangent still contracts slowly: full Newton from there
+        let mut full = false;
+        let mut tried_linear = false;
+        let mut at_start = true;
+        for it in 0..=self.options.max_iterations {
+            if refresh {
+                // assembling overwrites the factorised matrix
                 self.factor_h = f64::NAN;
             }
-            if !admissible && judged_cubic && !retried {
-                retried = true;
-                // the judged cubic led Newton astray: once more from the linear
-                // prediction (the one taken before the judge), before halving
-                if let Some(log) = self.solver_log.as_mut() {
-                    log(&format!("t = {:.6} s, h = {h:.3e} s: again from the linear predictor", state.time));
-                }
+            model.assemble(&mut self.ws, &mut self.lin, state, &trial.config, h, target, eta, refresh);
+            let res = model.residual_norm(&self.lin);
+            if let Some(log) = self.solver_log.as_mut() {
+                log(&format!(
+                    "t = {:.6} s, h = {h:.3e} s, Newton iteration {it}{}: residual {res:.3e} N (tolerance {tol:.3e} N)",
+                    state.time,
+                    if refresh { " (new tangent)" } else { "" }
+                ));
+            }
+            last = res;
+            // converged; or stagnating at round-off after a full Newton correction
+            let at_tol = res <= tol && (!to_roundoff || res > 0.25 * last_res || res <= 0.1 * roundoff);
+            // (never the bare prediction: an extrapolation, not a solution of
+            // the step equations, whatever the tolerance; at the default one
+            // the prediction is never within it)
+            let corrected = iterations > 0;
+            if (at_tol && corrected) || (solved_fresh && res <= 10.0 * roundoff && res > 0.25 * last_res) {
+                converged = true;
+                break;
+            }
+            if at_start && res > 0.1 * self.force_scale && order >= 2 && !tried_linear {
+                // the cubic predictor extrapolated an unresolved
+                // oscillation: start again from the linear one
+                tried_linear = true;
                 model.predict(&mut self.ws, state, trial, h, self.origin, target, 1);
                 continue;
             }
-            if !converged {
-                return Err(DynamicsError::NotConverged {
-                    time: state.time,
-                    step: h,
-                    iterations,
-                    residual: last / self.force_scale,
-                });
+            at_start = false;
+            if it == self.options.max_iterations || !res.is_finite() {
+                break;
             }
-            if !admissible {
-                // smaller steps
-                return Err(DynamicsError::Inadmissible { time: state.time, step: h });
+            if it == 0 {
+                first = res;
             }
-            break;
+            if res > 1e8 * first {
+                break;
+            }
+            // slow: the residual contracts by less than half per correction, or
+            // at a rate that would need more than `MAX_LINEAR_ITERATIONS` more
+            // corrections to reach the tolerance (a new tangent costs about
+            // as much as ten residuals)
+            if self.work >= self.work_bound {
+                self.factor_h = f64::NAN;
+                return Err(DynamicsError::WorkBound { time: state.time, iterations: self.work });
+            }
+            self.work += 1;
+            let rate = res / last_res;
+            let slow = rate > 0.5 || (rate > 0.0 && (tol / res).ln() / rate.ln() > MAX_LINEAR_ITERATIONS);
+            last_res = res;
+            iterations += 1;
+            let lin = &mut self.lin;
+            for &i in &lin.fixed {
+                lin.r[i] = 0.0;
+            }
+            if refresh {
+                for &i in &lin.fixed {
+                    lin.sys.constrain(i);
+                }
+                if let Err(error) = lin.sys.factorize() {
+                    self.factor_h = f64::NAN;
+                    return Err(DynamicsError::Linear { time: state.time, step: h, error });
+                }
+                self.factor_h = h;
+                self.factor_age = 0;
+                self.factorizations += 1;
+            }
+            // the contraction just observed is that of the previous correction:
+            // slow after a stale tangent, renew it once; slow after a fresh
+            // one, the step is strongly nonlinear: full Newton from here
+            let prev_fresh = solved_fresh;
+            solved_fresh = refresh;
+            if slow && it > 0 && prev_fresh {
+                full = true;
+            }
+            refresh = full || (slow && it > 0);
+            for (d, r) in lin.du.iter_mut().zip(&lin.r) {
+                *d = -r;
+            }
+            model.to_tangent_basis(&self.ws, &trial.config, &mut lin.du);
+            if let Err(error) = lin.sys.solve_in_place(&mut lin.du) {
+                self.factor_h = f64::NAN;
+                return Err(DynamicsError::Linear { time: state.time, step: h, error });
+            }
+            model.to_spatial_basis(&self.ws, &trial.config, &mut lin.du);
+            // (a non-finite configuration shows as an infinite residual next)
+            model.apply_increment(&mut self.ws, lin, state, &mut trial.config);
+        }
+        if !converged {
+            // the next attempt (a smaller sub-step) starts from a new tangent
+            self.factor_h = f64::NAN;
+            return Err(DynamicsError::NotConverged {
+                time: state.time,
+                step: h,
+                iterations,
+                residual: last / self.force_scale,
+            });
+        }
+        if !model.step_is_admissible(state, &trial.config) {
+            // a spurious root of the step equations (theory §5.7): smaller steps
+            self.factor_h = f64::NAN;
+            return Err(DynamicsError::Inadmissible { time: state.time, step: h });
         }
         model.finish(&mut self.ws, state, trial, h, &self.options);
         if !trial.is_finite() {
@@ -372,20 +322,6 @@ impl<M: StepEquations> Integrator<M> {
         std::mem::swap(state, trial);
         Ok(iterations)
     }
-}
-
-/// The second difference of the last three steps' mean velocities relative
-/// to their first difference, root-mean-square over the nodes (ρ of theory
-/// §5.7, eq. 5.34):
-/// about ωh for a motion of frequency ω resolved by the step h, 1 or more
-/// for an oscillation the step does not resolve (0 for a history at rest).
-fn mean_velocity_roughness(state: &State) -> f64 {
-    let (mut first, mut second) = (0.0, 0.0);
-    for ((a, b), c) in state.mean_vel.iter().zip(&state.prev_mean_vel).zip(&state.prev2_mean_vel) {
-        first += (a - b).norm_squared();
-        second += (a - 2.0 * b + c).norm_squared();
-    }
-    if second == 0.0 { 0.0 } else { (second / first).sqrt() }
 }
 
 impl<M: StepEquations> Integrator<M> {
