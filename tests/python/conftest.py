@@ -42,7 +42,7 @@ BUDGETS = {
     "test_coupling_buoy.py": 30, "test_coupling_mono.py": 25, "test_directional_derivative.py": 10, "test_fatigue.py": 10, "test_fmpy_logging.py": 10,
     "test_fmu.py": 45, "test_fuzz.py": 35, "test_guide.py": 30, "test_interface_doc.py": 5, "test_masters.py": 15,
     "test_model_structure.py": 5, "test_parameter_ranges.py": 10, "test_scatter_fatigue.py": 20, "test_sweep.py": 60,
-    "test_system_coupling.py": 15, "test_system_free_dd.py": 15, "test_system_free_fmu.py": 10, "test_system_moordyn.py": 25, "test_tools.py": 20,
+    "test_system_coupling.py": 20, "test_system_free_dd.py": 15, "test_system_free_fmu.py": 10, "test_system_moordyn.py": 25, "test_tools.py": 20,
     "test_rustdoc.py": 30, "test_sea_states.py": 15, "test_vessel.py": 30, "test_vessel6.py": 15, "test_waves.py": 15,
 }
 _SPENT: dict[str, float] = {}
