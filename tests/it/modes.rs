@@ -170,7 +170,7 @@ fn rod_mass_matrix_is_the_kinetic_energy() {
     let mut m = line.new_system().unwrap();
     line.mass_matrix(&start, &mut m);
     let n = line.n_dof();
-    let local = model.rod.local_basis_nodes();
+    let local: Vec<usize> = model.rod.local_basis_nodes().collect();
     let mut seed = 7u64;
     let mut rnd = || {
         seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
@@ -297,7 +297,7 @@ fn modes_against_free_vibration(model_name: &str, k: usize, dt: f64, duration: f
     }
     if rod {
         if let Engine::Rod(i) = &sim.integrator {
-            let local = i.model.rod.local_basis_nodes();
+            let local: Vec<usize> = i.model.rod.local_basis_nodes().collect();
             for j in 0..s.director_vel.len() {
                 let t = Rod::theta_dof(j);
                 let mut th = V3::new(q0[t], q0[t + 1], q0[t + 2]);

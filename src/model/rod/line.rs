@@ -328,15 +328,12 @@ impl Rod {
 
     /// Director nodes whose rotation increments are expressed in their own
     /// frame (θ = D θ_loc) so that a twist condition is a single fixed unknown.
-    pub fn local_basis_nodes(&self) -> Vec<usize> {
-        let mut v = Vec::new();
-        if self.ends[0].rotation == RotationBc::TwistFixed {
-            v.push(0);
-        }
-        if self.ends[1].rotation == RotationBc::TwistFixed {
-            v.push(2 * self.n_el);
-        }
-        v
+    pub fn local_basis_nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        // (an iterator, not a Vec: the step's basis changes allocate nothing)
+        [(0, 0), (1, 2 * self.n_el)]
+            .into_iter()
+            .filter(|&(end, _)| self.ends[end].rotation == RotationBc::TwistFixed)
+            .map(|(_, j)| j)
     }
 
     /// Unknowns held at zero by the end conditions.
@@ -361,12 +358,8 @@ impl Rod {
     /// D: rows and columns become Dᵀ(·) and (·)D, and the change of the frame
     /// itself adds `Dᵀ [m]× D`, m the spatial residual moment (docs/theory.md §3.4).
     pub fn to_local_basis(&self, cfg: &RodConfig, r: &mut [f64], sys: Option<&mut BandedSystem>) {
-        // (the nodes of `local_basis_nodes`, not collected: nothing allocated)
-        let nodes = [(0, 0), (1, 2 * self.n_el)]
-            .into_iter()
-            .filter(|&(end, _)| self.ends[end].rotation == RotationBc::TwistFixed);
         let mut sys = sys;
-        for (_, j) in nodes {
+        for j in self.local_basis_nodes() {
             let i0 = Self::theta_dof(j);
             let d = cfg.d[j];
             let m = V3::new(r[i0], r[i0 + 1], r[i0 + 2]);
@@ -417,11 +410,10 @@ impl Rod {
             let i = Self::xp_dof(a);
             cfg.xp[a] += V3::new(du[i], du[i + 1], du[i + 2]);
         }
-        let local = self.local_basis_nodes();
         for j in 0..self.n_director_nodes() {
             let i = Self::theta_dof(j);
             let mut th = V3::new(du[i], du[i + 1], du[i + 2]);
-            if local.contains(&j) {
+            if self.local_basis_nodes().any(|n| n == j) {
                 th = cfg.d[j] * th;
             }
             cfg.d[j] = cayley(&th) * cfg.d[j];

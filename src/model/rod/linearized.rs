@@ -167,7 +167,7 @@ impl Linearized for RodLinearized<'_> {
 
     fn motion(&self, cfg: &RodConfig, phi: &[f64], normal: &V3) -> ModeMotion {
         let rod = &self.model.rod;
-        let local = rod.local_basis_nodes();
+        let local: Vec<usize> = rod.local_basis_nodes().collect();
         let node_u = |a: usize| {
             let i = Rod::x_dof(a);
             V3::new(phi[i], phi[i + 1], phi[i + 2])
