@@ -576,7 +576,7 @@ impl Simulation {
                     Some(LinearizedParts::Rod(p)) => RodLinearized::from_parts(&i.model, &self.static_loads, p),
                     _ => RodLinearized::new(&i.model, &self.static_loads),
                 };
-                let s = w.end_stiffness6(&line, cfg);
+                let s = crate::solve::eigen::end_stiffness6_shifted_in(&line, cfg, 0.0, &mut w.storage);
                 w.parts = Some(LinearizedParts::Rod(line.into_parts()));
                 s
             }
@@ -585,7 +585,7 @@ impl Simulation {
                     Some(LinearizedParts::Cable(p)) => CableLinearized::from_parts(&i.model, p),
                     _ => CableLinearized::new(&i.model, self.static_loads.drag.is_some()),
                 };
-                let s = w.end_stiffness6(&line, cfg);
+                let s = crate::solve::eigen::end_stiffness6_shifted_in(&line, cfg, 0.0, &mut w.storage);
                 w.parts = Some(LinearizedParts::Cable(line.into_parts()));
                 s
             }
@@ -595,15 +595,12 @@ impl Simulation {
 }
 
 /// What [`Simulation::end_stiffness6_into`] keeps between calls on one
-/// line: its linearised model's owned parts, its static tangent's matrix
-/// and residual, its fixed unknowns and the Schur complement.
+/// line: its linearised model's owned parts and the storage of
+/// [`crate::solve::eigen::end_stiffness6_shifted_in`].
 #[derive(Default)]
 pub struct EndStiffnessScratch {
     parts: Option<LinearizedParts>,
-    sys: Option<crate::math::band::BandedSystem>,
-    r: Vec<f64>,
-    fixed: Vec<usize>,
-    s: Vec<f64>,
+    storage: crate::solve::eigen::EndStiffnessStorage,
 }
 
 /// What [`Simulation::hang_off_stiffness6_into`] keeps between calls on
@@ -626,60 +623,19 @@ impl EndStiffnessScratch {
     /// either); empty, to be sized at the first call, if its band matrix
     /// cannot be had.
     pub fn for_line(sim: &Simulation) -> Self {
-        fn sized<L: crate::model::linearized::Linearized>(line: &L) -> Option<EndStiffnessScratch> {
-            Some(EndStiffnessScratch {
-                parts: None,
-                sys: Some(line.new_system().ok()?),
-                r: vec![0.0; line.n_dof()],
-                fixed: line.fixed_dofs(),
-                s: vec![0.0; 36],
-            })
-        }
+        use crate::solve::eigen::EndStiffnessStorage;
         match &sim.integrator {
             Engine::Rod(i) => {
                 let line = RodLinearized::new(&i.model, &sim.static_loads);
-                let w = sized(&line);
-                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Rod(line.into_parts())), ..w })
+                let storage = EndStiffnessStorage::for_line(&line).unwrap_or_default();
+                EndStiffnessScratch { parts: Some(LinearizedParts::Rod(line.into_parts())), storage }
             }
             Engine::Cable(i) => {
                 let line = CableLinearized::new(&i.model, sim.static_loads.drag.is_some());
-                let w = sized(&line);
-                w.map(|w| EndStiffnessScratch { parts: Some(LinearizedParts::Cable(line.into_parts())), ..w })
+                let storage = EndStiffnessStorage::for_line(&line).unwrap_or_default();
+                EndStiffnessScratch { parts: Some(LinearizedParts::Cable(line.into_parts())), storage }
             }
         }
-        .unwrap_or_default()
-    }
-
-    /// [`end_stiffness6`] of `line` at `cfg` in this storage (sized at the
-    /// first call): the static tangent, its Schur complement on the two
-    /// ends' positions (17.6), the other held unknowns held.
-    fn end_stiffness6<L: crate::model::linearized::Linearized>(
-        &mut self,
-        line: &L,
-        cfg: &crate::model::RodConfig,
-    ) -> Result<M6, crate::solve::eigen::EigenError> {
-        use crate::math::band::LinearSolveError;
-        use crate::solve::eigen::EigenError;
-        if self.sys.is_none() {
-            self.sys = Some(line.new_system().map_err(EigenError::Linear)?);
-            self.r = vec![0.0; line.n_dof()];
-            self.fixed = line.fixed_dofs();
-            self.s = vec![0.0; 36];
-        }
-        let mut driven = [0; 6];
-        driven[..3].copy_from_slice(&line.hang_off_rows());
-        driven[3..].copy_from_slice(&line.anchor_rows());
-        if driven.iter().any(|i| self.fixed.binary_search(i).is_err()) {
-            return Err(EigenError::HangOffFree);
-        }
-        let sys = self.sys.as_mut().expect("sized above");
-        line.static_tangent(cfg, &mut self.r, sys);
-        sys.schur_complement_into(&driven, &self.fixed, &mut self.s).map_err(|e| match e {
-            LinearSolveError::NonFinite => EigenError::NotFinite,
-            e => EigenError::Linear(e),
-        })?;
-        let s = M6::from_row_slice(&self.s);
-        if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
     }
 }
 

@@ -440,24 +440,67 @@ pub fn end_stiffness6<L: Linearized>(line: &L, cfg: &RodConfig) -> Result<M6, Ei
 /// An approximation for a Newton direction (a system's free points), not
 /// the line's stiffness.
 pub fn end_stiffness6_shifted<L: Linearized>(line: &L, cfg: &RodConfig, shift: f64) -> Result<M6, EigenError> {
+    end_stiffness6_shifted_in(line, cfg, shift, &mut EndStiffnessStorage::default())
+}
+
+/// What [`end_stiffness6_shifted_in`] works in on one line: its static
+/// tangent, residual and fixed unknowns, the Schur complement (sized at the
+/// first call on the line).
+#[derive(Default)]
+pub struct EndStiffnessStorage {
+    sys: Option<BandedSystem>,
+    r: Vec<f64>,
+    fixed: Vec<usize>,
+    s: Vec<f64>,
+}
+
+impl EndStiffnessStorage {
+    /// The storage sized on `line` (so that its first call allocates
+    /// nothing either); None if its band matrix cannot be had.
+    pub fn for_line<L: Linearized>(line: &L) -> Option<Self> {
+        Some(EndStiffnessStorage {
+            sys: Some(line.new_system().ok()?),
+            r: vec![0.0; line.n_dof()],
+            fixed: line.fixed_dofs(),
+            s: vec![0.0; 36],
+        })
+    }
+}
+
+/// [`end_stiffness6_shifted`] in the storage `w` (the same numbers, the
+/// same bits), allocating nothing after its first call on the line.
+pub fn end_stiffness6_shifted_in<L: Linearized>(
+    line: &L,
+    cfg: &RodConfig,
+    shift: f64,
+    w: &mut EndStiffnessStorage,
+) -> Result<M6, EigenError> {
     let n = line.n_dof();
-    let fixed = line.fixed_dofs();
+    if w.sys.is_none() {
+        w.sys = Some(line.new_system().map_err(EigenError::Linear)?);
+        w.r = vec![0.0; n];
+        w.fixed = line.fixed_dofs();
+        w.s = vec![0.0; 36];
+    }
+    let fixed = &w.fixed;
     let is_fixed = |i: usize| fixed.binary_search(&i).is_ok();
-    let driven: Vec<usize> = line.hang_off_rows().into_iter().chain(line.anchor_rows()).collect();
+    let mut driven = [0; 6];
+    driven[..3].copy_from_slice(&line.hang_off_rows());
+    driven[3..].copy_from_slice(&line.anchor_rows());
     if driven.iter().any(|&i| !is_fixed(i)) {
         return Err(EigenError::HangOffFree);
     }
-    let mut sys = line.new_system().map_err(EigenError::Linear)?;
-    let mut r = vec![0.0; n];
-    line.static_tangent(cfg, &mut r, &mut sys);
+    let sys = w.sys.as_mut().expect("sized above");
+    line.static_tangent(cfg, &mut w.r, sys);
     if shift != 0.0 {
         for i in (0..n).filter(|&i| !is_fixed(i)) {
             sys.add(i, i, shift);
         }
     }
-    let s = M6::from_row_slice(&sys.schur_complement(&driven, &fixed).map_err(|e| match e {
+    sys.schur_complement_into(&driven, fixed, &mut w.s).map_err(|e| match e {
         LinearSolveError::NonFinite => EigenError::NotFinite,
         e => EigenError::Linear(e),
-    })?);
+    })?;
+    let s = M6::from_row_slice(&w.s);
     if s.iter().all(|v| v.is_finite()) { Ok(s) } else { Err(EigenError::NotFinite) }
 }
